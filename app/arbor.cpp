@@ -1,0 +1,149 @@
+// The arbor command line: parses arguments, calls the libraries, maps errors to exit codes
+// (0 success, 1 the work failed, 2 bad input or usage).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <new>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "arbor/version.h"
+#include "common/error.h"
+#include "common/progress.h"
+#include "generator/species.h"
+#include "generator/tree_mesh.h"
+#include "generator/tree_stats.h"
+#include "generator/weber_penn.h"
+
+namespace {
+
+struct GrowArgs {
+  std::string species;
+  unsigned long long seed = 1;
+  double time = 0.0;
+  double quality = 1.0;
+  std::string out;
+  bool stats = false;
+  bool json = false;
+  bool force = false;
+};
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+int run_grow(const GrowArgs& a) {
+  using namespace arbor;
+  if (!std::isfinite(a.time)) throw InputError({}, "--time must be a finite number of seconds");
+  if (!(a.quality > 0.0 && a.quality <= 100.0)) {
+    throw InputError({}, "--quality must be in (0, 100]");
+  }
+  if (!a.out.empty() && !ends_with(a.out, ".obj") && !ends_with(a.out, ".ply")) {
+    throw InputError({}, "-o " + a.out +
+                             ": this build writes .obj and .ply meshes (.pbrt and .skel come "
+                             "with the geometry and skeleton-file work)");
+  }
+  gen::Species species = gen::load_species(a.species);
+  for (const std::string& w : species.warnings) std::fprintf(stderr, "%s\n", w.c_str());
+
+  Progress progress("grow", 1);
+  gen::GrowOptions options;
+  options.seed = a.seed;
+  options.time = a.time;
+  options.quality = a.quality;
+  options.force = a.force;
+  options.progress = &progress;
+  const auto start = std::chrono::steady_clock::now();
+  gen::Skeleton skeleton;
+  try {
+    skeleton = gen::grow_weber_penn(species.weber_penn, options);
+  } catch (const RuntimeFailure& e) {
+    // Refusing an absurd size is about the input: report it against the species file.
+    throw InputError({a.species, 0, 0}, e.what());
+  }
+  progress.finish();
+  gen::TreeStats stats = gen::compute_stats(skeleton);
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  long long mesh_triangles = -1;
+  if (!a.out.empty()) {
+    const gen::TreeMesh mesh = gen::tessellate(skeleton);
+    mesh_triangles = static_cast<long long>(mesh.triangle_count());
+    if (ends_with(a.out, ".obj")) gen::write_obj(mesh, a.out);
+    else gen::write_ply(mesh, a.out);
+  }
+  if (a.json) {
+    std::fputs(gen::stats_json(stats, species.name, a.seed, mesh_triangles).c_str(), stdout);
+  } else if (a.stats) {
+    std::printf("%s (seed %llu)\n%s", species.name.c_str(), a.seed, gen::stats_text(stats).c_str());
+  }
+  if (!a.out.empty() && !a.json) std::fprintf(stderr, "arbor: wrote %s\n", a.out.c_str());
+  return 0;
+}
+
+int not_available(const char* command, const char* issue) {
+  std::fprintf(stderr, "arbor %s: not available in this build yet (%s)\n", command, issue);
+  return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"arbor " ARBOR_VERSION_STRING
+               ": grows trees from procedural models and renders them (physically based)"};
+  app.set_version_flag("--version", std::string("arbor ") + ARBOR_VERSION_STRING);
+  app.require_subcommand(1);
+
+  GrowArgs grow;
+  CLI::App* grow_cmd = app.add_subcommand(
+      "grow", "Grow a tree from a species file and report or export it");
+  grow_cmd->add_option("SPECIES", grow.species,
+                       "species file: .toml (model = \"weber-penn\") or .xml (Arbaro)")
+      ->required();
+  grow_cmd->add_option("--seed", grow.seed, "random seed (same seed, same tree)")
+      ->capture_default_str();
+  grow_cmd->add_option("--time", grow.time, "seconds of wind sway (needs WindSpeed/WindGust)")
+      ->capture_default_str();
+  grow_cmd->add_option("--quality", grow.quality,
+                       "leaf quality factor: leaf count x Q, leaf size / sqrt(Q)")
+      ->capture_default_str();
+  grow_cmd->add_option("-o,--output", grow.out, "write a mesh: .obj or .ply (bark and leaf groups)");
+  grow_cmd->add_flag("--stats", grow.stats, "print statistics of the tree");
+  grow_cmd->add_flag("--json", grow.json, "print the statistics as one JSON object");
+  grow_cmd->add_flag("--force", grow.force,
+                     "grow even a tree estimated at over 10 million stems or 100 million leaves");
+
+  CLI::App* render_cmd = app.add_subcommand(
+      "render", "Render a scene file (not available in this build yet)");
+  render_cmd->allow_extras();
+  CLI::App* compare_cmd = app.add_subcommand(
+      "compare", "Compare two EXR images (not available in this build yet)");
+  compare_cmd->allow_extras();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+
+  try {
+    if (*grow_cmd) return run_grow(grow);
+    if (*render_cmd) return not_available("render", "the path tracer is the next milestone");
+    if (*compare_cmd) return not_available("compare", "comes with the reference-image work");
+  } catch (const arbor::InputError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  } catch (const arbor::RuntimeFailure& e) {
+    std::fprintf(stderr, "arbor: error: %s\n", e.what());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "arbor: error: out of memory\n");
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "arbor: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,71 @@
+// The Skeleton: Bloomenthal's "points and connections", the one interchange every tree model emits.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace arbor::gen {
+
+// A point on a limb's axis with the limb's radius there (metres).
+struct SkeletonPoint {
+  glm::vec3 position{0.0f};
+  float radius = 0.0f;
+};
+
+// A limb: a chain of points from its base to its tip. Connections are parent links: a stem grows
+// from one point of its parent's axis (at parent_offset metres from the parent's base), so every
+// point has at most one incoming limb and the stems form a tree with one root.
+struct Stem {
+  std::int32_t level = 0;         // 0 trunk, 1 branches, 2 sub-branches, …
+  std::int32_t parent = -1;       // index of the stem it grows from; -1 only for the root
+  bool is_clone = false;          // split off its parent at the same level (Weber & Penn §4.2)
+  float parent_offset = 0.0f;     // metres along the parent's axis where this stem starts
+  std::uint32_t first_point = 0;  // range in Skeleton::points; the first point is the base
+  std::uint32_t point_count = 0;
+  float length = 0.0f;            // metres of the whole stem (a clone shares its twin's length)
+  float base_radius = 0.0f;       // radius at Z = 0 of the (unsplit) stem
+  float z_start = 0.0f;           // normalised position Z of the first point (> 0 for clones)
+  float taper = -1.0f;            // Weber & Penn nTaper (0–3); < 0: interpolate point radii
+};
+
+// A leaf blade placed on a stem. The blade spans `length` along `axis` from `position`, and
+// `width` across it (along cross(normal, axis)); `normal` is the front (upper) side.
+struct Leaf {
+  glm::vec3 position{0.0f};
+  glm::vec3 axis{0.0f, 0.0f, 1.0f};
+  glm::vec3 normal{0.0f, 1.0f, 0.0f};
+  float length = 0.0f;
+  float width = 0.0f;
+  std::int32_t stem = -1;
+  std::int32_t shape = 0;  // index into leaf_shapes()
+};
+
+// Radial displacement of level-0 stems (Weber & Penn §4.4): flare near the base, lobed section.
+struct TrunkDisplacement {
+  float flare = 0.0f;
+  std::int32_t lobes = 0;
+  float lobe_depth = 0.0f;
+};
+
+struct Skeleton {
+  std::vector<SkeletonPoint> points;
+  std::vector<Stem> stems;
+  std::vector<Leaf> leaves;
+  TrunkDisplacement trunk;
+  std::int32_t levels = 1;  // number of stem levels present (max level + 1)
+
+  // Radius of stem s at normalised position z (0 base, 1 tip), from its taper when it has one.
+  float radius_at(const Stem& s, double z) const;
+  // Position on stem s's axis at `offset` metres from the base of the whole stem.
+  glm::vec3 position_at_offset(const Stem& s, double offset) const;
+};
+
+// Checks the invariants: exactly one root, parents before children (so no cycles), every stem has
+// at least two points, finite values, non-negative radii, child base radius ≤ parent radius at
+// the branch point. Returns "" when valid, else the first violation in words.
+std::string validate(const Skeleton& skeleton);
+
+}  // namespace arbor::gen

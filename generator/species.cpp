@@ -1,0 +1,37 @@
+// Species loading: dispatch on the file extension.
+#include "generator/species.h"
+
+#include <fstream>
+#include <sstream>
+
+namespace arbor::gen {
+
+std::string read_text_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError({path, 0, 0}, "cannot open the file for reading");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError({path, 0, 0}, "cannot read the file");
+  return text.str();
+}
+
+namespace {
+bool ends_with(const std::string& s, std::string_view suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(),
+                                                suffix.data(), suffix.size()) == 0;
+}
+}  // namespace
+
+Species load_species(const std::string& path) {
+  if (ends_with(path, ".toml")) return parse_species_toml(read_text_file(path), path);
+  if (ends_with(path, ".xml")) return parse_arbaro_xml(read_text_file(path), path);
+  if (ends_with(path, ".tmpl") || ends_with(path, ".lsys") || ends_with(path, ".skel")) {
+    throw InputError({path, 0, 0},
+                     "this build of arbor does not read TREE-MAKER templates, L-systems or "
+                     "skeleton files yet; species formats available: .toml, .xml (Arbaro)");
+  }
+  throw InputError({path, 0, 0},
+                   "unknown species format: expected a .toml species or an .xml Arbaro file");
+}
+
+}  // namespace arbor::gen

@@ -1,0 +1,189 @@
+// Reader of arbor's TOML species format (docs/species-format.md): paper parameter names, one
+// table per level, [bark] and [leaf] looks. Unknown keys and bad values are errors with position.
+#include <cmath>
+#include <map>
+#include <string>
+
+#include <toml++/toml.h>
+
+#include "generator/species.h"
+
+namespace arbor::gen {
+
+namespace {
+
+class TomlSpecies {
+ public:
+  TomlSpecies(const std::string& path) : path_(path) {}
+
+  SourceLocation at(const toml::source_region& r) const {
+    return {path_, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
+  }
+
+  double number(const toml::node& node, std::string_view name) const {
+    if (auto v = node.value<double>(); v && (node.is_floating_point() || node.is_integer())) {
+      if (!std::isfinite(*v)) throw InputError(at(node.source()), std::string(name) + " must be a finite number");
+      return *v;
+    }
+    throw InputError(at(node.source()), std::string(name) + " must be a number");
+  }
+
+  std::string text(const toml::node& node, std::string_view name) const {
+    if (auto v = node.value<std::string>(); v && node.is_string()) return *v;
+    throw InputError(at(node.source()), std::string(name) + " must be a string");
+  }
+
+  const toml::table& table(const toml::node& node, std::string_view name) const {
+    if (const toml::table* t = node.as_table()) return *t;
+    throw InputError(at(node.source()), std::string(name) + " must be a table");
+  }
+
+  Rgb colour(const toml::node& node, std::string_view name) const {
+    const toml::array* a = node.as_array();
+    if (!a || a->size() != 3) {
+      throw InputError(at(node.source()), std::string(name) + " must be an array of 3 numbers");
+    }
+    Rgb c{};
+    for (size_t i = 0; i < 3; ++i) {
+      c[i] = number(*a->get(i), name);
+      if (c[i] < 0.0 || c[i] > 1.0) {
+        throw InputError(at(a->get(i)->source()),
+                         std::string(name) + " components must be in [0, 1]");
+      }
+    }
+    return c;
+  }
+
+  void param(Species& sp, const ParamInfo& info, int level, const toml::node& node,
+             const std::string& paper_name) {
+    if (info.integer && !node.is_integer()) {
+      throw InputError(at(node.source()), paper_name + " must be a whole number");
+    }
+    const std::string problem = set_param(sp.weber_penn, info, level, number(node, paper_name));
+    if (!problem.empty()) {
+      throw InputError(at(node.source()), (level >= 0 && !info.real && !info.whole ? std::to_string(level) : "") + problem);
+    }
+    positions_[paper_name] = at(node.source());
+  }
+
+  void levels(Species& sp, const toml::table& levels) {
+    for (auto&& [key, node] : levels) {
+      const std::string k(key.str());
+      if (k.size() != 1 || k[0] < '0' || k[0] > '3') {
+        throw InputError(at(key.source()),
+                         "unknown level '" + k + "': levels are 0 (trunk) to 3; deeper levels "
+                         "reuse level 3");
+      }
+      const int level = k[0] - '0';
+      for (auto&& [pkey, pnode] : table(node, "level." + k)) {
+        const std::string name(pkey.str());
+        const ParamInfo* info = find_level_param(name);
+        if (!info) {
+          throw InputError(at(pkey.source()), "unknown key '" + name + "' in [level." + k + "]");
+        }
+        if (info->level0_only && level != 0) {
+          throw InputError(at(pkey.source()), name + " is a trunk parameter: put it in [level.0]");
+        }
+        if (info->children_only && level == 0) {
+          throw InputError(at(pkey.source()),
+                           name + " has no meaning for the trunk (level 0): remove it");
+        }
+        param(sp, *info, level, pnode, k + name);
+      }
+    }
+  }
+
+  void bark(Species& sp, const toml::table& t) {
+    for (auto&& [key, node] : t) {
+      const std::string k(key.str());
+      if (k == "albedo") {
+        sp.bark.albedo = colour(node, "bark.albedo");
+      } else if (k == "bump_height") {
+        const double h = number(node, "bark.bump_height");
+        if (h < 0.0 || h > 1.0) throw InputError(at(node.source()), "bark.bump_height must be in [0, 1] metres");
+        sp.bark.bump_height = h;
+      } else {
+        throw InputError(at(key.source()), "unknown key '" + k + "' in [bark]");
+      }
+    }
+  }
+
+  void leaf(Species& sp, const toml::table& t) {
+    for (auto&& [key, node] : t) {
+      const std::string k(key.str());
+      if (k == "reflectance") sp.leaf.reflectance = colour(node, "leaf.reflectance");
+      else if (k == "back_reflectance") sp.leaf.back_reflectance = colour(node, "leaf.back_reflectance");
+      else if (k == "transmittance") sp.leaf.transmittance = colour(node, "leaf.transmittance");
+      else throw InputError(at(key.source()), "unknown key '" + k + "' in [leaf]");
+    }
+    for (size_t i = 0; i < 3; ++i) {
+      const double t_i = sp.leaf.transmittance[i];
+      if (sp.leaf.reflectance[i] + t_i > 1.0 || sp.leaf.back_reflectance[i] + t_i > 1.0) {
+        throw InputError(at(t.source()),
+                         "leaf reflectance + transmittance must be at most 1 in every channel "
+                         "(for the front and the back), or the leaf would create energy");
+      }
+    }
+  }
+
+  Species read(std::string_view source) {
+    toml::table root;
+    try {
+      root = toml::parse(source, path_);
+    } catch (const toml::parse_error& e) {
+      throw InputError(at(e.source()), std::string(e.description()));
+    }
+    Species sp;
+    sp.path = path_;
+    bool has_model = false;
+    for (auto&& [key, node] : root) {
+      const std::string k(key.str());
+      if (k == "model") {
+        const std::string m = text(node, "model");
+        if (m != "weber-penn") {
+          throw InputError(at(node.source()),
+                           "model '" + m + "' is not available in this build; known: weber-penn");
+        }
+        has_model = true;
+      } else if (k == "name") {
+        sp.name = text(node, "name");
+      } else if (k == "level") {
+        levels(sp, table(node, "level"));
+      } else if (k == "bark") {
+        bark(sp, table(node, "bark"));
+      } else if (k == "leaf") {
+        leaf(sp, table(node, "leaf"));
+      } else if (const ParamInfo* info = find_tree_param(k)) {
+        param(sp, *info, -1, node, k);
+      } else if (find_level_param(k)) {
+        throw InputError(at(key.source()),
+                         "'" + k + "' is a per-level parameter: put it in a [level.N] table");
+      } else {
+        throw InputError(at(key.source()), "unknown key '" + k + "'");
+      }
+    }
+    if (!has_model) {
+      throw InputError({path_, 1, 1}, "missing key 'model' (for example model = \"weber-penn\")");
+    }
+    std::string key;
+    const std::string problem = check_consistency(sp.weber_penn, key);
+    if (!problem.empty()) {
+      auto it = positions_.find(key);
+      throw InputError(it != positions_.end() ? it->second : SourceLocation{path_, 1, 1}, problem);
+    }
+    if (sp.name.empty()) sp.name = path_;
+    return sp;
+  }
+
+ private:
+  std::string path_;
+  std::map<std::string, SourceLocation> positions_;
+};
+
+}  // namespace
+
+Species parse_species_toml(std::string_view text, const std::string& path) {
+  return TomlSpecies(path).read(text);
+}
+
+}  // namespace arbor::gen

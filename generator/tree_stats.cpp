@@ -1,0 +1,84 @@
+// Statistics of a Skeleton.
+#include "generator/tree_stats.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "generator/leaf_shapes.h"
+
+namespace arbor::gen {
+
+TreeStats compute_stats(const Skeleton& sk) {
+  TreeStats st;
+  st.stems_per_level.assign(static_cast<size_t>(std::max(1, sk.levels)), 0);
+  for (const Stem& s : sk.stems) {
+    if (static_cast<size_t>(s.level) >= st.stems_per_level.size()) {
+      st.stems_per_level.resize(static_cast<size_t>(s.level) + 1, 0);
+    }
+    ++st.stems_per_level[static_cast<size_t>(s.level)];
+    st.curve_segments += s.point_count > 0 ? s.point_count - 1 : 0;
+  }
+  st.points = static_cast<long long>(sk.points.size());
+  st.leaves = static_cast<long long>(sk.leaves.size());
+  const glm::vec3 axis = sk.points.empty() ? glm::vec3(0.0f) : sk.points.front().position;
+  double reach = 0.0, top = 0.0;
+  auto visit = [&](const glm::vec3& p, double margin) {
+    top = std::max(top, static_cast<double>(p.z) + margin);
+    reach = std::max(reach, std::hypot(p.x - axis.x, p.y - axis.y) + margin);
+  };
+  for (const SkeletonPoint& p : sk.points) visit(p.position, p.radius);
+  const auto& shapes = leaf_shapes();
+  for (const Leaf& l : sk.leaves) {
+    st.triangles += static_cast<long long>(shapes[static_cast<size_t>(l.shape)].triangles.size());
+    visit(l.position + l.axis * l.length, 0.5 * l.width);
+  }
+  st.height = top;
+  st.crown_width = 2.0 * reach;
+  return st;
+}
+
+std::string stats_json(const TreeStats& st, const std::string& species, unsigned long long seed,
+                       long long mesh_triangles) {
+  std::string out = "{\"species\": \"";
+  for (char c : species) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (static_cast<unsigned char>(c) >= 0x20) out += c;
+  }
+  out += "\", \"seed\": " + std::to_string(seed) + ", \"stems_per_level\": [";
+  long long total = 0;
+  for (size_t i = 0; i < st.stems_per_level.size(); ++i) {
+    out += (i ? ", " : "") + std::to_string(st.stems_per_level[i]);
+    total += st.stems_per_level[i];
+  }
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "], \"stems\": %lld, \"leaves\": %lld, \"curve_segments\": %lld, "
+                "\"triangles\": %lld, \"points\": %lld, \"height\": %.6g, \"crown_width\": %.6g, "
+                "\"seconds\": %.6g",
+                total, st.leaves, st.curve_segments, st.triangles, st.points, st.height,
+                st.crown_width, st.seconds);
+  out += buf;
+  if (mesh_triangles >= 0) out += ", \"mesh_triangles\": " + std::to_string(mesh_triangles);
+  out += "}\n";
+  return out;
+}
+
+std::string stats_text(const TreeStats& st) {
+  std::string levels;
+  long long total = 0;
+  for (size_t i = 0; i < st.stems_per_level.size(); ++i) {
+    levels += (i ? " / " : "") + std::to_string(st.stems_per_level[i]);
+    total += st.stems_per_level[i];
+  }
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "stems          %lld (per level %s)\nleaves         %lld\n"
+                "curve segments %lld\nleaf triangles %lld\nheight         %.2f m\n"
+                "crown width    %.2f m\ngrown in       %.3f s\n",
+                total, levels.c_str(), st.leaves, st.curve_segments, st.triangles, st.height,
+                st.crown_width, st.seconds);
+  return buf;
+}
+
+}  // namespace arbor::gen

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages arbor needs: exactly those missing, nothing when all are present.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libembree-dev          # Embree 3.13: ray tracing of curves, grids, triangles
+  libopenimageio-dev     # OpenImageIO 2.4: image I/O, comparison, colour conversion
+  openimageio-tools      # oiiotool / idiff, used by checks
+  libopenexr-dev         # OpenEXR 3.1
+  python3-imath          # Debian's Imath CMake targets name its Python binding library
+  libopencolorio-dev     # OpenColorIO 2.1
+  libglm-dev             # GLM 0.9.9
+  libtbb-dev             # oneTBB
+  libtomlplusplus-dev    # toml++: species and scene files
+  libcli11-dev           # CLI11: the command line
+  libpugixml-dev         # pugixml: Arbaro XML species
+  libtinyobjloader-dev   # tinyobjloader: OBJ meshes
+  libgtest-dev libgmock-dev  # GoogleTest
+  libbenchmark-dev       # Google Benchmark
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q '^install ok installed$'; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "arbor: installing missing packages: ${missing[*]}" >&2
+if [ "$(id -u)" -ne 0 ]; then
+  echo "arbor: these Debian packages are missing and installing them needs root:" >&2
+  echo "  apt-get install ${missing[*]}" >&2
+  exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${missing[@]}"

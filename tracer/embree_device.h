@@ -1,0 +1,29 @@
+// The one Embree device of a render, as an RAII handle whose errors become arbor exceptions.
+// This folder is the only place that includes <embree3/rtcore.h>.
+#pragma once
+
+#include <string>
+
+struct RTCDeviceTy;
+
+namespace arbor::trace {
+
+class EmbreeDevice {
+ public:
+  // config: Embree's device configuration string (e.g. "threads=1"); empty for defaults.
+  explicit EmbreeDevice(const std::string& config = "");
+  ~EmbreeDevice();
+  EmbreeDevice(const EmbreeDevice&) = delete;
+  EmbreeDevice& operator=(const EmbreeDevice&) = delete;
+
+  RTCDeviceTy* get() const { return device_; }
+  // Throws RuntimeFailure naming `doing` and Embree's message if Embree reported an error.
+  void check(const char* doing) const;
+  // Embree's version string, e.g. "3.13.5".
+  static std::string version();
+
+ private:
+  RTCDeviceTy* device_ = nullptr;
+};
+
+}  // namespace arbor::trace
