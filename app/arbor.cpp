@@ -102,6 +102,13 @@ int main(int argc, char** argv) {
                        "species file: .toml (model = \"weber-penn\") or .xml (Arbaro)")
       ->required();
   grow_cmd->add_option("--seed", grow.seed, "random seed (same seed, same tree)")
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            return v.find_first_not_of("0123456789") == std::string::npos && !v.empty()
+                       ? std::string()
+                       : "the seed must be a whole number from 0 to 2^64-1, not '" + v + "'";
+          },
+          "UINT64"))
       ->capture_default_str();
   grow_cmd->add_option("--time", grow.time, "seconds of wind sway (needs WindSpeed/WindGust)")
       ->capture_default_str();

@@ -49,6 +49,7 @@ struct StemSpec {
   int first_segment = 0;
   std::uint64_t key = 0;
   double split_correction = 0.0;  // radians per remaining segment (§4.2 back-rotation)
+  double pending_correction = 0.0;  // joins split_correction after the next segment
   double share = 1.0;             // fraction of the children/leaves this clone carries
   double children = 0.0;          // children over the whole stem (before sharing)
   double leaves = 0.0;            // leaves over the whole stem (before sharing)
@@ -85,7 +86,7 @@ class Grower {
     // §4.4: radius_trunk = length_trunk * Ratio * (0Scale ± 0ScaleV).
     s.base_radius = s.length * p_.ratio * trunk.vary(l0.scale, l0.scale_v);
     s.children = p_.levels > 1 ? std::fabs(p_.at(1).branches) : 0.0;
-    s.leaves = p_.levels == 1 ? wp::leaves_per_branch(std::fabs(p_.leaves), 0, 0, o_.quality) : 0;
+    s.leaves = p_.levels == 1 ? leaf_count(0.0, 0.0) : 0.0;
     s.child_place.azimuth = Rng(derive_key(s.key, kChildPlacement)).uniform() * 360.0;
     s.leaf_place.azimuth = Rng(derive_key(s.key, kLeafPlacement)).uniform() * 360.0;
     grow_stem(s);
@@ -116,9 +117,15 @@ class Grower {
                                 : wp::children_of_deeper_level(stems_max, s.parent_offset,
                                                                s.parent_length);
     }
-    s.leaves = next == p_.levels ? wp::leaves_per_branch(std::fabs(p_.leaves), s.parent_offset,
-                                                         s.parent_length, o_.quality)
-                                 : 0.0;
+    s.leaves = next == p_.levels ? leaf_count(s.parent_offset, s.parent_length) : 0.0;
+    // A fan (negative nBranches) holds exactly |nBranches| children at the tip.
+    if (next < p_.levels && p_.at(next).branches < 0.0) s.children = -p_.at(next).branches;
+  }
+
+  // §4.5 leaves on a stem; a fan (negative Leaves) holds exactly |Leaves| · quality at the tip.
+  double leaf_count(double offset, double parent_length) const {
+    if (p_.leaves < 0.0) return -p_.leaves * o_.quality;
+    return wp::leaves_per_branch(p_.leaves, offset, parent_length, o_.quality);
   }
 
   // §4.6: probe the stem and its clones; shorten until inside, then blend by PruneRatio.
@@ -316,6 +323,10 @@ class Grower {
     Vec3 pos = s.position;
     for (int i = s.first_segment; i < n; ++i) {
       if (i > 0) axis = bend(s, axis, i, curve_rng, sway_offset, probe);
+      // The segment right after a split keeps the full split angle; the back-rotation starts
+      // on the segment after it.
+      s.split_correction += s.pending_correction;
+      s.pending_correction = 0.0;
       Frame seg = axis;
       if (helix) {
         // §4.1 negative nCurveV: the segments wind about the stem's axis at |nCurveV| degrees,
@@ -408,7 +419,7 @@ class Grower {
                                          declination);
     const double spread = wp::split_spread(declination, split_rng.uniform());
     const double sign = split_rng.uniform() < 0.5 ? -1.0 : 1.0;
-    const int remaining = n - (i + 1);
+    const int remaining = n - (i + 2);  // segments after the first one past the split
     const double correction = remaining > 0 ? radians(angle) / remaining : 0.0;
     const double share = s.share / (clones + 1);
 
@@ -424,7 +435,7 @@ class Grower {
       c.first_segment = i + 1;
       c.key = derive_key(s.key, kCloneBase + static_cast<std::uint64_t>(i + 1) * 64 + j);
       c.frame = axis.rotated_x(radians(angle)).rotated_about(kUp, radians(azimuth));
-      c.split_correction = s.split_correction + correction;
+      c.pending_correction = correction;
       c.share = share;
       if (probe) {
         if (!trace(c, true)) return false;
@@ -433,7 +444,7 @@ class Grower {
       }
     }
     axis = axis.rotated_x(radians(angle)).rotated_about(kUp, radians(sign * spread));
-    s.split_correction += correction;
+    s.pending_correction = correction;
     s.share = share;
     return true;
   }

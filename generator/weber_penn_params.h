@@ -44,6 +44,8 @@ struct WeberPennParams {
   double wind_speed = 0.0, wind_gust = 0.0;  // §4.7 (not in the appendix; no wind by default)
   std::array<WeberPennLevel, 4> level{};
 
+  WeberPennParams() { level[0].length = 1.0; }  // the trunk is Scale long unless told otherwise
+
   // Levels beyond 3 reuse level 3 (§4.5).
   const WeberPennLevel& at(int n) const { return level[static_cast<size_t>(n < 3 ? n : 3)]; }
 };

@@ -1,0 +1,40 @@
+// Benchmark: `grow` of the four appendix species of Weber & Penn 1995 (seed 1, quality 1, one
+// thread), reporting stems and leaves grown and the peak resident memory of the process.
+#include <sys/resource.h>
+
+#include <string>
+
+#include <benchmark/benchmark.h>
+
+#include "generator/species.h"
+#include "generator/weber_penn.h"
+
+namespace {
+
+void grow_species(benchmark::State& state, const char* file) {
+  const arbor::gen::Species species =
+      arbor::gen::load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/" + file);
+  arbor::gen::GrowOptions options;
+  options.seed = 1;
+  size_t stems = 0, leaves = 0;
+  for (auto _ : state) {
+    arbor::gen::Skeleton skeleton = arbor::gen::grow_weber_penn(species.weber_penn, options);
+    stems = skeleton.stems.size();
+    leaves = skeleton.leaves.size();
+    benchmark::DoNotOptimize(skeleton.points.data());
+  }
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  state.counters["stems"] = static_cast<double>(stems);
+  state.counters["leaves"] = static_cast<double>(leaves);
+  state.counters["peak_rss_MB"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(grow_species, quaking_aspen, "quaking_aspen.toml")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, black_tupelo, "black_tupelo.toml")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, ca_black_oak, "ca_black_oak.toml")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, weeping_willow, "weeping_willow.toml")->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();

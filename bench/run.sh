@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Runs every benchmark and writes JSON results to bench/results/<name>.json.
+# Usage: bench/run.sh [BUILD_DIR]   (default: build; build it with `make build` first)
+# Peak memory of one species alone: bench/run.sh measures it per species in a fresh process.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="${1:-$root/build}"
+out="$root/bench/results"
+mkdir -p "$out"
+"$build/bench/grow_bench" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+  --benchmark_out="$out/grow_bench.json" --benchmark_out_format=json
+# Peak RSS per species in its own process (a shared process would report the largest so far).
+for species in quaking_aspen black_tupelo ca_black_oak weeping_willow; do
+  "$build/bench/grow_bench" --benchmark_filter="/$species\$" --benchmark_min_time=0.2 \
+    --benchmark_out="$out/grow_bench_$species.json" --benchmark_out_format=json > /dev/null
+done
+echo "bench: results in $out"

@@ -1,0 +1,120 @@
+// End-to-end tests of the arbor command line: exit codes, diagnostics, outputs.
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace {
+
+struct CliRun {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+CliRun arbor(const std::string& args) {
+  const std::string out = ::testing::TempDir() + "cli.out", err = ::testing::TempDir() + "cli.err";
+  const std::string cmd = std::string(ARBOR_BINARY) + " " + args + " >" + out + " 2>" + err;
+  const int status = std::system(cmd.c_str());
+  CliRun r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+std::string species(const char* name) {
+  return std::string(ARBOR_SOURCE_DIR) + "/generator/species/" + name;
+}
+
+std::string write_temp(const char* name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+bool exists(const std::string& path) { return std::ifstream(path).good(); }
+
+}  // namespace
+
+TEST(ArborCli, VersionAndHelp) {
+  const CliRun v = arbor("--version");
+  EXPECT_EQ(v.code, 0);
+  EXPECT_NE(v.out.find("arbor 0.1.0"), std::string::npos);
+  const CliRun h = arbor("grow --help");
+  EXPECT_EQ(h.code, 0);
+  EXPECT_NE(h.out.find("--quality"), std::string::npos);
+  EXPECT_NE(h.out.find(".obj or .ply"), std::string::npos);
+  const CliRun top = arbor("--help");
+  EXPECT_NE(top.out.find("not available in this build yet"), std::string::npos);
+}
+
+TEST(ArborCli, GrowPrintsTheContractStatistics) {
+  const CliRun r = arbor("grow " + species("quaking_aspen.toml") + " --seed 3 --stats --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* key : {"\"stems_per_level\"", "\"leaves\"", "\"curve_segments\"",
+                          "\"triangles\"", "\"height\"", "\"crown_width\"", "\"seconds\""}) {
+    EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
+  }
+  EXPECT_NE(r.out.find("\"stems_per_level\": [1, 50,"), std::string::npos) << r.out;
+}
+
+TEST(ArborCli, SameSeedSameOutput) {
+  const std::string a = ::testing::TempDir() + "a.obj", b = ::testing::TempDir() + "b.obj";
+  ASSERT_EQ(arbor("grow " + species("black_tupelo.toml") + " --quality 0.2 --seed 8 -o " + a).code, 0);
+  ASSERT_EQ(arbor("grow " + species("black_tupelo.toml") + " --quality 0.2 --seed 8 -o " + b).code, 0);
+  EXPECT_EQ(slurp(a), slurp(b));
+  EXPECT_GT(slurp(a).size(), 1000u);
+}
+
+TEST(ArborCli, BadInputExitsTwoWithPosition) {
+  const std::string bad = write_temp("bad.toml", "model = \"weber-penn\"\n\nShape = 12\n");
+  const CliRun r = arbor("grow " + bad);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find(bad + ":3:9: error: Shape = 12 is out of range"), std::string::npos) << r.err;
+
+  const CliRun missing = arbor("grow /no/such/tree.toml");
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.err.find("/no/such/tree.toml: error: cannot open"), std::string::npos);
+
+  EXPECT_EQ(arbor("grow").code, 2);                                     // missing argument
+  EXPECT_EQ(arbor("grow " + species("quaking_aspen.toml") + " --bogus").code, 2);
+  EXPECT_EQ(arbor("grow " + species("quaking_aspen.toml") + " --quality 0").code, 2);
+  EXPECT_EQ(arbor("grow " + species("quaking_aspen.toml") + " --seed -3").code, 2);
+  EXPECT_EQ(arbor("grow " + species("quaking_aspen.toml") + " -o tree.pbrt").code, 2);
+  EXPECT_EQ(arbor("frobnicate").code, 2);
+}
+
+TEST(ArborCli, AbsurdTreesAreRefusedUnlessForced) {
+  const std::string huge = write_temp(
+      "huge.toml",
+      "model = \"weber-penn\"\nLevels = 4\n[level.1]\nBranches = 1000\n[level.2]\nBranches = "
+      "1000\n[level.3]\nBranches = 1000\n");
+  const CliRun r = arbor("grow " + huge);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--force"), std::string::npos) << r.err;
+}
+
+TEST(ArborCli, FailedWriteExitsOneAndLeavesNoFile) {
+  const CliRun r = arbor("grow " + species("quaking_aspen.toml") + " -o /no/such/dir/tree.obj");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("cannot write /no/such/dir/tree.obj"), std::string::npos) << r.err;
+  EXPECT_FALSE(exists("/no/such/dir/tree.obj"));
+}
+
+TEST(ArborCli, UnbuiltCommandsSaySo) {
+  const CliRun r = arbor("render scene.toml");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("not available in this build yet"), std::string::npos);
+}

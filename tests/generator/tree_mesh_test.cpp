@@ -1,0 +1,138 @@
+// Tests of tessellation and the mesh exporters.
+#include "generator/tree_mesh.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+#include <tiny_obj_loader.h>
+
+#include "generator/leaf_shapes.h"
+#include "generator/species.h"
+#include "generator/weber_penn.h"
+
+namespace arbor::gen {
+
+namespace {
+Skeleton small_tree() {
+  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/quaking_aspen.toml");
+  GrowOptions o;
+  o.quality = 0.2;
+  return grow_weber_penn(s.weber_penn, o);
+}
+std::string temp_path(const char* name) { return ::testing::TempDir() + name; }
+}  // namespace
+
+TEST(LeafShapes, EveryShapeCoversTheUnitLeafAndFacesFront) {
+  ASSERT_EQ(leaf_shape_count(), 6u);
+  for (const LeafShape& s : leaf_shapes()) {
+    double area = 0.0, min_y = 1e9, max_y = -1e9, min_x = 1e9, max_x = -1e9;
+    for (const auto& t : s.triangles) {
+      const glm::vec2 a = s.vertices[t[0]], b = s.vertices[t[1]], c = s.vertices[t[2]];
+      const double cross = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+      EXPECT_GE(cross, 0.0) << s.name;  // counter-clockwise seen from the front
+      area += 0.5 * cross;
+    }
+    for (const glm::vec2& v : s.vertices) {
+      min_x = std::min(min_x, double(v.x)); max_x = std::max(max_x, double(v.x));
+      min_y = std::min(min_y, double(v.y)); max_y = std::max(max_y, double(v.y));
+    }
+    EXPECT_GE(min_x, -0.5 - 1e-6) << s.name;
+    EXPECT_LE(max_x, 0.5 + 1e-6) << s.name;
+    EXPECT_GE(min_y, -1e-6) << s.name;
+    EXPECT_LE(max_y, 1.0 + 1e-6) << s.name;
+    EXPECT_GT(area, 0.2) << s.name;
+    EXPECT_LT(area, 0.8) << s.name;
+  }
+}
+
+TEST(TreeMesh, TubesFollowTheRadiusAndFaceOutward) {
+  const Skeleton whole = small_tree();
+  const TreeMesh all = tessellate(whole);
+  ASSERT_GT(all.bark_triangles, 0u);
+  ASSERT_GT(all.triangle_count(), all.bark_triangles);
+  // The trunk alone: its vertex normals point away from its axis at mid height.
+  Skeleton sk = whole;
+  sk.stems.resize(1);
+  sk.leaves.clear();
+  const TreeMesh mesh = tessellate(sk);
+  const Stem& trunk = sk.stems[0];
+  const glm::vec3 base = sk.points[trunk.first_point].position;
+  int checked = 0;
+  for (size_t i = 0; i < mesh.positions.size() && checked < 50; ++i) {
+    const glm::vec3 p = mesh.positions[i];
+    if (p.z < 0.2f * trunk.length || p.z > 0.9f * trunk.length) continue;
+    const glm::vec3 out = glm::normalize(glm::vec3(p.x - base.x, p.y - base.y, 0.0f));
+    EXPECT_GT(glm::dot(mesh.normals[i], out), 0.5f);
+    ++checked;
+  }
+  EXPECT_GT(checked, 10);
+}
+
+TEST(TreeMesh, TrunkShowsFlareAndLobes) {
+  const Skeleton sk = small_tree();
+  const TreeMesh mesh = tessellate(sk);
+  const Stem& trunk = sk.stems[0];
+  const double r0 = trunk.base_radius;
+  double widest = 0.0, narrowest = 1e9;
+  for (size_t i = 0; i < mesh.bark_triangles * 3; ++i) {
+    const glm::vec3 p = mesh.positions[mesh.indices[i]];
+    if (p.z > 1e-4f) continue;  // the base ring
+    const double r = std::hypot(p.x, p.y);
+    widest = std::max(widest, r);
+    narrowest = std::min(narrowest, r);
+  }
+  // Aspen: Flare 0.6 ⇒ ×1.594 at the base; LobeDepth 0.07 ⇒ ±7 %.
+  EXPECT_NEAR(widest, r0 * 1.594 * 1.07, r0 * 0.01);
+  EXPECT_NEAR(narrowest, r0 * 1.594 * 0.93, r0 * 0.01);
+}
+
+TEST(TreeMesh, ObjRoundTripsThroughTinyObjLoader) {
+  const TreeMesh mesh = tessellate(small_tree());
+  const std::string path = temp_path("tree.obj");
+  write_obj(mesh, path);
+  tinyobj::ObjReader reader;
+  ASSERT_TRUE(reader.ParseFromFile(path)) << reader.Error();
+  const auto& attrib = reader.GetAttrib();
+  EXPECT_EQ(attrib.vertices.size(), mesh.positions.size() * 3);
+  EXPECT_EQ(attrib.normals.size(), mesh.normals.size() * 3);
+  EXPECT_EQ(attrib.texcoords.size(), mesh.uvs.size() * 2);
+  const auto& shapes = reader.GetShapes();
+  ASSERT_EQ(shapes.size(), 2u);
+  EXPECT_EQ(shapes[0].name, "bark");
+  EXPECT_EQ(shapes[1].name, "leaf");
+  EXPECT_EQ(shapes[0].mesh.indices.size(), mesh.bark_triangles * 3);
+  EXPECT_EQ(shapes[0].mesh.indices.size() + shapes[1].mesh.indices.size(), mesh.indices.size());
+  EXPECT_FLOAT_EQ(attrib.vertices[3], mesh.positions[1].x);
+  std::remove(path.c_str());
+}
+
+TEST(TreeMesh, PlyHasAValidHeaderAndSize) {
+  const TreeMesh mesh = tessellate(small_tree());
+  const std::string path = temp_path("tree.ply");
+  write_ply(mesh, path);
+  std::ifstream in(path, std::ios::binary);
+  std::string line, header;
+  while (std::getline(in, line)) {
+    header += line + "\n";
+    if (line == "end_header") break;
+  }
+  EXPECT_NE(header.find("element vertex " + std::to_string(mesh.positions.size())), std::string::npos);
+  EXPECT_NE(header.find("element face " + std::to_string(mesh.triangle_count())), std::string::npos);
+  const auto body_start = in.tellg();
+  in.seekg(0, std::ios::end);
+  const auto body = static_cast<size_t>(in.tellg() - body_start);
+  EXPECT_EQ(body, mesh.positions.size() * 32 + mesh.triangle_count() * 14);
+  std::remove(path.c_str());
+}
+
+TEST(TreeMesh, FailedWriteLeavesNothingBehind) {
+  const TreeMesh mesh = tessellate(small_tree());
+  EXPECT_ANY_THROW(write_obj(mesh, "/nonexistent-dir/tree.obj"));
+}
+
+}  // namespace arbor::gen
