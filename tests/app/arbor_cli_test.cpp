@@ -24,7 +24,10 @@ std::string slurp(const std::string& path) {
 }
 
 CliRun arbor(const std::string& args) {
-  const std::string out = ::testing::TempDir() + "cli.out", err = ::testing::TempDir() + "cli.err";
+  // ctest runs tests as parallel processes: name the capture files after the test.
+  const std::string stem = ::testing::TempDir() + "cli_" +
+                           ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const std::string out = stem + ".out", err = stem + ".err";
   const std::string cmd = std::string(ARBOR_BINARY) + " " + args + " >" + out + " 2>" + err;
   const int status = std::system(cmd.c_str());
   CliRun r;
