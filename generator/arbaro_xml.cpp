@@ -125,13 +125,7 @@ Species parse_arbaro_xml(std::string_view text, const std::string& path) {
     if (!problem.empty()) throw InputError(at, (level >= 0 ? std::string(1, name[0]) : "") + problem);
     positions[name] = at;
   }
-  std::string key;
-  const std::string problem = check_consistency(sp.weber_penn, key);
-  if (!problem.empty()) {
-    auto it = positions.find(key);
-    throw InputError(it != positions.end() ? it->second : SourceLocation{path, 1, 1}, problem);
-  }
-  if (sp.name.empty()) sp.name = path;
+  finish_species(sp, positions);
   return sp;
 }
 

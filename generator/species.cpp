@@ -15,6 +15,16 @@ std::string read_text_file(const std::string& path) {
   return text.str();
 }
 
+void finish_species(Species& sp, const std::map<std::string, SourceLocation>& positions) {
+  std::string key;
+  const std::string problem = check_consistency(sp.weber_penn, key);
+  if (!problem.empty()) {
+    const auto it = positions.find(key);
+    throw InputError(it != positions.end() ? it->second : SourceLocation{sp.path, 1, 1}, problem);
+  }
+  if (sp.name.empty()) sp.name = sp.path;
+}
+
 namespace {
 bool ends_with(const std::string& s, std::string_view suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(),

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -47,6 +48,12 @@ Species load_species(const std::string& path);
 // The two readers, from text already in memory (path is used in messages).
 Species parse_species_toml(std::string_view text, const std::string& path);
 Species parse_arbaro_xml(std::string_view text, const std::string& path);
+
+// The last step of every reader: checks the rules that involve several parameters (pointing at the
+// offending key's position, looked up in `positions` by paper name) and names an unnamed species
+// after its file. Throws InputError.
+void finish_species(Species& species,
+                    const std::map<std::string, SourceLocation>& positions);
 
 // Reads a whole file; throws InputError when it cannot be read.
 std::string read_text_file(const std::string& path);

@@ -165,13 +165,7 @@ class TomlSpecies {
     if (!has_model) {
       throw InputError({path_, 1, 1}, "missing key 'model' (for example model = \"weber-penn\")");
     }
-    std::string key;
-    const std::string problem = check_consistency(sp.weber_penn, key);
-    if (!problem.empty()) {
-      auto it = positions_.find(key);
-      throw InputError(it != positions_.end() ? it->second : SourceLocation{path_, 1, 1}, problem);
-    }
-    if (sp.name.empty()) sp.name = path_;
+    finish_species(sp, positions_);
     return sp;
   }
 

@@ -9,6 +9,12 @@
 
 namespace arbor::gen {
 
+long long TreeStats::stems() const {
+  long long total = 0;
+  for (long long n : stems_per_level) total += n;
+  return total;
+}
+
 TreeStats compute_stats(const Skeleton& sk) {
   TreeStats st;
   st.stems_per_level.assign(static_cast<size_t>(std::max(1, sk.levels)), 0);
@@ -46,17 +52,15 @@ std::string stats_json(const TreeStats& st, const std::string& species, unsigned
     if (static_cast<unsigned char>(c) >= 0x20) out += c;
   }
   out += "\", \"seed\": " + std::to_string(seed) + ", \"stems_per_level\": [";
-  long long total = 0;
   for (size_t i = 0; i < st.stems_per_level.size(); ++i) {
     out += (i ? ", " : "") + std::to_string(st.stems_per_level[i]);
-    total += st.stems_per_level[i];
   }
   char buf[256];
   std::snprintf(buf, sizeof buf,
                 "], \"stems\": %lld, \"leaves\": %lld, \"curve_segments\": %lld, "
                 "\"triangles\": %lld, \"points\": %lld, \"height\": %.6g, \"crown_width\": %.6g, "
                 "\"seconds\": %.6g",
-                total, st.leaves, st.curve_segments, st.triangles, st.points, st.height,
+                st.stems(), st.leaves, st.curve_segments, st.triangles, st.points, st.height,
                 st.crown_width, st.seconds);
   out += buf;
   if (mesh_triangles >= 0) out += ", \"mesh_triangles\": " + std::to_string(mesh_triangles);
@@ -66,17 +70,15 @@ std::string stats_json(const TreeStats& st, const std::string& species, unsigned
 
 std::string stats_text(const TreeStats& st) {
   std::string levels;
-  long long total = 0;
   for (size_t i = 0; i < st.stems_per_level.size(); ++i) {
     levels += (i ? " / " : "") + std::to_string(st.stems_per_level[i]);
-    total += st.stems_per_level[i];
   }
   char buf[512];
   std::snprintf(buf, sizeof buf,
                 "stems          %lld (per level %s)\nleaves         %lld\n"
                 "curve segments %lld\nleaf triangles %lld\nheight         %.2f m\n"
                 "crown width    %.2f m\ngrown in       %.3f s\n",
-                total, levels.c_str(), st.leaves, st.curve_segments, st.triangles, st.height,
+                st.stems(), levels.c_str(), st.leaves, st.curve_segments, st.triangles, st.height,
                 st.crown_width, st.seconds);
   return buf;
 }

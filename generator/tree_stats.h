@@ -17,6 +17,8 @@ struct TreeStats {
   double height = 0.0;       // metres: highest point of any limb or leaf above the ground
   double crown_width = 0.0;  // metres: twice the largest horizontal distance from the trunk axis
   double seconds = 0.0;      // time spent growing
+
+  long long stems() const;   // all levels, clones included
 };
 
 TreeStats compute_stats(const Skeleton& skeleton);

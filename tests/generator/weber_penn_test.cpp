@@ -202,7 +202,9 @@ TEST(WeberPenn, NegativeRotateAlternatesInOnePlane) {
     if (s.level != 1) continue;
     const glm::dvec3 d = direction(sk, s, 0);
     EXPECT_NEAR(std::fabs(d.x), 1.0, 1e-4);  // all in the trunk's xz plane, pointing along ±x
-    if (children++ > 0) EXPECT_LT(d.x * previous_x, 0.0);
+    if (children++ > 0) {
+      EXPECT_LT(d.x * previous_x, 0.0);
+    }
     previous_x = d.x;
   }
   EXPECT_EQ(children, 6);
