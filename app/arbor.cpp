@@ -11,7 +11,9 @@
 #include "arbor/version.h"
 #include "common/error.h"
 #include "common/progress.h"
+#include "generator/export_pbrt.h"
 #include "generator/species.h"
+#include "generator/tree_geometry.h"
 #include "generator/tree_mesh.h"
 #include "generator/tree_stats.h"
 #include "generator/weber_penn.h"
@@ -39,10 +41,11 @@ int run_grow(const GrowArgs& a) {
   if (!(a.quality > 0.0 && a.quality <= 100.0)) {
     throw InputError({}, "--quality must be in (0, 100]");
   }
-  if (!a.out.empty() && !ends_with(a.out, ".obj") && !ends_with(a.out, ".ply")) {
+  if (!a.out.empty() && !ends_with(a.out, ".obj") && !ends_with(a.out, ".ply") &&
+      !ends_with(a.out, ".pbrt")) {
     throw InputError({}, "-o " + a.out +
-                             ": this build writes .obj and .ply meshes (.pbrt and .skel come "
-                             "with the geometry and skeleton-file work)");
+                             ": this build writes .obj, .ply and .pbrt (.skel comes with the "
+                             "skeleton-file work)");
   }
   gen::Species species = gen::load_species(a.species);
   for (const std::string& w : species.warnings) std::fprintf(stderr, "%s\n", w.c_str());
@@ -67,11 +70,20 @@ int run_grow(const GrowArgs& a) {
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   long long mesh_triangles = -1;
-  if (!a.out.empty()) {
-    const gen::TreeMesh mesh = gen::tessellate(skeleton);
-    mesh_triangles = static_cast<long long>(mesh.triangle_count());
-    if (ends_with(a.out, ".obj")) gen::write_obj(mesh, a.out);
-    else gen::write_ply(mesh, a.out);
+  if (!a.out.empty() || a.stats || a.json) {
+    const auto geometry_start = std::chrono::steady_clock::now();
+    const gen::TreeGeometry geometry = gen::build_tree_geometry(skeleton);
+    gen::add_geometry_stats(
+        stats, geometry.stats,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - geometry_start).count());
+    if (ends_with(a.out, ".pbrt")) {
+      gen::write_pbrt(geometry, species.bark, species.leaf, a.out);
+    } else if (!a.out.empty()) {
+      const gen::TreeMesh mesh = gen::tessellate(geometry);
+      mesh_triangles = static_cast<long long>(mesh.triangle_count());
+      if (ends_with(a.out, ".obj")) gen::write_obj(mesh, a.out);
+      else gen::write_ply(mesh, a.out);
+    }
   }
   if (a.json) {
     std::fputs(gen::stats_json(stats, species.name, a.seed, mesh_triangles).c_str(), stdout);
@@ -115,7 +127,9 @@ int main(int argc, char** argv) {
   grow_cmd->add_option("--quality", grow.quality,
                        "leaf quality factor: leaf count x Q, leaf size / sqrt(Q)")
       ->capture_default_str();
-  grow_cmd->add_option("-o,--output", grow.out, "write a mesh: .obj or .ply (bark and leaf groups)");
+  grow_cmd->add_option("-o,--output", grow.out,
+                       "write the tree: .obj or .ply (tessellated mesh, bark and leaf groups) or "
+                       ".pbrt (pbrt-v4, limbs as curves)");
   grow_cmd->add_flag("--stats", grow.stats, "print statistics of the tree");
   grow_cmd->add_flag("--json", grow.json, "print the statistics as one JSON object");
   grow_cmd->add_flag("--force", grow.force,

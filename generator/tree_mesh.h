@@ -8,7 +8,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "generator/skeleton.h"
+#include "generator/tree_geometry.h"
 
 namespace arbor::gen {
 
@@ -23,10 +23,16 @@ struct TreeMesh {
   std::size_t triangle_count() const { return indices.size() / 3; }
 };
 
-// Tessellates every stem as a tube (rings at its points, more where the taper or the trunk's
-// flare is not linear, lobes on the trunk's section) and every leaf from its LeafShape.
-// Bark uv: u = fraction of the way round, v = arc length / circumference at the stem's base.
-TreeMesh tessellate(const Skeleton& skeleton);
+// Tessellates the same geometry the renderer uses: each curve segment as a tube whose axial
+// resolution comes from Lane's bound (Bloomenthal eq. 4) for a chord error of `tolerance` ×
+// radius (at least 0.5 mm) and whose circumferential resolution follows the radius; displaced
+// trunk grids as they are; leaves as their triangles.
+// Bark uv: u = fraction of the way round, v = arc length along the limb in metres.
+TreeMesh tessellate(const TreeGeometry& geometry, double tolerance = 0.05);
+
+// Lane's bound: segments needed so that chords of a cubic with second-derivative sum `S`
+// (Σ over axes of max |x''(u)|, u in [0, 1]) deviate at most `error`: S / (8 n²) ≤ error.
+int lane_subdivisions(double second_derivative_sum, double error);
 
 // Writes Wavefront OBJ with groups "bark" and "leaf", normals and uv. Atomic.
 void write_obj(const TreeMesh& mesh, const std::string& path);

@@ -13,6 +13,7 @@
 
 #include "generator/leaf_shapes.h"
 #include "generator/species.h"
+#include "generator/tree_geometry.h"
 #include "generator/weber_penn.h"
 
 namespace arbor::gen {
@@ -52,14 +53,14 @@ TEST(LeafShapes, EveryShapeCoversTheUnitLeafAndFacesFront) {
 
 TEST(TreeMesh, TubesFollowTheRadiusAndFaceOutward) {
   const Skeleton whole = small_tree();
-  const TreeMesh all = tessellate(whole);
+  const TreeMesh all = tessellate(build_tree_geometry(whole));
   ASSERT_GT(all.bark_triangles, 0u);
   ASSERT_GT(all.triangle_count(), all.bark_triangles);
   // The trunk alone: its vertex normals point away from its axis at mid height.
   Skeleton sk = whole;
   sk.stems.resize(1);
   sk.leaves.clear();
-  const TreeMesh mesh = tessellate(sk);
+  const TreeMesh mesh = tessellate(build_tree_geometry(sk));
   const Stem& trunk = sk.stems[0];
   const glm::vec3 base = sk.points[trunk.first_point].position;
   int checked = 0;
@@ -75,13 +76,13 @@ TEST(TreeMesh, TubesFollowTheRadiusAndFaceOutward) {
 
 TEST(TreeMesh, TrunkShowsFlareAndLobes) {
   const Skeleton sk = small_tree();
-  const TreeMesh mesh = tessellate(sk);
+  const TreeMesh mesh = tessellate(build_tree_geometry(sk));
   const Stem& trunk = sk.stems[0];
   const double r0 = trunk.base_radius;
   double widest = 0.0, narrowest = 1e9;
   for (size_t i = 0; i < mesh.bark_triangles * 3; ++i) {
     const glm::vec3 p = mesh.positions[mesh.indices[i]];
-    if (p.z > 1e-4f) continue;  // the base ring
+    if (p.z > 1e-4f || p.z < -1e-4f) continue;  // the base ring
     const double r = std::hypot(p.x, p.y);
     widest = std::max(widest, r);
     narrowest = std::min(narrowest, r);
@@ -92,7 +93,7 @@ TEST(TreeMesh, TrunkShowsFlareAndLobes) {
 }
 
 TEST(TreeMesh, ObjRoundTripsThroughTinyObjLoader) {
-  const TreeMesh mesh = tessellate(small_tree());
+  const TreeMesh mesh = tessellate(build_tree_geometry(small_tree()));
   const std::string path = temp_path("tree.obj");
   write_obj(mesh, path);
   tinyobj::ObjReader reader;
@@ -112,7 +113,7 @@ TEST(TreeMesh, ObjRoundTripsThroughTinyObjLoader) {
 }
 
 TEST(TreeMesh, PlyHasAValidHeaderAndSize) {
-  const TreeMesh mesh = tessellate(small_tree());
+  const TreeMesh mesh = tessellate(build_tree_geometry(small_tree()));
   const std::string path = temp_path("tree.ply");
   write_ply(mesh, path);
   std::ifstream in(path, std::ios::binary);
@@ -130,8 +131,19 @@ TEST(TreeMesh, PlyHasAValidHeaderAndSize) {
   std::remove(path.c_str());
 }
 
+TEST(TreeMesh, LaneBoundMeetsItsTolerance) {
+  // A chord of a curve with |x''| ≤ S deviates at most S h² / 8: n segments of 1/n.
+  EXPECT_EQ(lane_subdivisions(8.0, 1.0), 1);
+  EXPECT_EQ(lane_subdivisions(8.0, 0.01), 10);
+  EXPECT_EQ(lane_subdivisions(0.0, 0.01), 1);
+  // Tessellated tubes stay within the tolerance of the exact curve axis.
+  const TreeGeometry g = build_tree_geometry(small_tree());
+  const TreeMesh mesh = tessellate(g, 0.05);
+  EXPECT_GT(mesh.bark_triangles, g.stats.grid_triangles);
+}
+
 TEST(TreeMesh, FailedWriteLeavesNothingBehind) {
-  const TreeMesh mesh = tessellate(small_tree());
+  const TreeMesh mesh = tessellate(build_tree_geometry(small_tree()));
   EXPECT_ANY_THROW(write_obj(mesh, "/nonexistent-dir/tree.obj"));
 }
 

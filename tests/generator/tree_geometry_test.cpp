@@ -1,0 +1,197 @@
+// Tests of TreeGeometry: Embree's radius rule, continuity of the curve segments, the displaced
+// trunk, bark coordinates, leaves.
+#include "generator/tree_geometry.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "generator/species.h"
+#include "generator/weber_penn.h"
+#include "generator/weber_penn_formulas.h"
+
+namespace arbor::gen {
+
+namespace {
+
+Skeleton grow_species(const char* name, std::uint64_t seed = 1, double quality = 0.2) {
+  const Species s =
+      load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/" + name + ".toml");
+  GrowOptions o;
+  o.seed = seed;
+  o.quality = quality;
+  return grow_weber_penn(s.weber_penn, o);
+}
+
+double curvature(const CurveSet& c, std::size_t i, float u) {
+  const glm::dvec3 d1(c.derivative(i, u));
+  const glm::vec4 p0 = c.points[2 * i], p1 = c.points[2 * i + 1];
+  const glm::vec4 m0 = c.tangents[2 * i], m1 = c.tangents[2 * i + 1];
+  const glm::dvec3 d2(glm::vec3((12 * u - 6) * p0 + (6 * u - 4) * m0 + (-12 * u + 6) * p1 +
+                                (6 * u - 2) * m1));
+  const double speed = glm::length(d1);
+  return glm::length(glm::cross(d1, d2)) / (speed * speed * speed);
+}
+
+}  // namespace
+
+TEST(TreeGeometry, RadiusStaysBelowTheRadiusOfCurvature) {
+  for (const char* name : {"quaking_aspen", "black_tupelo", "weeping_willow", "ca_black_oak"}) {
+    for (std::uint64_t seed : {1u, 2u}) {
+      const TreeGeometry g = build_tree_geometry(grow_species(name, seed));
+      double worst = 0.0;
+      for (std::size_t i = 0; i < g.curves.size(); ++i) {
+        for (int k = 0; k <= 40; ++k) {
+          const float u = k / 40.0f;
+          worst = std::max(worst, g.curves.position(i, u).w * curvature(g.curves, i, u));
+        }
+      }
+      EXPECT_LT(worst, 1.0) << name << " seed " << seed;
+    }
+  }
+}
+
+TEST(TreeGeometry, ConsecutiveSegmentsOfALimbJoinWithContinuousTangentAndCurvature) {
+  const TreeGeometry g = build_tree_geometry(grow_species("black_tupelo"));
+  int joints = 0;
+  for (std::size_t i = 0; i + 1 < g.curves.size(); ++i) {
+    if (g.curves.segments[i].limb != g.curves.segments[i + 1].limb) continue;
+    const glm::vec4 end = g.curves.position(i, 1.0f), start = g.curves.position(i + 1, 0.0f);
+    ASSERT_LT(glm::length(glm::vec3(end - start)), 1e-5f);
+    ASSERT_NEAR(end.w, start.w, 1e-6f);  // radius continuous
+    const glm::vec3 t0 = glm::normalize(glm::vec3(g.curves.derivative(i, 1.0f)));
+    const glm::vec3 t1 = glm::normalize(glm::vec3(g.curves.derivative(i + 1, 0.0f)));
+    ASSERT_GT(glm::dot(t0, t1), 1.0f - 1e-5f);
+    // Curvature is continuous too (C2 splines); the Hermite data are floats, and the second
+    // derivative of a short segment amplifies their rounding, so the tolerance includes it.
+    const double k0 = curvature(g.curves, i, 1.0f), k1 = curvature(g.curves, i + 1, 0.0f);
+    const double speed = glm::length(glm::vec3(g.curves.derivative(i + 1, 0.0f)));
+    const double rounding = 64.0 * 1.2e-7 * glm::length(glm::vec3(start)) / (speed * speed);
+    ASSERT_NEAR(k0, k1, 1e-3 * (1.0 + k0) + rounding) << "segment " << i;
+    EXPECT_EQ(g.curves.segments[i].arc1, g.curves.segments[i + 1].arc0);
+    ++joints;
+  }
+  EXPECT_GT(joints, 5000);
+}
+
+TEST(TreeGeometry, TrunkIsADisplacedGridWithFlareAndLobes) {
+  const Skeleton sk = grow_species("quaking_aspen");  // Flare 0.6, 5 lobes of depth 0.07
+  const TreeGeometry g = build_tree_geometry(sk);
+  ASSERT_EQ(g.grids.grids.size(), 1u);
+  const DisplacedGrid& d = g.grids.grids[0];
+  const double r0 = sk.stems[0].base_radius;
+  double lo = 1e9, hi = 0.0;
+  for (std::uint32_t j = 0; j + 1 < d.width; ++j) {
+    const glm::vec3 v = g.grids.vertices[d.first_vertex + j];
+    const double r = std::hypot(v.x, v.y);
+    lo = std::min(lo, r);
+    hi = std::max(hi, r);
+  }
+  const double flare = wp::flare_scale(0.6, 0.0);
+  EXPECT_NEAR(hi, r0 * flare * 1.07, 1e-3 * r0);
+  EXPECT_NEAR(lo, r0 * flare * 0.93, 1e-3 * r0);
+  // The seam column repeats the first one.
+  for (std::uint32_t i = 0; i < d.height; i += 50) {
+    const std::size_t row = d.first_vertex + static_cast<std::size_t>(i) * d.width;
+    EXPECT_LT(glm::length(g.grids.vertices[row] - g.grids.vertices[row + d.width - 1]), 1e-5f);
+  }
+  // Shading normals point outward.
+  for (std::size_t v = d.first_vertex; v < d.first_vertex + 2000; ++v) {
+    const glm::vec3 radial = glm::vec3(g.grids.vertices[v].x, g.grids.vertices[v].y, 0.0f);
+    EXPECT_GT(glm::dot(g.grids.normals[v], glm::normalize(radial)), 0.3f);
+  }
+  EXPECT_EQ(g.stats.grid_triangles, 2u * (d.width - 1u) * (d.height - 1u));
+  // Without flare or lobes the trunk is a curve like every other limb.
+  Skeleton plain = sk;
+  plain.trunk = {};
+  EXPECT_TRUE(build_tree_geometry(plain).grids.grids.empty());
+}
+
+TEST(TreeGeometry, BarkCoordinatesAreContinuousAlongALimb) {
+  const TreeGeometry g = build_tree_geometry(grow_species("black_tupelo"));
+  int checked = 0;
+  for (std::size_t i = 0; i + 1 < g.curves.size() && checked < 500; ++i) {
+    if (g.curves.segments[i].limb != g.curves.segments[i + 1].limb) continue;
+    const glm::vec4 p = g.curves.position(i, 1.0f);
+    const glm::vec3 t = glm::normalize(glm::vec3(g.curves.derivative(i, 1.0f)));
+    const glm::vec3 n = g.curves.segments[i].normal1;
+    const glm::vec3 b = glm::cross(t, n);
+    const float angle = 2.0f;  // radians round from the frame normal
+    const glm::vec3 surface = glm::vec3(p) + (n * std::cos(angle) + b * std::sin(angle)) * p.w;
+    const BarkCoordinates end = curve_bark(g.curves, i, 1.0f, surface);
+    const BarkCoordinates start = curve_bark(g.curves, i + 1, 0.0f, surface);
+    ASSERT_NEAR(end.along, start.along, 1e-5f);
+    ASSERT_NEAR(end.azimuth, angle, 1e-3f);
+    ASSERT_NEAR(start.azimuth, angle, 1e-3f);
+    ASSERT_NEAR(end.around, p.w * angle, 1e-4f);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 500);
+}
+
+TEST(TreeGeometry, GridBarkCoordinatesUseDistanceNotFraction) {
+  const Skeleton sk = grow_species("quaking_aspen");
+  const TreeGeometry g = build_tree_geometry(sk);
+  const BarkCoordinates halfway = grid_bark(g.grids, 0, 0.5f, 0.0f);
+  EXPECT_NEAR(halfway.azimuth, 3.14159265f, 1e-5f);
+  EXPECT_NEAR(halfway.around, sk.stems[0].base_radius * 3.14159265f, 1e-4f);
+  EXPECT_NEAR(grid_bark(g.grids, 0, 0.0f, 0.0f).along, 0.0f, 1e-6f);
+  EXPECT_GT(grid_bark(g.grids, 0, 0.0f, 1.0f).along, sk.stems[0].length * 0.99f);
+}
+
+TEST(TreeGeometry, LeavesAreTwoSidedTrianglesAndHingedLeavesFold) {
+  const Skeleton sk = grow_species("quaking_aspen");
+  const TreeGeometry flat = build_tree_geometry(sk);
+  ASSERT_EQ(flat.leaves.triangle_count(), flat.leaves.front_material.size());
+  for (std::size_t t = 0; t < flat.leaves.triangle_count(); ++t) {
+    ASSERT_EQ(flat.leaves.front_material[t], kMaterialLeafFront);
+    ASSERT_EQ(flat.leaves.back_material[t], kMaterialLeafBack);
+  }
+  // Front faces along the leaf normal.
+  const std::uint32_t* idx = flat.leaves.indices.data();
+  const glm::vec3 a = flat.leaves.positions[idx[0]], b = flat.leaves.positions[idx[1]],
+                  c = flat.leaves.positions[idx[2]];
+  EXPECT_GT(glm::dot(glm::cross(b - a, c - a), sk.leaves[0].normal), 0.0f);
+
+  GeometryOptions hinged;
+  hinged.leaf_style = LeafStyle::Hinged;
+  hinged.hinge_angle = 30.0;
+  const TreeGeometry folded = build_tree_geometry(sk, hinged);
+  EXPECT_GT(folded.leaves.triangle_count(), flat.leaves.triangle_count());
+  // Folding keeps the area; the side panels rise off the leaf plane.
+  auto area = [](const LeafMesh& m, std::int32_t leaf) {
+    double sum = 0.0;
+    for (std::size_t t = 0; t < m.triangle_count(); ++t) {
+      if (m.leaf[t] != leaf) continue;
+      const glm::dvec3 p(m.positions[m.indices[3 * t]]), q(m.positions[m.indices[3 * t + 1]]),
+          r(m.positions[m.indices[3 * t + 2]]);
+      sum += 0.5 * glm::length(glm::cross(q - p, r - p));
+    }
+    return sum;
+  };
+  EXPECT_NEAR(area(folded.leaves, 0), area(flat.leaves, 0), 1e-4 * area(flat.leaves, 0));
+  double lift = 0.0;
+  for (std::size_t t = 0; t < folded.leaves.triangle_count(); ++t) {
+    if (folded.leaves.leaf[t] != 0) continue;
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 v = folded.leaves.positions[folded.leaves.indices[3 * t + static_cast<size_t>(k)]];
+      lift = std::max(lift, double(glm::dot(v - sk.leaves[0].position, sk.leaves[0].normal)));
+    }
+  }
+  EXPECT_GT(lift, 0.1 * sk.leaves[0].width);
+}
+
+TEST(TreeGeometry, StatsCountWhatIsThere) {
+  const TreeGeometry g = build_tree_geometry(grow_species("weeping_willow"));
+  const GeometryStats& s = g.stats;
+  EXPECT_EQ(s.curve_segments, g.curves.segments.size());
+  EXPECT_EQ(g.curves.points.size(), 2 * s.curve_segments);
+  EXPECT_EQ(s.grids, 5u);  // three trunks from BaseSplits 2, and trunk clones from 0SegSplits
+  EXPECT_EQ(s.leaf_triangles, g.leaves.triangle_count());
+  EXPECT_GT(s.bytes, g.curves.points.size() * sizeof(glm::vec4));
+  EXPECT_LE(g.bounds_min.z, 0.0f);
+  EXPECT_GT(g.bounds_max.z, 3.0f);
+}
+
+}  // namespace arbor::gen
