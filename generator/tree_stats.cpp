@@ -27,7 +27,9 @@ TreeStats compute_stats(const Skeleton& sk) {
   }
   st.points = static_cast<long long>(sk.points.size());
   st.leaves = static_cast<long long>(sk.leaves.size());
-  const glm::vec3 axis = sk.points.empty() ? glm::vec3(0.0f) : sk.points.front().position;
+  // The trunk's base (stems append their points after their children's, so not points[0]).
+  const glm::vec3 axis = sk.stems.empty() ? glm::vec3(0.0f)
+                                          : sk.points[sk.stems.front().first_point].position;
   double reach = 0.0, top = 0.0;
   auto visit = [&](const glm::vec3& p, double margin) {
     top = std::max(top, static_cast<double>(p.z) + margin);
