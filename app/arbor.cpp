@@ -72,7 +72,8 @@ int run_grow(const GrowArgs& a) {
   long long mesh_triangles = -1;
   if (!a.out.empty() || a.stats || a.json) {
     const auto geometry_start = std::chrono::steady_clock::now();
-    const gen::TreeGeometry geometry = gen::build_tree_geometry(skeleton);
+    const gen::TreeGeometry geometry =
+        gen::build_tree_geometry(skeleton, gen::geometry_options_for(species.leaf));
     gen::add_geometry_stats(
         stats, geometry.stats,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - geometry_start).count());

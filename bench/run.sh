@@ -14,4 +14,6 @@ for species in quaking_aspen black_tupelo ca_black_oak weeping_willow; do
   "$build/bench/grow_bench" --benchmark_filter="/$species\$" --benchmark_min_time=0.2 \
     --benchmark_out="$out/grow_bench_$species.json" --benchmark_out_format=json > /dev/null
 done
+"$build/bench/geometry_bench" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
+  --benchmark_out="$out/geometry_bench.json" --benchmark_out_format=json
 echo "bench: results in $out"

@@ -25,6 +25,7 @@ struct LeafLook {
   Rgb reflectance{0.06, 0.20, 0.04};
   Rgb back_reflectance{0.10, 0.24, 0.07};
   Rgb transmittance{0.05, 0.18, 0.03};
+  double hinge_angle = 0.0;  // degrees; > 0: Bloomenthal's hinged three-polygon leaf (§10)
 };
 
 enum class Model { WeberPenn };

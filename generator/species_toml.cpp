@@ -114,6 +114,11 @@ class TomlSpecies {
       if (k == "reflectance") sp.leaf.reflectance = colour(node, "leaf.reflectance");
       else if (k == "back_reflectance") sp.leaf.back_reflectance = colour(node, "leaf.back_reflectance");
       else if (k == "transmittance") sp.leaf.transmittance = colour(node, "leaf.transmittance");
+      else if (k == "hinge_angle") {
+        const double a = number(node, "leaf.hinge_angle");
+        if (a < 0.0 || a > 90.0) throw InputError(at(node.source()), "leaf.hinge_angle must be in [0, 90] degrees");
+        sp.leaf.hinge_angle = a;
+      }
       else throw InputError(at(key.source()), "unknown key '" + k + "' in [leaf]");
     }
     for (size_t i = 0; i < 3; ++i) {

@@ -9,6 +9,7 @@
 
 #include "generator/leaf_shapes.h"
 #include "generator/limbs.h"
+#include "generator/species.h"
 #include "generator/weber_penn_formulas.h"
 
 namespace arbor::gen {
@@ -342,6 +343,15 @@ TreeGeometry build_tree_geometry(const Skeleton& sk, const GeometryOptions& o) {
   add_leaves(sk, o, g);
   finish(g);
   return g;
+}
+
+GeometryOptions geometry_options_for(const LeafLook& leaf) {
+  GeometryOptions o;
+  if (leaf.hinge_angle > 0.0) {
+    o.leaf_style = LeafStyle::Hinged;
+    o.hinge_angle = leaf.hinge_angle;
+  }
+  return o;
 }
 
 BarkCoordinates curve_bark(const CurveSet& c, std::size_t i, float u, const glm::vec3& point) {

@@ -95,6 +95,10 @@ struct GeometryOptions {
 
 TreeGeometry build_tree_geometry(const Skeleton& skeleton, const GeometryOptions& options = {});
 
+// Geometry options a species asks for (its leaf hinge), defaults otherwise.
+struct LeafLook;
+GeometryOptions geometry_options_for(const LeafLook& leaf);
+
 // Bloomenthal §8 bark coordinates: arc length along the limb and circumferential distance
 // (radius × azimuth from the frame normal), continuous along a limb.
 struct BarkCoordinates {

@@ -115,6 +115,12 @@ TEST(SpeciesToml, InconsistentParametersPointAtTheKey) {
   EXPECT_NO_THROW(parse_species_toml(std::string(kMinimal) + "Scale = 10\nScaleV = 10\n", "o"));
 }
 
+TEST(SpeciesToml, LeafHingeAngleIsReadAndBounded) {
+  const Species s = parse_species_toml(std::string(kMinimal) + "[leaf]\nhinge_angle = 25\n", "h");
+  EXPECT_DOUBLE_EQ(s.leaf.hinge_angle, 25.0);
+  expect_toml_error(std::string(kMinimal) + "[leaf]\nhinge_angle = 120\n", 3, 15, "[0, 90]");
+}
+
 TEST(SpeciesToml, LeafMustNotCreateEnergy) {
   expect_toml_error(std::string(kMinimal) +
                         "[leaf]\nreflectance = [0.6, 0.2, 0.1]\ntransmittance = [0.5, 0.1, 0.1]\n",

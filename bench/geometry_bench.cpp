@@ -1,0 +1,83 @@
+// Benchmarks of the renderer's tree geometry, per appendix species (seed 1, quality 1, one
+// thread): building TreeGeometry from the skeleton, building Embree's BVH for it, and the bytes
+// of the limbs as exact curves against the same limbs tessellated to triangles (Lane's bound at
+// 5 % of the radius, what `arbor grow -o tree.obj` writes).
+#include <string>
+
+#include <benchmark/benchmark.h>
+
+#include "generator/species.h"
+#include "generator/tree_mesh.h"
+#include "generator/weber_penn.h"
+#include "tracer/embree_scene.h"
+
+namespace {
+
+arbor::gen::Skeleton grow(const char* file) {
+  const arbor::gen::Species species =
+      arbor::gen::load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/" + file);
+  arbor::gen::GrowOptions options;
+  options.seed = 1;
+  return arbor::gen::grow_weber_penn(species.weber_penn, options);
+}
+
+void build_geometry(benchmark::State& state, const char* file) {
+  const arbor::gen::Skeleton skeleton = grow(file);
+  arbor::gen::GeometryStats stats;
+  for (auto _ : state) {
+    const arbor::gen::TreeGeometry g = arbor::gen::build_tree_geometry(skeleton);
+    stats = g.stats;
+    benchmark::DoNotOptimize(g.curves.points.data());
+  }
+  state.counters["curve_segments"] = static_cast<double>(stats.curve_segments);
+  state.counters["geometry_MB"] = static_cast<double>(stats.bytes) / 1e6;
+}
+
+void build_bvh(benchmark::State& state, const char* file) {
+  const arbor::gen::TreeGeometry g = arbor::gen::build_tree_geometry(grow(file));
+  const arbor::trace::EmbreeDevice device("threads=1");
+  for (auto _ : state) {
+    const arbor::trace::TreePrototype tree(device, g);
+    benchmark::DoNotOptimize(tree.scene());
+  }
+}
+
+// Bytes of the limbs (curves: Hermite points, tangents and per-segment metadata) against the
+// same limbs as an indexed triangle mesh (positions, normals, uv, indices). Trunk grids are the
+// same in both and reported apart.
+void limb_bytes(benchmark::State& state, const char* file) {
+  const arbor::gen::TreeGeometry g = arbor::gen::build_tree_geometry(grow(file));
+  arbor::gen::TreeGeometry limbs_only = g;
+  limbs_only.grids = {};
+  limbs_only.leaves = {};
+  std::size_t mesh_bytes = 0;
+  for (auto _ : state) {
+    const arbor::gen::TreeMesh mesh = arbor::gen::tessellate(limbs_only);
+    mesh_bytes = mesh.positions.size() * (sizeof(glm::vec3) * 2 + sizeof(glm::vec2)) +
+                 mesh.indices.size() * sizeof(std::uint32_t);
+    benchmark::DoNotOptimize(mesh.indices.data());
+  }
+  const double curve_bytes = static_cast<double>(
+      g.curves.points.size() * sizeof(glm::vec4) + g.curves.tangents.size() * sizeof(glm::vec4) +
+      g.curves.segments.size() * sizeof(arbor::gen::CurveSegment));
+  const double grid_bytes = static_cast<double>(
+      g.grids.vertices.size() * (2 * sizeof(glm::vec3) + sizeof(glm::vec2)));
+  state.counters["curve_MB"] = curve_bytes / 1e6;
+  state.counters["limb_mesh_MB"] = static_cast<double>(mesh_bytes) / 1e6;
+  state.counters["curve_to_mesh_ratio"] = curve_bytes / static_cast<double>(mesh_bytes);
+  state.counters["trunk_grid_MB"] = grid_bytes / 1e6;
+}
+
+}  // namespace
+
+#define ARBOR_SPECIES_BENCH(fn)                                                          \
+  BENCHMARK_CAPTURE(fn, quaking_aspen, "quaking_aspen.toml")->Unit(benchmark::kMillisecond); \
+  BENCHMARK_CAPTURE(fn, black_tupelo, "black_tupelo.toml")->Unit(benchmark::kMillisecond);   \
+  BENCHMARK_CAPTURE(fn, ca_black_oak, "ca_black_oak.toml")->Unit(benchmark::kMillisecond);   \
+  BENCHMARK_CAPTURE(fn, weeping_willow, "weeping_willow.toml")->Unit(benchmark::kMillisecond)
+
+ARBOR_SPECIES_BENCH(build_geometry);
+ARBOR_SPECIES_BENCH(build_bvh);
+ARBOR_SPECIES_BENCH(limb_bytes);
+
+BENCHMARK_MAIN();
