@@ -71,6 +71,19 @@ TEST(ArborCli, GrowPrintsTheContractStatistics) {
     EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
   }
   EXPECT_NE(r.out.find("\"stems_per_level\": [1, 50,"), std::string::npos) << r.out;
+  for (const char* key : {"\"grids\": 1", "\"grid_triangles\"", "\"geometry_bytes\"",
+                          "\"radius_adjusted_segments\"", "\"tension_raised_limbs\""}) {
+    EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
+  }
+}
+
+TEST(ArborCli, GrowWritesPbrtWithCurves) {
+  const std::string out = ::testing::TempDir() + "tree.pbrt";
+  const CliRun r = arbor("grow " + species("black_tupelo.toml") + " --quality 0.1 -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string text = slurp(out);
+  EXPECT_NE(text.find("Shape \"curve\" \"string basis\" \"bezier\""), std::string::npos);
+  EXPECT_NE(text.find("Shape \"trianglemesh\""), std::string::npos);
 }
 
 TEST(ArborCli, SameSeedSameOutput) {

@@ -1,0 +1,59 @@
+// Tests of the pbrt-v4 export: one Bézier cylinder curve per curve segment with the exact control
+// points, meshes for the trunk grid and leaves, well-formed parameter lists.
+#include "generator/export_pbrt.h"
+
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "generator/weber_penn.h"
+
+namespace arbor::gen {
+
+namespace {
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+}  // namespace
+
+TEST(ExportPbrt, WritesEveryCurveAsABezierCylinderAndTheMeshes) {
+  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/quaking_aspen.toml");
+  GrowOptions o;
+  o.quality = 0.1;
+  const TreeGeometry g = build_tree_geometry(grow_weber_penn(s.weber_penn, o));
+  const std::string path = ::testing::TempDir() + "tree.pbrt";
+  write_pbrt(g, s.bark, s.leaf, path);
+  const std::string text = slurp(path);
+  EXPECT_EQ(count(text, "Shape \"curve\""), g.curves.size());
+  EXPECT_EQ(count(text, "\"string type\" \"cylinder\""), g.curves.size());
+  EXPECT_EQ(count(text, "Shape \"trianglemesh\""), g.grids.grids.size() + 1);
+  EXPECT_EQ(count(text, "AttributeBegin"), count(text, "AttributeEnd"));
+  EXPECT_EQ(count(text, "["), count(text, "]"));
+  EXPECT_EQ(count(text, "Material \"diffusetransmission\""), 1u);
+
+  // The first curve's control points are the Hermite segment in Bézier form.
+  const std::size_t at = text.find("\"point3 P\" [ ") + 13;
+  std::istringstream numbers(text.substr(at, 400));
+  std::vector<float> p(12);
+  for (float& v : p) numbers >> v;
+  const glm::vec4 p0 = g.curves.points[0], p1 = g.curves.points[1];
+  const glm::vec4 b1 = p0 + g.curves.tangents[0] / 3.0f;
+  EXPECT_FLOAT_EQ(p[0], p0.x);
+  EXPECT_FLOAT_EQ(p[3], b1.x);
+  EXPECT_FLOAT_EQ(p[5], b1.z);
+  EXPECT_FLOAT_EQ(p[11], p1.z);
+  std::remove(path.c_str());
+}
+
+}  // namespace arbor::gen
