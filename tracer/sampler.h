@@ -1,0 +1,69 @@
+// Low-discrepancy samples keyed by (pixel, sample index, dimension, seed): padded 2D Sobol' points
+// with hash-based Owen scrambling (Burley 2020). No state, so any thread and tile order gives the
+// same numbers.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/vec2.hpp>
+
+namespace arbor::trace {
+
+constexpr std::uint32_t reverse_bits(std::uint32_t x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+  return (x >> 16) | (x << 16);
+}
+
+// Laine–Karras style permutation: an Owen scramble of the bit-reversed value.
+constexpr std::uint32_t owen_scramble(std::uint32_t x, std::uint32_t seed) {
+  x = reverse_bits(x);
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return reverse_bits(x);
+}
+
+constexpr std::uint32_t hash32(std::uint32_t a, std::uint32_t b) {
+  std::uint64_t x = (static_cast<std::uint64_t>(a) << 32) ^ b ^ 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return static_cast<std::uint32_t>(x ^ (x >> 31));
+}
+
+// The samples of one pixel; dimension pairs are independent scrambles of the 2D Sobol' points.
+class PixelSampler {
+ public:
+  PixelSampler(std::uint32_t pixel, std::uint64_t seed)
+      : key_(hash32(pixel, static_cast<std::uint32_t>(seed) ^ hash32(static_cast<std::uint32_t>(seed >> 32), 0x51ed27u))) {}
+
+  // The 2D point of sample `index` in dimension pair `dim`, in [0, 1)².
+  glm::vec2 get2d(std::uint32_t index, std::uint32_t dim) const {
+    const std::uint32_t s = hash32(key_, dim);
+    const std::uint32_t i = owen_scramble(index, s);  // shuffles the order per dimension pair
+    const std::uint32_t x = owen_scramble(reverse_bits(i), hash32(s, 1));
+    const std::uint32_t y = owen_scramble(sobol_second(i), hash32(s, 2));
+    return {to_unit(x), to_unit(y)};
+  }
+  float get1d(std::uint32_t index, std::uint32_t dim) const { return get2d(index, dim).x; }
+
+ private:
+  // Second dimension of the Sobol' sequence (generator matrix with v_k = 1 + 2 v_{k-1} pattern).
+  static constexpr std::uint32_t sobol_second(std::uint32_t i) {
+    std::uint32_t r = 0;
+    for (std::uint32_t v = 1u << 31; i; i >>= 1, v ^= v >> 1) {
+      if (i & 1u) r ^= v;
+    }
+    return r;
+  }
+  static constexpr float to_unit(std::uint32_t x) {
+    return static_cast<float>(x >> 8) * 0x1.0p-24f;  // 24 bits: strictly below 1 in float
+  }
+  std::uint32_t key_;
+};
+
+}  // namespace arbor::trace
