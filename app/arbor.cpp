@@ -17,6 +17,12 @@
 #include "generator/tree_mesh.h"
 #include "generator/tree_stats.h"
 #include "generator/weber_penn.h"
+#include "tracer/embree_device.h"
+#include "tracer/film.h"
+#include "tracer/image_output.h"
+#include "tracer/scene_desc.h"
+#include "tracer/sky.h"
+#include "tracer/world.h"
 
 namespace {
 
@@ -95,6 +101,85 @@ int run_grow(const GrowArgs& a) {
   return 0;
 }
 
+struct RenderArgs {
+  std::string scene;
+  std::string exr, png, integrator;
+  int spp = 0, threads = 0, width = 0, height = 0;
+  long long seed = -1;
+  double time = 0.0;
+  bool time_set = false;
+};
+
+// Fails early (before rendering) when an output's folder does not exist.
+void check_writable(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "." : path.substr(0, slash);
+  std::FILE* probe = std::fopen((dir + "/.arbor-write-test").c_str(), "w");
+  if (!probe) throw arbor::RuntimeFailure("cannot write " + path + ": its folder does not exist or is not writable");
+  std::fclose(probe);
+  std::remove((dir + "/.arbor-write-test").c_str());
+}
+
+int run_render(const RenderArgs& a) {
+  using namespace arbor;
+  trace::SceneDesc scene = trace::load_scene(a.scene);
+  trace::RenderSettings& r = scene.render;
+  if (a.spp > 0) r.spp = a.spp;
+  if (a.width > 0) r.width = a.width;
+  if (a.height > 0) r.height = a.height;
+  if (a.seed >= 0) r.seed = static_cast<std::uint64_t>(a.seed);
+  r.threads = a.threads;
+  if (!a.integrator.empty()) r.integrator = a.integrator;
+  if (a.time_set) {
+    for (trace::TreeDesc& t : scene.trees) t.time = a.time;
+  }
+  if (!a.exr.empty()) scene.output.exr = a.exr;
+  if (!a.png.empty()) scene.output.png = a.png;
+  if (r.integrator == "treemaker") {
+    throw RuntimeFailure("the treemaker integrator is not available in this build yet; use --integrator path");
+  }
+  if (scene.output.exr.empty() && scene.output.png.empty()) {
+    throw InputError({a.scene, 0, 0}, "nothing to write: give -o OUT.exr, --png OUT.png or an [output] table");
+  }
+  if (!scene.output.exr.empty() && !ends_with(scene.output.exr, ".exr")) {
+    throw InputError({}, "the EXR output must end in .exr: " + scene.output.exr);
+  }
+  if (!scene.output.png.empty() && !ends_with(scene.output.png, ".png")) {
+    throw InputError({}, "the PNG output must end in .png: " + scene.output.png);
+  }
+  for (const std::string& out : {scene.output.exr, scene.output.png}) {
+    if (!out.empty()) check_writable(out);
+  }
+  const trace::ColorPipeline color(scene.output);
+  const trace::EmbreeDevice device(r.threads > 0 ? "threads=" + std::to_string(r.threads) : "");
+  Progress build_progress("build", 1);
+  const trace::World world(scene, device, &build_progress);
+  build_progress.finish();
+  const trace::Sky sky(scene.sky, scene.sun);
+  Progress progress("render", 1);
+  trace::RenderStats stats;
+  const trace::Image image = trace::render_path(scene, world, sky, color.to_output(), &progress, stats);
+  progress.finish();
+  trace::ExrMetadata meta{scene.path, r.seed, r.spp, r.integrator, stats};
+  if (!scene.output.exr.empty()) trace::write_exr(image, scene.output, meta, scene.output.exr);
+  if (!scene.output.png.empty()) trace::write_png(image, scene.output, color, scene.output.png);
+  const double seconds = std::max(stats.seconds, 1e-9);
+  std::fprintf(stderr,
+               "arbor: rendered %dx%d at %d spp in %.2f s (%.3g samples/s, %.3g rays/s; %zu trees "
+               "from %zu prototypes, built in %.2f s)\n",
+               r.width, r.height, r.spp, stats.seconds, double(stats.samples) / seconds,
+               double(stats.rays) / seconds, world.stats().instances, world.stats().prototypes,
+               world.stats().build_seconds);
+  if (stats.nonfinite > 0) {
+    std::fprintf(stderr, "arbor: warning: %llu samples were NaN or infinite and were left out\n",
+                 static_cast<unsigned long long>(stats.nonfinite));
+  }
+  for (const std::string& out : {scene.output.exr, scene.output.png}) {
+    if (!out.empty()) std::fprintf(stderr, "arbor: wrote %s\n", out.c_str());
+  }
+  return 0;
+}
+
 int not_available(const char* command, const char* issue) {
   std::fprintf(stderr, "arbor %s: not available in this build yet (%s)\n", command, issue);
   return 1;
@@ -136,9 +221,20 @@ int main(int argc, char** argv) {
   grow_cmd->add_flag("--force", grow.force,
                      "grow even a tree estimated at over 10 million stems or 100 million leaves");
 
-  CLI::App* render_cmd = app.add_subcommand(
-      "render", "Render a scene file (not available in this build yet)");
-  render_cmd->allow_extras();
+  RenderArgs render;
+  CLI::App* render_cmd = app.add_subcommand("render", "Render a scene file (path tracer) to EXR/PNG");
+  render_cmd->add_option("SCENE", render.scene, "scene file (.toml)")->required();
+  render_cmd->add_option("-o,--output", render.exr, "EXR to write (overrides [output] exr)");
+  render_cmd->add_option("--png", render.png, "PNG to write through the display view");
+  render_cmd->add_option("--spp", render.spp, "samples per pixel")->check(CLI::Range(1, 1 << 20));
+  render_cmd->add_option("--seed", render.seed, "random seed")->check(CLI::NonNegativeNumber);
+  render_cmd->add_option("--threads", render.threads, "threads (0: all cores)")->check(CLI::Range(0, 1024));
+  render_cmd->add_option("--integrator", render.integrator, "path (treemaker: not yet)")
+      ->check(CLI::IsMember({"path", "treemaker"}));
+  render_cmd->add_option("--width", render.width, "image width")->check(CLI::Range(1, 16384));
+  render_cmd->add_option("--height", render.height, "image height")->check(CLI::Range(1, 16384));
+  render_cmd->add_option("--time", render.time, "seconds of wind sway for every [[tree]]")
+      ->each([&render](const std::string&) { render.time_set = true; });
   CLI::App* compare_cmd = app.add_subcommand(
       "compare", "Compare two EXR images (not available in this build yet)");
   compare_cmd->allow_extras();
@@ -152,7 +248,7 @@ int main(int argc, char** argv) {
 
   try {
     if (*grow_cmd) return run_grow(grow);
-    if (*render_cmd) return not_available("render", "the path tracer is the next milestone");
+    if (*render_cmd) return run_render(render);
     if (*compare_cmd) return not_available("compare", "comes with the reference-image work");
   } catch (const arbor::InputError& e) {
     std::fprintf(stderr, "%s\n", e.what());

@@ -368,6 +368,7 @@ BarkCoordinates curve_bark(const CurveSet& c, std::size_t i, float u, const glm:
   bc.along = s.arc0 + (s.arc1 - s.arc0) * u;
   bc.around = p.w * azimuth;
   bc.azimuth = azimuth;
+  bc.radius = p.w;
   return bc;
 }
 
@@ -393,6 +394,9 @@ BarkCoordinates grid_bark(const GridSet& g, std::size_t grid, float u, float v) 
   bc.along = b.x;
   bc.around = b.y;
   bc.azimuth = 2.0f * static_cast<float>(kPi) * std::clamp(u, 0.0f, 1.0f);
+  // around = radius × azimuth at every vertex: recover the radius from the row's last column.
+  const float row_end = grid_lerp(g.bark, d, 1.0f, v).y;
+  bc.radius = row_end / (2.0f * static_cast<float>(kPi));
   return bc;
 }
 

@@ -105,6 +105,7 @@ struct BarkCoordinates {
   float along = 0.0f;
   float around = 0.0f;
   float azimuth = 0.0f;  // radians in [0, 2π)
+  float radius = 0.0f;   // of the limb there (without displacement)
 };
 BarkCoordinates curve_bark(const CurveSet& curves, std::size_t segment, float u,
                            const glm::vec3& point);

@@ -33,6 +33,8 @@ struct SurfaceHit {
   glm::vec3 shading_normal{0.0f};    // unit; follows the displaced surface on trunk grids
   std::uint16_t material = 0;        // gen::MaterialId (leaf front or back by the side hit)
   gen::BarkCoordinates bark;         // for curves and grids
+  glm::vec3 tangent{0.0f};           // along the limb (curves and grids), for bump mapping
+  std::int32_t leaf = -1;            // Skeleton leaf index for leaf hits
 };
 
 class TreePrototype {
@@ -50,6 +52,11 @@ class TreePrototype {
 
   // Closest hit along the ray; false when nothing is hit.
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
+
+  // Fills `hit` from Embree's answer for a ray in this prototype's own space (also used for
+  // instanced hits, with the ray taken to object space).
+  void describe_hit(const Ray& ray, unsigned geom_id, unsigned primitive, float u, float v,
+                    float t, const glm::vec3& embree_ng, SurfaceHit& hit) const;
 
  private:
   const gen::TreeGeometry& geometry_;

@@ -130,7 +130,41 @@ TEST(ArborCli, FailedWriteExitsOneAndLeavesNoFile) {
 }
 
 TEST(ArborCli, UnbuiltCommandsSaySo) {
-  const CliRun r = arbor("render scene.toml");
+  const CliRun r = arbor("compare a.exr b.exr");
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("not available in this build yet"), std::string::npos);
+  const CliRun tm = arbor("render " + std::string(ARBOR_SOURCE_DIR) +
+                          "/scenes/default.toml --integrator treemaker -o x.exr");
+  EXPECT_EQ(tm.code, 1);
+  EXPECT_NE(tm.err.find("not available in this build yet"), std::string::npos);
+}
+
+TEST(ArborCli, RenderRejectsBadScenesWithPosition) {
+  const std::string bad = write_temp("bad_scene.toml", "[render]\nwidth = 64\nspp = 0\n");
+  const CliRun r = arbor("render " + bad + " -o out.exr");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find(bad + ":3:7: error: render.spp = 0 is out of range"), std::string::npos) << r.err;
+  const std::string unknown = write_temp("unknown_key.toml", "[camera]\nfov = 40\nzoom = 2\n");
+  const CliRun u = arbor("render " + unknown + " -o out.exr");
+  EXPECT_EQ(u.code, 2);
+  EXPECT_NE(u.err.find(unknown + ":3:1: error: unknown key 'zoom' in [camera]"), std::string::npos) << u.err;
+  const CliRun missing = arbor("render /no/such/scene.toml -o out.exr");
+  EXPECT_EQ(missing.code, 2);
+}
+
+TEST(ArborCli, RenderWritesExrAndPngAndNothingOnFailure) {
+  const std::string dir = ::testing::TempDir();
+  const std::string scene = write_temp(
+      "tiny.toml",
+      "[render]\nwidth = 24\nheight = 16\nspp = 2\n[camera]\nposition = [10.0, -14.0, 3.0]\n"
+      "look_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) +
+      "/generator/species/quaking_aspen.toml\"\n");
+  const CliRun r = arbor("render " + scene + " -o " + dir + "tiny.exr --png " + dir + "tiny.png");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(exists(dir + "tiny.exr"));
+  EXPECT_TRUE(exists(dir + "tiny.png"));
+  EXPECT_NE(r.err.find("samples/s"), std::string::npos);
+  const CliRun bad = arbor("render " + scene + " -o /no/such/dir/tiny.exr");
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_FALSE(exists("/no/such/dir/tiny.exr"));
 }

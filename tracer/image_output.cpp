@@ -1,0 +1,186 @@
+// OCIO colour pipeline and OIIO image writers.
+#include "tracer/image_output.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <unistd.h>
+
+#include <OpenColorIO/OpenColorIO.h>
+#include <OpenImageIO/color.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include "arbor/version.h"
+#include "common/error.h"
+
+namespace OCIO = OCIO_NAMESPACE;
+
+namespace arbor::trace {
+
+namespace {
+
+// A temporary beside `path` with the same extension (image writers choose the format by it).
+std::string temporary_for(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  const auto dot = name.find_last_of('.');
+  const std::string ext = dot == std::string::npos ? "" : name.substr(dot);
+  return dir + "." + name + ".tmp-" + std::to_string(::getpid()) + ext;
+}
+
+void commit(const std::string& tmp, const std::string& path) {
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw RuntimeFailure("cannot write " + path + ": the finished file could not be moved into place");
+  }
+}
+
+std::string list_of(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "\"" : ", \"") + n + "\"";
+  return out;
+}
+
+}  // namespace
+
+std::string ocio_config_path() {
+  const char* env = std::getenv("OCIO");
+  if (env && *env) return env;
+  return ARBOR_OCIO_CONFIG;
+}
+
+struct ColorPipeline::Impl {
+  OCIO::ConstConfigRcPtr config;
+  OCIO::ConstCPUProcessorRcPtr to_output;
+};
+
+ColorPipeline::ColorPipeline(const OutputDesc& o) : impl_(std::make_unique<Impl>()) {
+  config_path_ = ocio_config_path();
+  try {
+    impl_->config = OCIO::Config::CreateFromFile(config_path_.c_str());
+  } catch (const OCIO::Exception& e) {
+    throw InputError({config_path_, 0, 0}, std::string("cannot use this OCIO config: ") + e.what());
+  }
+  const OCIO::Config& c = *impl_->config;
+  if (!c.getColorSpace(o.colorspace.c_str())) {
+    std::vector<std::string> names;
+    for (int i = 0; i < c.getNumColorSpaces(); ++i) names.emplace_back(c.getColorSpaceNameByIndex(i));
+    throw InputError({}, "output.colorspace \"" + o.colorspace + "\" is not in the OCIO config " +
+                             config_path_ + "; it has " + list_of(names));
+  }
+  std::vector<std::string> displays;
+  bool display_found = false;
+  for (int i = 0; i < c.getNumDisplays(); ++i) {
+    displays.emplace_back(c.getDisplay(i));
+    display_found = display_found || displays.back() == o.display;
+  }
+  if (!display_found) {
+    throw InputError({}, "output.display \"" + o.display + "\" is not in the OCIO config; it has " +
+                             list_of(displays));
+  }
+  std::vector<std::string> views;
+  bool view_found = false;
+  for (int i = 0; i < c.getNumViews(o.display.c_str()); ++i) {
+    views.emplace_back(c.getView(o.display.c_str(), i));
+    view_found = view_found || views.back() == o.view;
+  }
+  if (!view_found) {
+    throw InputError({}, "output.view \"" + o.view + "\" is not a view of display \"" + o.display +
+                             "\"; it has " + list_of(views));
+  }
+  try {
+    impl_->to_output = c.getProcessor(OCIO::ROLE_SCENE_LINEAR, o.colorspace.c_str())
+                           ->getDefaultCPUProcessor();
+  } catch (const OCIO::Exception& e) {
+    throw InputError({config_path_, 0, 0}, std::string("OCIO cannot convert to ") + o.colorspace + ": " + e.what());
+  }
+}
+
+ColorPipeline::~ColorPipeline() = default;
+
+ColorTransform ColorPipeline::to_output() const {
+  OCIO::ConstCPUProcessorRcPtr cpu = impl_->to_output;
+  return [cpu](float rgb[3]) { cpu->applyRGB(rgb); };
+}
+
+void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta,
+               const std::string& path) {
+  std::vector<std::string> names{"R", "G", "B"};
+  std::vector<OIIO::TypeDesc> formats(3, o.pixel_type == "float" ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF);
+  auto wants = [&](const char* aov) {
+    for (const std::string& a : o.aovs) {
+      if (a == aov) return true;
+    }
+    return false;
+  };
+  const bool albedo = wants("albedo"), normal = wants("normal"), depth = wants("depth"),
+             variance = wants("variance");
+  if (albedo) for (const char* c : {"albedo.R", "albedo.G", "albedo.B"}) { names.emplace_back(c); formats.push_back(formats[0]); }
+  if (normal) for (const char* c : {"N.X", "N.Y", "N.Z"}) { names.emplace_back(c); formats.push_back(formats[0]); }
+  // Depth and variance keep full precision: reference tests divide by the variance.
+  if (depth) { names.emplace_back("Z"); formats.push_back(OIIO::TypeDesc::FLOAT); }
+  if (variance) for (const char* c : {"variance.R", "variance.G", "variance.B"}) { names.emplace_back(c); formats.push_back(OIIO::TypeDesc::FLOAT); }
+
+  const int nch = static_cast<int>(names.size());
+  OIIO::ImageSpec spec(img.width, img.height, nch, formats[0]);
+  spec.channelnames = names;
+  spec.channelformats = formats;
+  spec.attribute("oiio:ColorSpace", o.colorspace);
+  spec.attribute("arbor:colorspace", o.colorspace);
+  spec.attribute("arbor:version", ARBOR_VERSION_STRING);
+  spec.attribute("arbor:scene", meta.scene);
+  spec.attribute("arbor:seed", std::to_string(meta.seed));
+  spec.attribute("arbor:spp", meta.spp);
+  spec.attribute("arbor:integrator", meta.integrator);
+  spec.attribute("arbor:render_seconds", static_cast<float>(meta.stats.seconds));
+  spec.attribute("arbor:nonfinite_samples", std::to_string(meta.stats.nonfinite));
+  spec.attribute("arbor:variance", "variance of the pixel mean (sample variance / spp)");
+  spec.attribute("compression", "zip");
+
+  std::vector<float> data(static_cast<std::size_t>(img.width) * img.height * nch);
+  for (std::size_t p = 0, k = 0; p < img.beauty.size(); ++p) {
+    auto put = [&](const glm::vec3& v) { data[k++] = v.x; data[k++] = v.y; data[k++] = v.z; };
+    put(img.beauty[p]);
+    if (albedo) put(img.albedo[p]);
+    if (normal) put(img.normal[p]);
+    if (depth) data[k++] = img.depth[p];
+    if (variance) put(img.variance[p]);
+  }
+  const std::string tmp = temporary_for(path);
+  auto out = OIIO::ImageOutput::create(tmp);
+  if (!out || !out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, data.data()) ||
+      !out->close()) {
+    const std::string why = out ? out->geterror() : OIIO::geterror();
+    std::remove(tmp.c_str());
+    throw RuntimeFailure("cannot write " + path + ": " + why);
+  }
+  commit(tmp, path);
+}
+
+void write_png(const Image& img, const OutputDesc& o, const ColorPipeline& color,
+               const std::string& path) {
+  OIIO::ImageBuf src(OIIO::ImageSpec(img.width, img.height, 3, OIIO::TypeDesc::FLOAT));
+  for (int y = 0; y < img.height; ++y) {
+    for (int x = 0; x < img.width; ++x) {
+      const glm::vec3& v = img.beauty[static_cast<std::size_t>(y) * img.width + x];
+      const float px[3] = {v.x, v.y, v.z};
+      src.setpixel(x, y, px);
+    }
+  }
+  OIIO::ColorConfig config(color.config_path());
+  OIIO::ImageBuf shown;
+  if (!OIIO::ImageBufAlgo::ociodisplay(shown, src, o.display, o.view, o.colorspace, "", false, "",
+                                        "", &config)) {
+    throw RuntimeFailure("cannot apply the display view for " + path + ": " + shown.geterror());
+  }
+  const std::string tmp = temporary_for(path);
+  if (!shown.write(tmp, OIIO::TypeDesc::UINT8)) {
+    std::remove(tmp.c_str());
+    throw RuntimeFailure("cannot write " + path + ": " + shown.geterror());
+  }
+  commit(tmp, path);
+}
+
+}  // namespace arbor::trace

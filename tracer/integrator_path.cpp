@@ -1,0 +1,190 @@
+// Path tracing with NEE + MIS + Russian roulette. Materials are evaluated into plain BSDF values
+// at each hit; nothing is allocated per sample.
+#include "tracer/integrator_path.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "materials/bark_noise.h"
+#include "materials/lambert.h"
+#include "materials/leaf_bsdf.h"
+
+namespace arbor::trace {
+
+namespace {
+
+float power_heuristic(float a, float b) {
+  const float a2 = a * a, b2 = b * b;
+  return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
+}
+
+// Orthonormal shading frame around n (z); directions are converted to and from it.
+struct Frame {
+  glm::vec3 x, y, z;
+  explicit Frame(const glm::vec3& n) : z(n) {
+    const float sign = std::copysign(1.0f, n.z);
+    const float a = -1.0f / (sign + n.z), b = n.x * n.y * a;
+    x = glm::vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    y = glm::vec3(b, sign + n.y * n.y * a, -n.y);
+  }
+  glm::dvec3 local(const glm::vec3& v) const {
+    return {glm::dot(v, x), glm::dot(v, y), glm::dot(v, z)};
+  }
+  glm::vec3 world(const glm::dvec3& v) const {
+    return x * static_cast<float>(v.x) + y * static_cast<float>(v.y) + z * static_cast<float>(v.z);
+  }
+};
+
+// The BSDF at a hit: opaque diffuse (bark, ground) or a two-sided leaf.
+struct Shading {
+  bool leaf = false;
+  mat::Lambert lambert;
+  mat::LeafBsdf leaf_bsdf;
+  glm::vec3 normal{0.0f};  // shading normal, on the side the ray came from
+  glm::vec3 albedo{0.0f};
+
+  glm::vec3 eval(const glm::dvec3& wo, const glm::dvec3& wi) const {
+    return glm::vec3(leaf ? leaf_bsdf.eval(wo, wi) : lambert.eval(wo, wi));
+  }
+  float pdf(const glm::dvec3& wo, const glm::dvec3& wi) const {
+    return static_cast<float>(leaf ? leaf_bsdf.pdf(wo, wi) : lambert.pdf(wo, wi));
+  }
+};
+
+// Bark bump mapping (procedural furrows, bump_height metres of relief): the normal tilts against
+// the height gradient along the limb and around it.
+glm::vec3 bumped_normal(const SurfaceHit& s, float bump_height) {
+  const glm::vec3 n = s.shading_normal;
+  if (bump_height <= 0.0f || s.bark.radius <= 0.0f) return n;
+  glm::vec3 t = s.tangent - n * glm::dot(s.tangent, n);
+  if (glm::length(t) < 1e-6f) return n;
+  t = glm::normalize(t);
+  const glm::vec3 around = glm::cross(t, n);  // direction of increasing azimuth
+  const double a = s.bark.along, th = s.bark.azimuth, r = s.bark.radius, e = 0.002;
+  const double h_along = (mat::bark_height(a + e, th, r) - mat::bark_height(a - e, th, r)) / (2 * e);
+  const double h_around =
+      (mat::bark_height(a, th + e / r, r) - mat::bark_height(a, th - e / r, r)) / (2 * e);
+  const glm::vec3 bumped = n - t * static_cast<float>(bump_height * h_along) -
+                           around * static_cast<float>(bump_height * h_around);
+  return glm::normalize(bumped);
+}
+
+Shading shade(const World& world, const WorldHit& hit) {
+  Shading sh;
+  const SurfaceHit& s = hit.surface;
+  sh.normal = s.shading_normal;
+  if (hit.ground) {
+    sh.lambert.albedo = glm::dvec3(world.ground_albedo());
+  } else {
+    const TreeLook& look = world.look(hit.instance);
+    if (s.kind == SurfaceKind::Leaf) {
+      sh.leaf = true;
+      const glm::vec3 r = s.material == gen::kMaterialLeafBack ? look.leaf_back : look.leaf_front;
+      sh.leaf_bsdf.reflectance = glm::dvec3(r);
+      sh.leaf_bsdf.transmittance = glm::dvec3(look.leaf_transmittance);
+    } else {
+      sh.lambert.albedo = glm::dvec3(look.bark_albedo);
+      sh.normal = bumped_normal(s, look.bump_height);
+    }
+  }
+  if (glm::dot(sh.normal, s.geometric_normal) < 0.0f) sh.normal = -sh.normal;
+  sh.albedo = sh.leaf ? glm::vec3(sh.leaf_bsdf.reflectance) : glm::vec3(sh.lambert.albedo);
+  return sh;
+}
+
+Ray spawn(const glm::vec3& p, const glm::vec3& ng, const glm::vec3& dir, float t_max) {
+  Ray r;
+  const float side = glm::dot(dir, ng) >= 0.0f ? 1.0f : -1.0f;
+  r.origin = p + ng * (side * ray_offset(p));
+  r.direction = dir;
+  r.t_min = 0.0f;
+  r.t_max = t_max;
+  return r;
+}
+
+}  // namespace
+
+float ray_offset(const glm::vec3& p) {
+  const float m = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+  return 2e-5f + 4e-6f * m;
+}
+
+PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& sampler,
+                                 std::uint32_t index) const {
+  PathSample out;
+  glm::vec3 beta(1.0f);
+  Ray ray = camera_ray;
+  float bsdf_pdf = 0.0f;  // of the direction just taken (0: camera ray, no MIS)
+  for (int depth = 0;; ++depth) {
+    WorldHit hit;
+    ++out.rays;
+    if (!world_.intersect(ray, hit)) {
+      // Escaped: sky and sun, weighted against their own sampling where NEE could have found them.
+      const glm::vec3 sky = sky_.radiance(ray.direction);
+      const float w_sky = bsdf_pdf > 0.0f ? power_heuristic(bsdf_pdf, sky_.pdf(ray.direction)) : 1.0f;
+      out.radiance += beta * sky * w_sky;
+      if (sky_.in_sun(ray.direction)) {
+        const float w_sun = bsdf_pdf > 0.0f ? power_heuristic(bsdf_pdf, sky_.sun_pdf()) : 1.0f;
+        out.radiance += beta * sky_.sun_radiance() * w_sun;
+      }
+      break;
+    }
+    const SurfaceHit& s = hit.surface;
+    const Shading sh = shade(world_, hit);
+    if (depth == 0) {
+      out.albedo = sh.albedo;
+      out.normal = sh.normal;
+      out.depth = s.t;
+    }
+    if (depth >= max_depth_) break;
+    const Frame frame(sh.normal);
+    const glm::dvec3 wo = frame.local(-ray.direction);
+    const std::uint32_t dim = 2 + 4 * static_cast<std::uint32_t>(depth);
+
+    // Next-event estimation: one sample of the sun and one of the sky, each with MIS.
+    const LightSample lights[2] = {sky_.sample_sun(sampler.get2d(index, dim)),
+                                   sky_.sample(sampler.get2d(index, dim + 1))};
+    for (int k = 0; k < 2; ++k) {
+      const LightSample& ls = lights[k];
+      if (ls.pdf <= 0.0f || (ls.radiance.x <= 0.0f && ls.radiance.y <= 0.0f && ls.radiance.z <= 0.0f)) continue;
+      const float cos_g = glm::dot(ls.direction, s.geometric_normal);
+      if (!sh.leaf && cos_g <= 0.0f) continue;  // below an opaque surface
+      const glm::dvec3 wi = frame.local(ls.direction);
+      const glm::vec3 f = sh.eval(wo, wi);
+      if (f.x <= 0.0f && f.y <= 0.0f && f.z <= 0.0f) continue;
+      ++out.rays;
+      if (world_.occluded(spawn(s.position, s.geometric_normal, ls.direction, 1e30f))) continue;
+      const float w = power_heuristic(ls.pdf, sh.pdf(wo, wi));
+      out.radiance += beta * f * ls.radiance * (static_cast<float>(std::fabs(wi.z)) * w / ls.pdf);
+    }
+
+    // Continue the path by sampling the BSDF.
+    const glm::vec2 u = sampler.get2d(index, dim + 2);
+    const glm::vec2 u2 = sampler.get2d(index, dim + 3);
+    mat::BsdfSample bs;
+    if (sh.leaf) {
+      bs = sh.leaf_bsdf.sample(wo, glm::dvec3(u2.x, u.x, u.y));
+    } else {
+      bs = sh.lambert.sample(wo, glm::dvec2(u.x, u.y));
+    }
+    if (bs.pdf <= 0.0) break;
+    const glm::vec3 dir = glm::normalize(frame.world(bs.wi));
+    const float cos_g = glm::dot(dir, s.geometric_normal);
+    // A direction the shading normal allows but the geometry does not would leak light.
+    if (!sh.leaf && cos_g <= 0.0f) break;
+    beta *= glm::vec3(bs.value) * static_cast<float>(std::fabs(bs.wi.z) / bs.pdf);
+    bsdf_pdf = static_cast<float>(bs.pdf);
+    // Russian roulette after three bounces, survival by throughput.
+    if (depth >= 3) {
+      const float q = std::min(0.95f, std::max({beta.x, beta.y, beta.z}));
+      if (u2.y >= q) break;
+      beta /= q;
+    }
+    ray = spawn(s.position, s.geometric_normal, dir, 1e30f);
+  }
+  return out;
+}
+
+}  // namespace arbor::trace

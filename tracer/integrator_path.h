@@ -1,0 +1,42 @@
+// The exact integrator: unidirectional path tracing with next-event estimation to the sun and
+// the sky, multiple importance sampling (power heuristic) and Russian roulette.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/vec3.hpp>
+
+#include "tracer/sampler.h"
+#include "tracer/sky.h"
+#include "tracer/world.h"
+
+namespace arbor::trace {
+
+// What one camera sample brings back: radiance and the first hit's AOVs.
+struct PathSample {
+  glm::vec3 radiance{0.0f};
+  glm::vec3 albedo{0.0f};
+  glm::vec3 normal{0.0f};
+  float depth = 0.0f;  // distance along the camera ray to the first hit (0 when none)
+  std::uint32_t rays = 0;  // rays traced for it (closest-hit and shadow)
+};
+
+class PathIntegrator {
+ public:
+  PathIntegrator(const World& world, const Sky& sky, int max_depth)
+      : world_(world), sky_(sky), max_depth_(max_depth) {}
+
+  // Dimension pairs 0 and 1 are the camera's (film, lens); each bounce uses four more.
+  PathSample trace(const Ray& camera_ray, const PixelSampler& sampler, std::uint32_t index) const;
+
+ private:
+  const World& world_;
+  const Sky& sky_;
+  int max_depth_;
+};
+
+// How far a new ray starts from a surface along its geometric normal (metres): enough to clear
+// Embree's float rounding at that distance from the origin, small against twig radii.
+float ray_offset(const glm::vec3& p);
+
+}  // namespace arbor::trace

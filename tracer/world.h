@@ -1,0 +1,89 @@
+// The renderable world of a scene: one Embree prototype per distinct tree (species, seed, time),
+// placed by instances for every [[tree]] and [[forest]] member, and the ground plane. Immutable
+// while rendering.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+
+#include "generator/species.h"
+#include "generator/tree_geometry.h"
+#include "tracer/embree_scene.h"
+#include "tracer/scene_desc.h"
+
+namespace arbor {
+class Progress;
+}
+
+namespace arbor::trace {
+
+// The looks of one placed tree (species defaults with the scene's overrides).
+struct TreeLook {
+  glm::vec3 bark_albedo{0.3f};
+  float bump_height = 0.0f;  // metres
+  glm::vec3 leaf_front{0.1f}, leaf_back{0.1f}, leaf_transmittance{0.1f};
+};
+
+struct WorldHit {
+  SurfaceHit surface;      // in world space
+  int instance = -1;       // tree instance; -1 for the ground
+  bool ground = false;
+};
+
+struct WorldStats {
+  std::size_t prototypes = 0, instances = 0;
+  std::size_t curve_segments = 0, triangles = 0;  // over prototypes (not multiplied by instances)
+  std::size_t geometry_bytes = 0;
+  double build_seconds = 0.0;
+};
+
+class World {
+ public:
+  World(const SceneDesc& scene, const EmbreeDevice& device, Progress* progress = nullptr);
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  bool intersect(const Ray& ray, WorldHit& hit) const;
+  // True when anything lies on the ray between t_min and t_max.
+  bool occluded(const Ray& ray) const;
+
+  const TreeLook& look(int instance) const { return instances_[static_cast<size_t>(instance)].look; }
+  const glm::vec3& ground_albedo() const { return ground_albedo_; }
+  const WorldStats& stats() const { return stats_; }
+
+ private:
+  struct Prototype {
+    std::unique_ptr<gen::TreeGeometry> geometry;
+    std::unique_ptr<TreePrototype> embree;
+  };
+  struct Instance {
+    int prototype = 0;
+    glm::mat4 to_world{1.0f}, to_object{1.0f};
+    glm::mat3 normal_to_world{1.0f};
+    TreeLook look;
+  };
+  int prototype_for(const std::string& species_path, std::uint64_t seed, double time,
+                    const SourceLocation& where);
+  const gen::Species& species(const std::string& path, const SourceLocation& where);
+  void add_instance(int prototype, const Placement& placement, const TreeLook& look);
+  TreeLook look_for(const gen::Species& species, const BarkOverride& bark,
+                    const LeafOverride& leaf, const SourceLocation& where) const;
+
+  const EmbreeDevice& device_;
+  RTCSceneTy* scene_ = nullptr;
+  unsigned ground_id_ = ~0u;
+  glm::vec3 ground_albedo_{0.0f};
+  std::vector<std::pair<std::string, std::unique_ptr<gen::Species>>> species_;
+  std::vector<std::pair<std::string, int>> prototype_keys_;
+  std::vector<Prototype> prototypes_;
+  std::vector<Instance> instances_;
+  std::vector<int> instance_of_geometry_;  // Embree geometry id in the top scene → instance
+  WorldStats stats_;
+};
+
+}  // namespace arbor::trace
