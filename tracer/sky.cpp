@@ -183,9 +183,10 @@ LightSample Sky::sample(glm::vec2 u) const {
   float pdf_map = 0.0f;
   const glm::vec2 p = distribution_.sample(u, pdf_map);
   s.direction = from_map(p);
-  const float sin_theta = std::sin(p.y * kPif);
-  if (sin_theta <= 0.0f || pdf_map <= 0.0f) return s;
-  s.pdf = pdf_map / (2.0f * kPif * kPif * sin_theta);
+  if (pdf_map <= 0.0f) return s;
+  // The density of the direction actually returned: a point on a cell edge can round into the
+  // neighbouring cell, and MIS needs sample() and pdf() to agree exactly.
+  s.pdf = pdf(s.direction);
   s.radiance = radiance(s.direction);
   return s;
 }

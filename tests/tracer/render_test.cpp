@@ -1,0 +1,229 @@
+// Physical tests of the path tracer: white furnace on a real tree, analytic radiance, determinism
+// across thread counts, thin-lens focus, sky sampling consistency, sampler stratification.
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include <OpenImageIO/imagebuf.h>
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "tracer/camera.h"
+#include "tracer/film.h"
+#include "tracer/sampler.h"
+#include "tracer/sky.h"
+#include "tracer/world.h"
+
+namespace arbor::trace {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+const ColorTransform kIdentity = [](float*) {};
+
+SceneDesc small_scene(int width, int height, int spp) {
+  SceneDesc s;
+  s.render.width = width;
+  s.render.height = height;
+  s.render.spp = spp;
+  s.camera.position = {9.0, -12.0, 4.0};
+  s.camera.look_at = {0.0, 0.0, 6.0};
+  s.camera.focus_distance = 15.0;
+  return s;
+}
+
+TreeDesc aspen() {
+  TreeDesc t;
+  t.species = std::string(ARBOR_SOURCE_DIR) + "/generator/species/quaking_aspen.toml";
+  t.seed = 3;
+  return t;
+}
+
+Image render(const SceneDesc& scene, RenderStats& stats) {
+  const EmbreeDevice device(scene.render.threads > 0 ? "threads=" + std::to_string(scene.render.threads) : "");
+  const World world(scene, device);
+  const Sky sky(scene.sky, scene.sun, 128);
+  return render_path(scene, world, sky, kIdentity, nullptr, stats);
+}
+
+}  // namespace
+
+TEST(Render, WhiteFurnaceOnARealTreeIsOneEverywhere) {
+  // Bark albedo 1, leaves with R + T = 1, a constant sky of radiance 1, no ground, no sun: every
+  // path carries exactly 1, so every pixel is 1 within noise.
+  SceneDesc s = small_scene(32, 24, 64);
+  s.render.max_depth = 512;
+  s.sun.enabled = false;
+  s.sky.model = "constant";
+  s.sky.color = {1.0, 1.0, 1.0};
+  s.ground.enabled = false;
+  TreeDesc t = aspen();
+  t.bark.albedo = Rgb{1.0, 1.0, 1.0};
+  t.bark.bump_height = 0.0;  // shading normals off the geometry lose energy by design
+  t.leaf.reflectance = Rgb{0.5, 0.6, 0.7};
+  t.leaf.back_reflectance = Rgb{0.5, 0.6, 0.7};
+  t.leaf.transmittance = Rgb{0.5, 0.4, 0.3};
+  s.trees.push_back(t);
+  RenderStats stats;
+  const Image img = render(s, stats);
+  double sum = 0.0;
+  int tree_pixels = 0;
+  for (std::size_t p = 0; p < img.beauty.size(); ++p) {
+    for (int c = 0; c < 3; ++c) {
+      const double v = img.beauty[p][c], sd = std::sqrt(img.variance[p][c]);
+      EXPECT_NEAR(v, 1.0, 6.0 * sd + 1e-4) << "pixel " << p << " channel " << c;
+      sum += v;
+    }
+    if (img.depth[p] > 0.0f) ++tree_pixels;
+  }
+  EXPECT_NEAR(sum / (3.0 * img.beauty.size()), 1.0, 0.01);
+  EXPECT_GT(tree_pixels, 100);  // the tree fills a good part of the frame
+  EXPECT_EQ(stats.nonfinite, 0u);
+}
+
+TEST(Render, LambertianGroundUnderTheSunIsRhoEOverPi) {
+  for (double elevation : {90.0, 30.0}) {
+    SceneDesc s = small_scene(8, 8, 16);
+    s.camera.position = {0.0, 0.0, 5.0};
+    s.camera.look_at = {0.0, 0.0, 0.0};
+    s.camera.up = {0.0, 1.0, 0.0};
+    s.camera.fov = 20.0;
+    s.sky.model = "none";
+    s.sun.elevation = elevation;
+    s.sun.irradiance = 2.0;
+    s.ground.albedo = {0.5, 0.25, 0.1};
+    RenderStats stats;
+    const Image img = render(s, stats);
+    const double e = 2.0 * std::sin(elevation * kPi / 180.0);  // on the horizontal ground
+    for (const glm::vec3& v : img.beauty) {
+      EXPECT_NEAR(v.x, 0.5 * e / kPi, 2e-3 * e);
+      EXPECT_NEAR(v.y, 0.25 * e / kPi, 2e-3 * e);
+      EXPECT_NEAR(v.z, 0.1 * e / kPi, 2e-3 * e);
+    }
+  }
+}
+
+TEST(Render, ConstantSkySeenDirectlyIsItsRadiance) {
+  SceneDesc s = small_scene(8, 8, 4);
+  s.camera.look_at = {0.0, 0.0, 50.0};
+  s.sun.enabled = false;
+  s.ground.enabled = false;
+  s.sky.model = "constant";
+  s.sky.color = {0.25, 0.5, 2.0};
+  RenderStats stats;
+  for (const glm::vec3& v : render(s, stats).beauty) {
+    EXPECT_FLOAT_EQ(v.x, 0.25f);
+    EXPECT_FLOAT_EQ(v.y, 0.5f);
+    EXPECT_FLOAT_EQ(v.z, 2.0f);
+  }
+}
+
+TEST(Render, ImagesAreBitIdenticalAtAnyThreadCount) {
+  SceneDesc s = small_scene(40, 30, 4);
+  s.trees.push_back(aspen());
+  RenderStats a_stats, b_stats;
+  s.render.threads = 1;
+  const Image a = render(s, a_stats);
+  s.render.threads = 2;
+  const Image b = render(s, b_stats);
+  ASSERT_EQ(a.beauty.size(), b.beauty.size());
+  EXPECT_EQ(std::memcmp(a.beauty.data(), b.beauty.data(), a.beauty.size() * sizeof(glm::vec3)), 0);
+  EXPECT_EQ(std::memcmp(a.variance.data(), b.variance.data(), a.variance.size() * sizeof(glm::vec3)), 0);
+  EXPECT_EQ(std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)), 0);
+  EXPECT_EQ(a_stats.rays, b_stats.rays);
+}
+
+TEST(Camera, ThinLensKeepsTheFocusPlaneSharp) {
+  CameraDesc d;
+  d.position = {0.0, 0.0, 0.0};
+  d.look_at = {0.0, 10.0, 0.0};
+  d.aperture_radius = 0.05;
+  d.focus_distance = 7.0;
+  const Camera cam(d, 64, 48);
+  for (glm::vec2 film : {glm::vec2(32, 24), glm::vec2(5, 40), glm::vec2(60, 3)}) {
+    const Ray centre = cam.generate(film, {0.5f, 0.5f});
+    // Where rays through different lens points meet the plane y = 7 (the focus plane).
+    const glm::vec3 focus = centre.origin + centre.direction * ((7.0f - centre.origin.y) / centre.direction.y);
+    for (glm::vec2 lens : {glm::vec2(0.1f, 0.2f), glm::vec2(0.9f, 0.7f), glm::vec2(0.3f, 0.95f)}) {
+      const Ray r = cam.generate(film, lens);
+      EXPECT_GT(glm::length(r.origin - centre.origin), 1e-3f);  // the lens is used
+      const glm::vec3 hit = r.origin + r.direction * ((7.0f - r.origin.y) / r.direction.y);
+      EXPECT_LT(glm::length(hit - focus), 1e-4f);
+    }
+  }
+}
+
+TEST(Sky, SamplingIsConsistentWithItsPdfAndRadiance) {
+  // An environment map with a bright spot, written by OIIO, read back by the sky.
+  const std::string path = ::testing::TempDir() + "env.exr";
+  OIIO::ImageBuf env(OIIO::ImageSpec(64, 32, 3, OIIO::TypeDesc::FLOAT));
+  for (int y = 0; y < 32; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      const float spot = (x >= 10 && x < 14 && y >= 6 && y < 9) ? 50.0f : 0.0f;
+      const float px[3] = {0.2f + spot, 0.3f + 0.01f * x, 0.1f + 0.02f * y};
+      env.setpixel(x, y, px);
+    }
+  }
+  ASSERT_TRUE(env.write(path));
+  for (const char* model : {"envmap", "preetham"}) {
+    SkyDesc desc;
+    desc.model = model;
+    desc.path = path;
+    desc.rotation = 30.0;
+    SunDesc sun;
+    const Sky sky(desc, sun, 128);
+    // (1) pdf() agrees with sample(); (2) E[L / pdf] equals the integral of L over the sphere.
+    glm::dvec3 estimate(0.0);
+    const int n = 200000;
+    for (int i = 0; i < n; ++i) {
+      const glm::vec2 u((i + 0.5f) / n, std::fmod(i * 0.6180339887f, 1.0f));
+      const LightSample s = sky.sample(u);
+      if (s.pdf <= 0.0f) continue;
+      ASSERT_NEAR(sky.pdf(s.direction), s.pdf, 2e-3f * s.pdf) << model;
+      estimate += glm::dvec3(s.radiance) / double(s.pdf);
+    }
+    estimate /= n;
+    glm::dvec3 quadrature(0.0);
+    const int m = 1024;
+    for (int j = 0; j < m / 2; ++j) {
+      for (int i = 0; i < m; ++i) {
+        const double theta = kPi * (j + 0.5) / (m / 2), phi = 2 * kPi * (i + 0.5) / m;
+        const glm::vec3 d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+        quadrature += glm::dvec3(sky.radiance(d)) * std::sin(theta) * (kPi / (m / 2)) * (2 * kPi / m);
+      }
+    }
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(estimate[c], quadrature[c], 0.01 * quadrature[c]) << model;
+  }
+}
+
+TEST(Sampler, FirstSixteenSamplesFillEveryStratum) {
+  const PixelSampler s(1234, 7);
+  for (std::uint32_t dim = 0; dim < 8; ++dim) {
+    bool seen[4][4] = {};
+    for (std::uint32_t i = 0; i < 16; ++i) {
+      const glm::vec2 u = s.get2d(i, dim);
+      ASSERT_GE(u.x, 0.0f);
+      ASSERT_LT(u.x, 1.0f);
+      seen[static_cast<int>(u.x * 4)][static_cast<int>(u.y * 4)] = true;
+    }
+    for (auto& row : seen) for (bool b : row) EXPECT_TRUE(b) << "dim " << dim;
+  }
+  EXPECT_NE(PixelSampler(1, 7).get2d(0, 0), PixelSampler(2, 7).get2d(0, 0));
+}
+
+TEST(Film, TentFilterSamplesTheTent) {
+  int bins[4] = {};
+  const int n = 100000;
+  for (int i = 0; i < n; ++i) {
+    const float x = sample_tent((i + 0.5f) / n);
+    ASSERT_GT(x, -1.0f);
+    ASSERT_LT(x, 1.0f);
+    ++bins[static_cast<int>((x + 1.0f) * 2.0f)];
+  }
+  // ∫ of (1 - |x|) over [-1,-0.5], [-0.5,0], …: 1/8, 3/8, 3/8, 1/8.
+  EXPECT_NEAR(bins[0] / double(n), 0.125, 1e-3);
+  EXPECT_NEAR(bins[1] / double(n), 0.375, 1e-3);
+}
+
+}  // namespace arbor::trace
