@@ -138,6 +138,17 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta,
   spec.attribute("arbor:nonfinite_samples", std::to_string(meta.stats.nonfinite));
   spec.attribute("arbor:variance", "variance of the pixel mean (sample variance / spp)");
   spec.attribute("compression", "zip");
+  // The EXR standard's own statement of the colour space, for the spaces arbor's config defines.
+  const struct { const char* name; float c[8]; } primaries[] = {
+      {"ACEScg", {0.713f, 0.293f, 0.165f, 0.830f, 0.128f, 0.044f, 0.32168f, 0.33767f}},
+      {"ACES2065-1", {0.7347f, 0.2653f, 0.0f, 1.0f, 0.0001f, -0.077f, 0.32168f, 0.33767f}},
+      {"Linear Rec.709 (sRGB)", {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f}},
+  };
+  for (const auto& p : primaries) {
+    if (o.colorspace == p.name) {
+      spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), p.c);
+    }
+  }
 
   std::vector<float> data(static_cast<std::size_t>(img.width) * img.height * nch);
   for (std::size_t p = 0, k = 0; p < img.beauty.size(); ++p) {

@@ -94,17 +94,15 @@ Shading shade(const World& world, const WorldHit& hit) {
   return sh;
 }
 
-Ray spawn(const glm::vec3& p, const glm::vec3& ng, const glm::vec3& dir, float t_max) {
+}  // namespace
+
+Ray spawn_ray(const glm::vec3& p, const glm::vec3& ng, const glm::vec3& dir) {
   Ray r;
   const float side = glm::dot(dir, ng) >= 0.0f ? 1.0f : -1.0f;
   r.origin = p + ng * (side * ray_offset(p));
   r.direction = dir;
-  r.t_min = 0.0f;
-  r.t_max = t_max;
   return r;
 }
-
-}  // namespace
 
 float ray_offset(const glm::vec3& p) {
   const float m = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
@@ -155,7 +153,7 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
       const glm::vec3 f = sh.eval(wo, wi);
       if (f.x <= 0.0f && f.y <= 0.0f && f.z <= 0.0f) continue;
       ++out.rays;
-      if (world_.occluded(spawn(s.position, s.geometric_normal, ls.direction, 1e30f))) continue;
+      if (world_.occluded(spawn_ray(s.position, s.geometric_normal, ls.direction))) continue;
       const float w = power_heuristic(ls.pdf, sh.pdf(wo, wi));
       out.radiance += beta * f * ls.radiance * (static_cast<float>(std::fabs(wi.z)) * w / ls.pdf);
     }
@@ -182,7 +180,7 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
       if (u2.y >= q) break;
       beta /= q;
     }
-    ray = spawn(s.position, s.geometric_normal, dir, 1e30f);
+    ray = spawn_ray(s.position, s.geometric_normal, dir);
   }
   return out;
 }

@@ -35,8 +35,13 @@ class PathIntegrator {
   int max_depth_;
 };
 
-// How far a new ray starts from a surface along its geometric normal (metres): enough to clear
-// Embree's float rounding at that distance from the origin, small against twig radii.
+// How far a new ray starts from a surface along its geometric normal (metres): 2e-5 + 4e-6 × the
+// largest coordinate — above Embree's float rounding of hit points (including its iterative
+// round-curve intersection) at that distance from the origin, and far below twig radii (≥ 1 mm).
 float ray_offset(const glm::vec3& p);
+
+// A ray leaving surface point p in direction dir: started ray_offset(p) off the surface on the
+// side dir goes to (so transmission through a leaf starts behind it).
+Ray spawn_ray(const glm::vec3& p, const glm::vec3& geometric_normal, const glm::vec3& dir);
 
 }  // namespace arbor::trace
