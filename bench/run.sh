@@ -16,4 +16,8 @@ for species in quaking_aspen black_tupelo ca_black_oak weeping_willow; do
 done
 "$build/bench/geometry_bench" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
   --benchmark_out="$out/geometry_bench.json" --benchmark_out_format=json
+"$build/bench/render_bench" --benchmark_filter='raw_embree_rays|path_tracer|world_build' \
+  --benchmark_out="$out/render_bench.json" --benchmark_out_format=json
+"$build/bench/render_bench" --benchmark_filter='forest_1000' \
+  --benchmark_out="$out/render_bench_forest.json" --benchmark_out_format=json
 echo "bench: results in $out"

@@ -55,6 +55,7 @@ class World {
   const TreeLook& look(int instance) const { return instances_[static_cast<size_t>(instance)].look; }
   const glm::vec3& ground_albedo() const { return ground_albedo_; }
   const WorldStats& stats() const { return stats_; }
+  RTCSceneTy* embree_scene() const { return scene_; }  // for benchmarks of raw Embree throughput
 
  private:
   struct Prototype {

@@ -1,0 +1,121 @@
+// Renderer benchmarks on the default scene (scenes/default.toml), one thread each:
+// - raw_embree_rays: incoherent random rays (origins in the tree's box, uniform directions)
+//   through rtcIntersect1 on the world's Embree scene — the ceiling for the path tracer;
+// - path_tracer: the default scene rendered at 160×120, 16 spp; rays/s and samples/s counters;
+// - world_build: growing, meshing and BVH building for the default scene;
+// - forest_1000: the world of 1,000 Black Tupelos from 8 variants (peak RSS counter; run alone
+//   by bench/run.sh so the peak is its own).
+#include <sys/resource.h>
+
+#include <string>
+
+#include <benchmark/benchmark.h>
+#include <embree3/rtcore.h>
+
+#include "common/rng.h"
+#include "tracer/film.h"
+#include "tracer/scene_desc.h"
+#include "tracer/sky.h"
+#include "tracer/world.h"
+
+namespace {
+
+using namespace arbor;
+
+trace::SceneDesc default_scene() {
+  trace::SceneDesc s = trace::load_scene(std::string(ARBOR_SOURCE_DIR) + "/scenes/default.toml");
+  s.render.threads = 1;
+  return s;
+}
+
+void raw_embree_rays(benchmark::State& state) {
+  const trace::SceneDesc scene = default_scene();
+  const trace::EmbreeDevice device("threads=1");
+  const trace::World world(scene, device);
+  Rng rng(1);
+  std::vector<RTCRayHit> rays(1 << 16);
+  for (RTCRayHit& r : rays) {
+    r = {};
+    r.ray.org_x = static_cast<float>(rng.vary(0.0, 4.0));
+    r.ray.org_y = static_cast<float>(rng.vary(0.0, 4.0));
+    r.ray.org_z = static_cast<float>(rng.uniform() * 13.0);
+    const double z = rng.symmetric(), phi = 2 * 3.14159265358979 * rng.uniform();
+    const double s = std::sqrt(std::max(0.0, 1 - z * z));
+    r.ray.dir_x = static_cast<float>(s * std::cos(phi));
+    r.ray.dir_y = static_cast<float>(s * std::sin(phi));
+    r.ray.dir_z = static_cast<float>(z);
+  }
+  std::size_t traced = 0;
+  for (auto _ : state) {
+    for (RTCRayHit r : rays) {
+      r.ray.tnear = 0.0f;
+      r.ray.tfar = 1e30f;
+      r.ray.mask = ~0u;
+      r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      rtcIntersect1(world.embree_scene(), &context, &r);
+      benchmark::DoNotOptimize(r.hit.geomID);
+    }
+    traced += rays.size();
+  }
+  state.counters["rays_per_s"] = benchmark::Counter(static_cast<double>(traced), benchmark::Counter::kIsRate);
+}
+
+void path_tracer(benchmark::State& state) {
+  trace::SceneDesc scene = default_scene();
+  scene.render.width = 160;
+  scene.render.height = 120;
+  scene.render.spp = 16;
+  const trace::EmbreeDevice device("threads=1");
+  const trace::World world(scene, device);
+  const trace::Sky sky(scene.sky, scene.sun);
+  std::uint64_t rays = 0, samples = 0;
+  for (auto _ : state) {
+    trace::RenderStats stats;
+    const trace::Image img = trace::render_path(scene, world, sky, [](float*) {}, nullptr, stats);
+    benchmark::DoNotOptimize(img.beauty.data());
+    rays += stats.rays;
+    samples += stats.samples;
+  }
+  state.counters["rays_per_s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
+  state.counters["samples_per_s"] = benchmark::Counter(static_cast<double>(samples), benchmark::Counter::kIsRate);
+}
+
+void world_build(benchmark::State& state) {
+  const trace::SceneDesc scene = default_scene();
+  const trace::EmbreeDevice device("threads=1");
+  for (auto _ : state) {
+    const trace::World world(scene, device);
+    benchmark::DoNotOptimize(world.embree_scene());
+  }
+}
+
+void forest_1000(benchmark::State& state) {
+  trace::SceneDesc scene;
+  trace::ForestDesc f;
+  f.species = std::string(ARBOR_SOURCE_DIR) + "/generator/species/black_tupelo.toml";
+  f.count = 1000;
+  f.variants = 8;
+  f.area = {-200.0, -200.0, 200.0, 200.0};
+  scene.forests.push_back(f);
+  const trace::EmbreeDevice device("threads=1");
+  for (auto _ : state) {
+    const trace::World world(scene, device);
+    state.counters["instances"] = static_cast<double>(world.stats().instances);
+    state.counters["prototypes"] = static_cast<double>(world.stats().prototypes);
+    state.counters["geometry_MB"] = static_cast<double>(world.stats().geometry_bytes) / 1e6;
+  }
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  state.counters["peak_rss_MB"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+}  // namespace
+
+BENCHMARK(raw_embree_rays)->Unit(benchmark::kMillisecond);
+BENCHMARK(path_tracer)->Unit(benchmark::kMillisecond);
+BENCHMARK(world_build)->Unit(benchmark::kMillisecond);
+BENCHMARK(forest_1000)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+BENCHMARK_MAIN();
