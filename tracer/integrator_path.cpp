@@ -77,6 +77,15 @@ Shading shade(const World& world, const WorldHit& hit) {
   sh.normal = s.shading_normal;
   if (hit.ground) {
     sh.lambert.albedo = glm::dvec3(world.ground_albedo());
+  } else if (hit.mesh) {
+    const MeshLook& m = *hit.mesh;
+    if (m.kind == MeshLook::Kind::Leaf) {
+      sh.leaf = true;
+      sh.leaf_bsdf.reflectance = glm::dvec3(hit.mesh_front ? m.leaf_front : m.leaf_back);
+      sh.leaf_bsdf.transmittance = glm::dvec3(m.leaf_transmittance);
+    } else {
+      sh.lambert.albedo = glm::dvec3(m.albedo);
+    }
   } else {
     const TreeLook& look = world.look(hit.instance);
     if (s.kind == SurfaceKind::Leaf) {

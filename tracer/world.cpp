@@ -4,11 +4,14 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
+#include <map>
 
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <tiny_obj_loader.h>
 
 #include "common/error.h"
 #include "common/progress.h"
@@ -104,6 +107,91 @@ void World::add_instance(int prototype, const Placement& pl, const TreeLook& loo
   instances_.push_back(inst);
 }
 
+void World::add_mesh(const MeshDesc& d) {
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(d.path, config)) {
+    throw InputError({d.path, 0, 0}, "cannot read the OBJ mesh: " + reader.Error());
+  }
+  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+  Mesh mesh;
+  // Placement: the file's up axis to z, then scale, rotation about z, position.
+  glm::mat4 m(1.0f);
+  m = glm::translate(m, glm::vec3(d.placement.position[0], d.placement.position[1], d.placement.position[2]));
+  m = glm::rotate(m, static_cast<float>(d.placement.rotation * 3.14159265358979323846 / 180.0), glm::vec3(0, 0, 1));
+  m = glm::scale(m, glm::vec3(static_cast<float>(d.placement.scale)));
+  if (d.up == "y") m = glm::rotate(m, 1.5707963f, glm::vec3(1, 0, 0));  // y up → z up
+  for (std::size_t v = 0; v + 2 < attrib.vertices.size(); v += 3) {
+    const glm::vec3 p(attrib.vertices[v], attrib.vertices[v + 1], attrib.vertices[v + 2]);
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      throw InputError({d.path, 0, 0}, "the OBJ mesh has a vertex that is not finite");
+    }
+    mesh.positions.emplace_back(m * glm::vec4(p, 1.0f));
+  }
+  std::map<std::string, std::uint16_t> look_index;
+  auto look_of = [&](const std::string& name) -> std::uint16_t {
+    const auto found = look_index.find(name);
+    if (found != look_index.end()) return found->second;
+    MeshLook look;
+    const auto it = d.materials.find(name);
+    if (it != d.materials.end()) {
+      const MeshMaterialDesc& md = it->second;
+      look.kind = md.kind == "bark" ? MeshLook::Kind::Bark
+                                    : md.kind == "leaf" ? MeshLook::Kind::Leaf : MeshLook::Kind::Diffuse;
+      look.albedo = to_vec3(md.albedo);
+      look.leaf_front = to_vec3(md.reflectance);
+      look.leaf_back = to_vec3(md.back_reflectance);
+      look.leaf_transmittance = to_vec3(md.transmittance);
+    }
+    mesh.looks.push_back(look);
+    return look_index[name] = static_cast<std::uint16_t>(mesh.looks.size() - 1);
+  };
+  const auto& materials = reader.GetMaterials();
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    const tinyobj::mesh_t& sm = shape.mesh;
+    for (std::size_t f = 0; f < sm.num_face_vertices.size(); ++f) {
+      // [mesh.material.NAME] by the face's material name, else by its group; with no table at
+      // all every face is diffuse grey.
+      const int mid = f < sm.material_ids.size() ? sm.material_ids[f] : -1;
+      const std::string mat_name = mid >= 0 ? materials[static_cast<size_t>(mid)].name : "";
+      std::string key;
+      if (!d.materials.empty()) {
+        if (!mat_name.empty() && d.materials.count(mat_name)) key = mat_name;
+        else if (d.materials.count(shape.name)) key = shape.name;
+        else {
+          throw InputError(d.where, "mesh " + d.path + ": faces of group '" + shape.name +
+                                        "' (material '" + mat_name + "') have no [mesh.material.*] "
+                                        "entry; name the group or the material");
+        }
+      }
+      const std::uint16_t look = look_of(key);
+      for (int k = 0; k < 3; ++k) {
+        const int vi = sm.indices[3 * f + static_cast<size_t>(k)].vertex_index;
+        if (vi < 0 || static_cast<std::size_t>(vi) >= mesh.positions.size()) {
+          throw InputError({d.path, 0, 0}, "the OBJ mesh refers to a vertex that does not exist");
+        }
+        mesh.indices.push_back(static_cast<std::uint32_t>(vi));
+      }
+      mesh.material.push_back(look);
+    }
+  }
+  if (mesh.indices.empty()) throw InputError({d.path, 0, 0}, "the OBJ mesh has no faces");
+  RTCGeometry g = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3), mesh.positions.size());
+  std::memcpy(v, mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3));
+  auto* ix = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), mesh.indices.size() / 3);
+  std::memcpy(ix, mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t));
+  rtcCommitGeometry(g);
+  const unsigned id = rtcAttachGeometry(scene_, g);
+  rtcReleaseGeometry(g);
+  if (mesh_of_geometry_.size() <= id) mesh_of_geometry_.resize(id + 1, -1);
+  mesh_of_geometry_[id] = static_cast<int>(meshes_.size());
+  stats_.triangles += mesh.indices.size() / 3;
+  meshes_.push_back(std::move(mesh));
+}
+
 World::World(const SceneDesc& scene, const EmbreeDevice& device, Progress* progress)
     : device_(device) {
   const auto start = std::chrono::steady_clock::now();
@@ -133,6 +221,7 @@ World::World(const SceneDesc& scene, const EmbreeDevice& device, Progress* progr
       add_instance(variants[static_cast<size_t>(i % f.variants)], pl, look);
     }
   }
+  for (const MeshDesc& m : scene.meshes) add_mesh(m);
   if (scene.ground.enabled) {
     ground_albedo_ = to_vec3(scene.ground.albedo);
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -171,6 +260,28 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  hit.mesh = nullptr;
+  if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && rh.hit.geomID < mesh_of_geometry_.size() &&
+      mesh_of_geometry_[rh.hit.geomID] >= 0) {
+    const Mesh& mesh = meshes_[static_cast<size_t>(mesh_of_geometry_[rh.hit.geomID])];
+    const std::uint32_t* tri = &mesh.indices[3 * static_cast<std::size_t>(rh.hit.primID)];
+    const glm::vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]], c = mesh.positions[tri[2]];
+    const glm::vec3 front = glm::normalize(glm::cross(b - a, c - a));
+    SurfaceHit& s = hit.surface;
+    s.kind = SurfaceKind::None;
+    s.t = rh.ray.tfar;
+    s.primitive = rh.hit.primID;
+    s.position = ray.origin + ray.direction * s.t;
+    hit.mesh_front = glm::dot(front, ray.direction) < 0.0f;
+    s.geometric_normal = hit.mesh_front ? front : -front;
+    s.shading_normal = s.geometric_normal;
+    s.tangent = glm::normalize(b - a);
+    s.leaf = -1;
+    hit.ground = false;
+    hit.instance = -1;
+    hit.mesh = &mesh.looks[mesh.material[rh.hit.primID]];
+    return true;
+  }
   if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID) {
     // The ground.
     hit.ground = true;

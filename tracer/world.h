@@ -28,10 +28,19 @@ struct TreeLook {
   glm::vec3 leaf_front{0.1f}, leaf_back{0.1f}, leaf_transmittance{0.1f};
 };
 
+// A material of an external mesh, by kind.
+struct MeshLook {
+  enum class Kind { Bark, Leaf, Diffuse } kind = Kind::Diffuse;
+  glm::vec3 albedo{0.5f};
+  glm::vec3 leaf_front{0.1f}, leaf_back{0.1f}, leaf_transmittance{0.1f};
+};
+
 struct WorldHit {
   SurfaceHit surface;      // in world space
-  int instance = -1;       // tree instance; -1 for the ground
+  int instance = -1;       // tree instance; -1 for the ground or a mesh
   bool ground = false;
+  const MeshLook* mesh = nullptr;  // set for hits on [[mesh]] geometry
+  bool mesh_front = true;          // the side a mesh face's counter-clockwise normal faces
 };
 
 struct WorldStats {
@@ -72,6 +81,7 @@ class World {
                     const SourceLocation& where);
   const gen::Species& species(const std::string& path, const SourceLocation& where);
   void add_instance(int prototype, const Placement& placement, const TreeLook& look);
+  void add_mesh(const MeshDesc& mesh);
   TreeLook look_for(const gen::Species& species, const BarkOverride& bark,
                     const LeafOverride& leaf, const SourceLocation& where) const;
 
@@ -84,6 +94,14 @@ class World {
   std::vector<Prototype> prototypes_;
   std::vector<Instance> instances_;
   std::vector<int> instance_of_geometry_;  // Embree geometry id in the top scene → instance
+  struct Mesh {
+    std::vector<glm::vec3> positions;     // world space
+    std::vector<std::uint32_t> indices;   // three per triangle
+    std::vector<std::uint16_t> material;  // per triangle, into looks
+    std::vector<MeshLook> looks;
+  };
+  std::vector<Mesh> meshes_;
+  std::vector<int> mesh_of_geometry_;     // Embree geometry id in the top scene → mesh
   WorldStats stats_;
 };
 

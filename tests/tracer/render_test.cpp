@@ -2,6 +2,7 @@
 // across thread counts, thin-lens focus, sky sampling consistency, sampler stratification.
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <string>
 
 #include <OpenImageIO/imagebuf.h>
@@ -132,6 +133,45 @@ TEST(Render, ImagesAreBitIdenticalAtAnyThreadCount) {
   EXPECT_EQ(std::memcmp(a.variance.data(), b.variance.data(), a.variance.size() * sizeof(glm::vec3)), 0);
   EXPECT_EQ(std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)), 0);
   EXPECT_EQ(a_stats.rays, b_stats.rays);
+}
+
+TEST(Render, ObjMeshesAreConvertedToZUpAndUseTheirMaterials) {
+  // A floor quad in a y-up OBJ (group "floor") must lie flat in arbor's z-up world.
+  const std::string obj = ::testing::TempDir() + "floor.obj";
+  {
+    std::ofstream f(obj);
+    f << "v -5 0 -5\nv 5 0 -5\nv 5 0 5\nv -5 0 5\ng floor\nf 1 4 3 2\n";
+  }
+  SceneDesc s = small_scene(8, 8, 8);
+  s.camera.position = {0.0, 0.0, 5.0};
+  s.camera.look_at = {0.0, 0.0, 0.0};
+  s.camera.up = {0.0, 1.0, 0.0};
+  s.camera.fov = 20.0;
+  s.sky.model = "none";
+  s.sun.elevation = 90.0;
+  s.sun.irradiance = 2.0;
+  s.ground.enabled = false;
+  MeshDesc m;
+  m.path = obj;
+  m.up = "y";
+  m.placement.position = {0.0, 0.0, 1.0};
+  MeshMaterialDesc floor;
+  floor.kind = "diffuse";
+  floor.albedo = {0.5, 0.5, 0.5};
+  m.materials["floor"] = floor;
+  s.meshes.push_back(m);
+  RenderStats stats;
+  for (const glm::vec3& v : render(s, stats).beauty) EXPECT_NEAR(v.x, 0.5 * 2.0 / kPi, 4e-3);
+  // A group without a material entry is an error naming it.
+  s.meshes[0].materials.clear();
+  s.meshes[0].materials["bark"] = floor;
+  const EmbreeDevice device("threads=1");
+  try {
+    const World world(s, device);
+    FAIL() << "an unmapped group was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.message().find("group 'floor'"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Camera, ThinLensKeepsTheFocusPlaneSharp) {
