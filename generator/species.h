@@ -18,6 +18,7 @@ using Rgb = std::array<double, 3>;
 struct BarkLook {
   Rgb albedo{0.30, 0.26, 0.22};
   double bump_height = 0.004;  // metres of relief
+  double roughness = 0.0;      // degrees: Oren–Nayar slope deviation σ (0: Lambertian)
 };
 
 // Default leaves of the species: front reflectance, the lighter back, diffuse transmittance.

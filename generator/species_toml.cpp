@@ -102,6 +102,10 @@ class TomlSpecies {
         const double h = number(node, "bark.bump_height");
         if (h < 0.0 || h > 1.0) throw InputError(at(node.source()), "bark.bump_height must be in [0, 1] metres");
         sp.bark.bump_height = h;
+      } else if (k == "roughness") {
+        const double r = number(node, "bark.roughness");
+        if (r < 0.0 || r > 90.0) throw InputError(at(node.source()), "bark.roughness must be in [0, 90] degrees");
+        sp.bark.roughness = r;
       } else {
         throw InputError(at(key.source()), "unknown key '" + k + "' in [bark]");
       }

@@ -8,8 +8,8 @@
 #include <glm/geometric.hpp>
 
 #include "materials/bark_noise.h"
-#include "materials/lambert.h"
 #include "materials/leaf_bsdf.h"
+#include "materials/oren_nayar.h"
 
 namespace arbor::trace {
 
@@ -37,10 +37,11 @@ struct Frame {
   }
 };
 
-// The BSDF at a hit: opaque diffuse (bark, ground) or a two-sided leaf.
+// The BSDF at a hit: opaque diffuse (bark, ground; Oren–Nayar, Lambertian at σ = 0) or a
+// two-sided leaf.
 struct Shading {
   bool leaf = false;
-  mat::Lambert lambert;
+  mat::OrenNayar lambert;
   mat::LeafBsdf leaf_bsdf;
   glm::vec3 normal{0.0f};  // shading normal, on the side the ray came from
   glm::vec3 albedo{0.0f};
@@ -53,19 +54,30 @@ struct Shading {
   }
 };
 
-// Bark bump mapping (procedural furrows, bump_height metres of relief): the normal tilts against
-// the height gradient along the limb and around it.
-glm::vec3 bumped_normal(const SurfaceHit& s, float bump_height) {
+// Bark height in [0, 1]: the user's image, repeated every bump_tile metres along the limb and a
+// whole number of times round it (the nearest to circumference / bump_tile, so there is no seam),
+// or the procedural furrows.
+double bark_height(const TreeLook& look, double along, double azimuth, double radius) {
+  if (!look.bump_map) return mat::bark_height(along, azimuth, radius);
+  constexpr double kTwoPi = 6.283185307179586;
+  const double repeats = std::max(1.0, std::round(kTwoPi * radius / look.bump_tile));
+  return look.bump_map->sample(azimuth / kTwoPi * repeats, along / look.bump_tile);
+}
+
+// Bark bump mapping (bump_height metres of relief): the normal tilts against the height
+// gradient along the limb and around it.
+glm::vec3 bumped_normal(const SurfaceHit& s, const TreeLook& look) {
   const glm::vec3 n = s.shading_normal;
+  const float bump_height = look.bump_height;
   if (bump_height <= 0.0f || s.bark.radius <= 0.0f) return n;
   glm::vec3 t = s.tangent - n * glm::dot(s.tangent, n);
   if (glm::length(t) < 1e-6f) return n;
   t = glm::normalize(t);
   const glm::vec3 around = glm::cross(t, n);  // direction of increasing azimuth
   const double a = s.bark.along, th = s.bark.azimuth, r = s.bark.radius, e = 0.002;
-  const double h_along = (mat::bark_height(a + e, th, r) - mat::bark_height(a - e, th, r)) / (2 * e);
+  const double h_along = (bark_height(look, a + e, th, r) - bark_height(look, a - e, th, r)) / (2 * e);
   const double h_around =
-      (mat::bark_height(a, th + e / r, r) - mat::bark_height(a, th - e / r, r)) / (2 * e);
+      (bark_height(look, a, th + e / r, r) - bark_height(look, a, th - e / r, r)) / (2 * e);
   const glm::vec3 bumped = n - t * static_cast<float>(bump_height * h_along) -
                            around * static_cast<float>(bump_height * h_around);
   return glm::normalize(bumped);
@@ -95,7 +107,8 @@ Shading shade(const World& world, const WorldHit& hit) {
       sh.leaf_bsdf.transmittance = glm::dvec3(look.leaf_transmittance);
     } else {
       sh.lambert.albedo = glm::dvec3(look.bark_albedo);
-      sh.normal = bumped_normal(s, look.bump_height);
+      sh.lambert.sigma = look.bark_roughness;
+      sh.normal = bumped_normal(s, look);
     }
   }
   if (glm::dot(sh.normal, s.geometric_normal) < 0.0f) sh.normal = -sh.normal;

@@ -62,6 +62,8 @@ struct BarkOverride {
   std::optional<Rgb> albedo;
   std::string bump_map;  // image path; empty: procedural bark
   std::optional<double> bump_height;
+  double bump_tile = 0.25;  // metres along and around the limb covered by one repeat of bump_map
+  std::optional<double> roughness;  // degrees, Oren–Nayar σ
 };
 struct LeafOverride {
   std::optional<Rgb> reflectance, back_reflectance, transmittance;

@@ -197,6 +197,8 @@ class SceneReader {
       if (k == "albedo") b.albedo = triple(n, owner + ".bark.albedo", 0.0, 1.0);
       else if (k == "bump_map") b.bump_map = file(n, owner + ".bark.bump_map");
       else if (k == "bump_height") b.bump_height = number(n, owner + ".bark.bump_height", 0.0, 1.0);
+      else if (k == "bump_tile") b.bump_tile = number(n, owner + ".bark.bump_tile", 1e-3, 100.0);
+      else if (k == "roughness") b.roughness = number(n, owner + ".bark.roughness", 0.0, 90.0);
       else unknown(key, owner + ".bark");
     }
   }

@@ -64,13 +64,21 @@ int World::prototype_for(const std::string& path, std::uint64_t seed, double tim
 }
 
 TreeLook World::look_for(const gen::Species& sp, const BarkOverride& bark,
-                         const LeafOverride& leaf, const SourceLocation& where) const {
+                         const LeafOverride& leaf, const SourceLocation& where) {
   TreeLook look;
   look.bark_albedo = to_vec3(bark.albedo.value_or(sp.bark.albedo));
   look.bump_height = static_cast<float>(bark.bump_height.value_or(sp.bark.bump_height));
+  look.bark_roughness =
+      static_cast<float>(bark.roughness.value_or(sp.bark.roughness) * 3.14159265358979323846 / 180.0);
+  look.bump_tile = static_cast<float>(bark.bump_tile);
   if (!bark.bump_map.empty()) {
-    throw InputError(where, "bark.bump_map images are not supported by this build yet; remove "
-                            "bump_map to use the procedural bark");
+    for (const auto& [p, map] : bump_maps_) {
+      if (p == bark.bump_map) look.bump_map = map.get();
+    }
+    if (!look.bump_map) {
+      bump_maps_.emplace_back(bark.bump_map, std::make_unique<mat::HeightMap>(bark.bump_map));
+      look.bump_map = bump_maps_.back().second.get();
+    }
   }
   look.leaf_front = to_vec3(leaf.reflectance.value_or(sp.leaf.reflectance));
   look.leaf_back = to_vec3(leaf.back_reflectance.value_or(sp.leaf.back_reflectance));

@@ -12,6 +12,7 @@
 
 #include "generator/species.h"
 #include "generator/tree_geometry.h"
+#include "materials/textures.h"
 #include "tracer/embree_scene.h"
 #include "tracer/scene_desc.h"
 
@@ -24,7 +25,10 @@ namespace arbor::trace {
 // The looks of one placed tree (species defaults with the scene's overrides).
 struct TreeLook {
   glm::vec3 bark_albedo{0.3f};
+  float bark_roughness = 0.0f;  // radians (Oren–Nayar σ)
   float bump_height = 0.0f;  // metres
+  const mat::HeightMap* bump_map = nullptr;  // null: procedural bark
+  float bump_tile = 0.25f;   // metres per repeat of bump_map
   glm::vec3 leaf_front{0.1f}, leaf_back{0.1f}, leaf_transmittance{0.1f};
 };
 
@@ -83,7 +87,7 @@ class World {
   void add_instance(int prototype, const Placement& placement, const TreeLook& look);
   void add_mesh(const MeshDesc& mesh);
   TreeLook look_for(const gen::Species& species, const BarkOverride& bark,
-                    const LeafOverride& leaf, const SourceLocation& where) const;
+                    const LeafOverride& leaf, const SourceLocation& where);
 
   const EmbreeDevice& device_;
   RTCSceneTy* scene_ = nullptr;
@@ -101,6 +105,7 @@ class World {
     std::vector<MeshLook> looks;
   };
   std::vector<Mesh> meshes_;
+  std::vector<std::pair<std::string, std::unique_ptr<mat::HeightMap>>> bump_maps_;
   std::vector<int> mesh_of_geometry_;     // Embree geometry id in the top scene → mesh
   WorldStats stats_;
 };

@@ -174,6 +174,49 @@ TEST(Render, ObjMeshesAreConvertedToZUpAndUseTheirMaterials) {
   }
 }
 
+TEST(Render, BarkBumpMapImagesShadeTheBarkAndMissingOnesAreErrors) {
+  // Stripes across the limb: a bumpy image changes the bark's shading; the same scene without
+  // relief does not have that variation.
+  const std::string path = ::testing::TempDir() + "stripes.png";
+  OIIO::ImageBuf stripes(OIIO::ImageSpec(32, 32, 1, OIIO::TypeDesc::UINT8));
+  for (int y = 0; y < 32; ++y) {
+    for (int x = 0; x < 32; ++x) {
+      const float v = (y / 4) % 2 ? 1.0f : 0.0f;
+      stripes.setpixel(x, y, &v);
+    }
+  }
+  ASSERT_TRUE(stripes.write(path));
+  SceneDesc s = small_scene(24, 32, 4);
+  s.camera.position = {0.0, -3.0, 2.0};
+  s.camera.look_at = {0.0, 0.0, 2.0};
+  s.camera.fov = 12.0;
+  s.sky.model = "none";
+  s.sun.elevation = 10.0;
+  s.sun.azimuth = -90.0;
+  TreeDesc t = aspen();
+  t.bark.bump_map = path;
+  t.bark.bump_tile = 0.1;
+  t.bark.bump_height = 0.004;
+  s.trees.push_back(t);
+  RenderStats stats;
+  const Image bumpy = render(s, stats);
+  s.trees[0].bark.bump_height = 0.0;
+  const Image smooth = render(s, stats);
+  double difference = 0.0;
+  for (std::size_t p = 0; p < bumpy.beauty.size(); ++p) {
+    difference += std::fabs(bumpy.beauty[p].x - smooth.beauty[p].x);
+  }
+  EXPECT_GT(difference, 0.01);
+  s.trees[0].bark.bump_map = ::testing::TempDir() + "missing.png";
+  const EmbreeDevice device("threads=1");
+  try {
+    const World world(s, device);
+    FAIL() << "a missing bump map was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.png"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Camera, ThinLensKeepsTheFocusPlaneSharp) {
   CameraDesc d;
   d.position = {0.0, 0.0, 0.0};

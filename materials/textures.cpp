@@ -1,0 +1,53 @@
+// HeightMap loading and wrapped bilinear lookup.
+#include "materials/textures.h"
+
+#include <cmath>
+
+#include <OpenImageIO/imagebuf.h>
+
+#include "common/error.h"
+
+namespace arbor::mat {
+
+HeightMap::HeightMap(const std::string& path) {
+  OIIO::ImageBuf image(path);
+  if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
+    throw InputError({path, 0, 0}, "cannot read the image: " + image.geterror());
+  }
+  const OIIO::ImageSpec& spec = image.spec();
+  width_ = spec.width;
+  height_ = spec.height;
+  if (width_ < 1 || height_ < 1) throw InputError({path, 0, 0}, "the image is empty");
+  values_.resize(static_cast<std::size_t>(width_) * height_);
+  std::vector<float> px(static_cast<std::size_t>(spec.nchannels));
+  for (int y = 0; y < height_; ++y) {
+    for (int x = 0; x < width_; ++x) {
+      image.getpixel(x, y, px.data(), spec.nchannels);
+      const float v = spec.nchannels >= 3 ? 0.2126f * px[0] + 0.7152f * px[1] + 0.0722f * px[2] : px[0];
+      if (!std::isfinite(v)) throw InputError({path, 0, 0}, "the image has a pixel that is not finite");
+      values_[static_cast<std::size_t>(y) * width_ + x] = v;
+    }
+  }
+}
+
+HeightMap::HeightMap(std::vector<float> values, int width, int height)
+    : values_(std::move(values)), width_(width), height_(height) {}
+
+float HeightMap::at(int x, int y) const {
+  x %= width_;
+  y %= height_;
+  if (x < 0) x += width_;
+  if (y < 0) y += height_;
+  return values_[static_cast<std::size_t>(y) * width_ + x];
+}
+
+float HeightMap::sample(double u, double v) const {
+  const double x = (u - std::floor(u)) * width_ - 0.5, y = (v - std::floor(v)) * height_ - 0.5;
+  const double fx = std::floor(x), fy = std::floor(y);
+  const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
+  const float tx = static_cast<float>(x - fx), ty = static_cast<float>(y - fy);
+  const float a = at(ix, iy), b = at(ix + 1, iy), c = at(ix, iy + 1), d = at(ix + 1, iy + 1);
+  return (a * (1 - tx) + b * tx) * (1 - ty) + (c * (1 - tx) + d * tx) * ty;
+}
+
+}  // namespace arbor::mat

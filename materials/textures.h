@@ -1,0 +1,27 @@
+// Image textures read through OpenImageIO (any format it reads), sampled with wrap-around.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace arbor::mat {
+
+// A single-channel image (the luminance of colour images), repeating in both directions.
+class HeightMap {
+ public:
+  // Throws InputError naming the file when it cannot be read or has non-finite pixels.
+  explicit HeightMap(const std::string& path);
+  HeightMap(std::vector<float> values, int width, int height);
+
+  // Bilinear sample at (u, v); both wrap with period 1.
+  float sample(double u, double v) const;
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  float at(int x, int y) const;
+  std::vector<float> values_;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace arbor::mat

@@ -1,0 +1,56 @@
+// Tests of the Oren–Nayar BSDF and image height maps.
+#include "materials/oren_nayar.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "common/rng.h"
+#include "materials/lambert.h"
+#include "materials/textures.h"
+
+namespace arbor::mat {
+
+TEST(OrenNayar, ZeroRoughnessIsLambert) {
+  const OrenNayar on{Rgb(0.4), 0.0};
+  const Lambert l{Rgb(0.4)};
+  const Dir a = glm::normalize(Dir(0.3, 0.1, 0.8)), b = glm::normalize(Dir(-0.4, 0.2, 0.5));
+  EXPECT_NEAR(on.eval(a, b).x, l.eval(a, b).x, 1e-12);
+}
+
+TEST(OrenNayar, IsReciprocalAndConservesEnergy) {
+  const OrenNayar on{Rgb(1.0), 0.5};  // about 29° of slope deviation, albedo 1
+  Rng rng(8);
+  for (int k = 0; k < 200; ++k) {
+    Dir a(rng.symmetric(), rng.symmetric(), std::fabs(rng.symmetric()) + 0.05);
+    Dir b(rng.symmetric(), rng.symmetric(), std::fabs(rng.symmetric()) + 0.05);
+    a = glm::normalize(a);
+    b = glm::normalize(b);
+    EXPECT_NEAR(on.eval(a, b).x, on.eval(b, a).x, 1e-12);
+  }
+  // Directional albedo ∫ f cos dωi ≤ 1 for every outgoing direction (qualitative model: it is).
+  for (double theta_o : {0.0, 0.5, 1.0, 1.4}) {
+    const Dir wo(std::sin(theta_o), 0.0, std::cos(theta_o));
+    double sum = 0.0;
+    const int n = 200000;
+    for (int i = 0; i < n; ++i) {
+      const BsdfSample s = on.sample(wo, {rng.uniform(), rng.uniform()});
+      sum += s.value.x * std::fabs(s.wi.z) / s.pdf;
+    }
+    EXPECT_LE(sum / n, 1.0 + 0.01) << "theta_o " << theta_o;
+    EXPECT_GT(sum / n, 0.7);
+  }
+}
+
+TEST(HeightMap, WrapsAndInterpolates) {
+  const HeightMap m({0.0f, 1.0f, 2.0f, 3.0f}, 2, 2);  // rows: 0 1 / 2 3
+  EXPECT_FLOAT_EQ(m.sample(0.25, 0.25), 0.0f);  // pixel centres
+  EXPECT_FLOAT_EQ(m.sample(0.75, 0.25), 1.0f);
+  EXPECT_FLOAT_EQ(m.sample(0.75, 0.75), 3.0f);
+  EXPECT_FLOAT_EQ(m.sample(1.25, -0.75), 0.0f);  // wraps in both directions
+  EXPECT_FLOAT_EQ(m.sample(0.5, 0.25), 0.5f);    // halfway between 0 and 1
+  EXPECT_FLOAT_EQ(m.sample(0.0, 0.25), 0.5f);    // across the seam: between 1 and 0
+}
+
+}  // namespace arbor::mat

@@ -1,0 +1,146 @@
+// Tests of the scene file loader: every key of the contract is read, paths resolve against the
+// scene's folder, and every class of bad input is an InputError with file, line and column.
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "tracer/scene_desc.h"
+
+namespace arbor::trace {
+
+namespace {
+
+void expect_error(const std::string& text, int line, int column, const std::string& fragment) {
+  try {
+    parse_scene(text, "dir/s.toml");
+    ADD_FAILURE() << "accepted:\n" << text;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().path, "dir/s.toml");
+    EXPECT_EQ(e.where().line, line) << e.what();
+    EXPECT_EQ(e.where().column, column) << e.what();
+    EXPECT_NE(e.message().find(fragment), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+
+TEST(SceneFile, ReadsTheContractsKeys) {
+  const SceneDesc s = parse_scene(R"(
+[render]
+width = 320
+height = 200
+spp = 16
+seed = 9
+integrator = "path"
+max_depth = 5
+[camera]
+position = [1.0, 2.0, 3.0]
+look_at = [0.0, 0.0, 1.0]
+up = [0.0, 0.0, 1.0]
+fov = 30.0
+aperture_radius = 0.01
+focus_distance = 4.0
+exposure = -1.0
+[sun]
+elevation = 20.0
+azimuth = 10.0
+irradiance = 2.5
+angular_diameter = 0.6
+[sky]
+model = "envmap"
+path = "sky.exr"
+rotation = 90.0
+scale = 2.0
+[ground]
+enabled = false
+albedo = [0.1, 0.2, 0.3]
+[[tree]]
+species = "trees/aspen.toml"
+seed = 4
+position = [1.0, 0.0, 0.0]
+rotation = 45.0
+scale = 1.5
+time = 2.0
+[tree.bark]
+albedo = [0.3, 0.2, 0.1]
+bump_height = 0.01
+roughness = 20.0
+[tree.leaf]
+reflectance = [0.1, 0.2, 0.1]
+[[forest]]
+species = "/abs/tupelo.toml"
+count = 20
+variants = 3
+area = [[-5.0, -5.0], [5.0, 5.0]]
+seed = 2
+[[mesh]]
+path = "m.obj"
+up = "y"
+[mesh.material.leafy]
+kind = "leaf"
+reflectance = [0.1, 0.1, 0.1]
+transmittance = [0.2, 0.2, 0.2]
+[output]
+exr = "out/a.exr"
+png = "out/a.png"
+colorspace = "ACEScg"
+display = "sRGB"
+view = "Un-tone-mapped"
+aovs = ["albedo", "variance"]
+pixel_type = "float"
+)", "dir/s.toml");
+  EXPECT_EQ(s.render.width, 320);
+  EXPECT_EQ(s.render.seed, 9u);
+  EXPECT_DOUBLE_EQ(s.camera.focus_distance, 4.0);
+  EXPECT_DOUBLE_EQ(s.sun.irradiance, 2.5);
+  EXPECT_EQ(s.sky.path, "dir/sky.exr");  // relative to the scene file
+  EXPECT_FALSE(s.ground.enabled);
+  ASSERT_EQ(s.trees.size(), 1u);
+  EXPECT_EQ(s.trees[0].species, "dir/trees/aspen.toml");
+  EXPECT_DOUBLE_EQ(*s.trees[0].bark.roughness, 20.0);
+  EXPECT_DOUBLE_EQ((*s.trees[0].leaf.reflectance)[1], 0.2);
+  EXPECT_FALSE(s.trees[0].leaf.transmittance.has_value());
+  EXPECT_EQ(s.forests[0].species, "/abs/tupelo.toml");
+  EXPECT_DOUBLE_EQ(s.forests[0].area[2], 5.0);
+  EXPECT_EQ(s.meshes[0].materials.at("leafy").kind, "leaf");
+  EXPECT_EQ(s.output.exr, "dir/out/a.exr");
+  EXPECT_EQ(s.output.aovs.size(), 2u);
+}
+
+TEST(SceneFile, FocusDistanceDefaultsToTheLookAtPoint) {
+  const SceneDesc s = parse_scene("[camera]\nposition = [0.0, 0.0, 0.0]\nlook_at = [3.0, 4.0, 0.0]\n", "s.toml");
+  EXPECT_DOUBLE_EQ(s.camera.focus_distance, 5.0);
+}
+
+TEST(SceneFile, UnknownKeysAndTablesAreErrors) {
+  expect_error("[camera]\nzoom = 2\n", 2, 1, "unknown key 'zoom' in [camera]");
+  expect_error("[lights]\n", 1, 2, "unknown table or key 'lights'");
+  expect_error("[[tree]]\nspecies = \"a.toml\"\ncolour = 1\n", 3, 1, "unknown key 'colour'");
+  expect_error("[[tree]]\nspecies = \"a.toml\"\n[tree.bark]\nshine = 1\n", 4, 1, "unknown key 'shine' in [tree.bark]");
+}
+
+TEST(SceneFile, ValuesAreRangeAndTypeChecked) {
+  expect_error("[render]\nwidth = 0\n", 2, 9, "render.width = 0 is out of range");
+  expect_error("[render]\nspp = 1.5\n", 2, 7, "whole number");
+  expect_error("[render]\nintegrator = \"bdpt\"\n", 2, 14, "one of \"path\", \"treemaker\"");
+  expect_error("[camera]\nfov = 200.0\n", 2, 7, "camera.fov");
+  expect_error("[camera]\nposition = [1.0, 2.0]\n", 2, 12, "array of 3 numbers");
+  expect_error("[camera]\nfov = nan\n", 2, 7, "finite");
+  expect_error("[sun]\nirradiance = -1.0\n", 2, 14, "out of range");
+  expect_error("[ground]\nalbedo = [0.5, 1.5, 0.5]\n", 2, 16, "ground.albedo");
+  expect_error("[ground]\nenabled = 1\n", 2, 11, "true or false");
+  expect_error("[output]\naovs = [\"albedo\", \"motion\"]\n", 2, 19, "output.aovs");
+}
+
+TEST(SceneFile, StructuralRulesAreChecked) {
+  expect_error("[sky]\nmodel = \"envmap\"\n", 1, 1, "needs sky.path");
+  expect_error("[[tree]]\nseed = 3\n", 1, 1, "needs a species");
+  expect_error("[[forest]]\nspecies = \"a.toml\"\narea = [[5.0, 5.0], [-5.0, -5.0]]\n", 3, 8, "smaller corner");
+  expect_error("[[forest]]\nspecies = \"a.toml\"\ncount = 2\nvariants = 3\n", 1, 1, "must not exceed");
+  expect_error("[[mesh]]\npath = \"m.obj\"\n[mesh.material.x]\nkind = \"leaf\"\nreflectance = [0.6, 0.6, 0.6]\n"
+               "transmittance = [0.6, 0.6, 0.6]\n", 3, 1, "at most 1");
+  expect_error("tree = 3\n", 1, 8, "array of tables");
+  expect_error("[render\n", 1, 8, "");
+}
+
+}  // namespace arbor::trace
