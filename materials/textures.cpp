@@ -3,7 +3,10 @@
 
 #include <cmath>
 
+#include <glm/common.hpp>
+#include <OpenImageIO/color.h>
 #include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 
 #include "common/error.h"
 
@@ -48,6 +51,62 @@ float HeightMap::sample(double u, double v) const {
   const float tx = static_cast<float>(x - fx), ty = static_cast<float>(y - fy);
   const float a = at(ix, iy), b = at(ix + 1, iy), c = at(ix, iy + 1), d = at(ix + 1, iy + 1);
   return (a * (1 - tx) + b * tx) * (1 - ty) + (c * (1 - tx) + d * tx) * ty;
+}
+
+ColorMap::ColorMap(const std::string& path, const std::string& ocio_config) {
+  OIIO::ImageBuf image(path);
+  if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
+    throw InputError({path, 0, 0}, "cannot read the image: " + image.geterror());
+  }
+  // OIIO names the file's encoding ("sRGB" for PNG/JPEG, "Linear" for EXR).
+  const std::string declared = image.spec().get_string_attribute("oiio:ColorSpace", "Linear");
+  const bool srgb = declared.find("sRGB") != std::string::npos || declared.find("srgb") != std::string::npos;
+  OIIO::ImageBuf linear;
+  if (srgb) {
+    OIIO::ColorConfig config(ocio_config);
+    if (!OIIO::ImageBufAlgo::colorconvert(linear, image, "sRGB - Texture", "scene_linear", true, "",
+                                          "", &config)) {
+      throw InputError({path, 0, 0}, "cannot convert the image to scene-linear: " + linear.geterror());
+    }
+  } else {
+    linear = image;
+  }
+  const OIIO::ImageSpec& spec = linear.spec();
+  width_ = spec.width;
+  height_ = spec.height;
+  if (width_ < 1 || height_ < 1) throw InputError({path, 0, 0}, "the image is empty");
+  values_.resize(static_cast<std::size_t>(width_) * height_);
+  std::vector<float> px(static_cast<std::size_t>(spec.nchannels));
+  for (int y = 0; y < height_; ++y) {
+    for (int x = 0; x < width_; ++x) {
+      linear.getpixel(x, y, px.data(), spec.nchannels);
+      const glm::vec3 c = spec.nchannels >= 3 ? glm::vec3(px[0], px[1], px[2]) : glm::vec3(px[0]);
+      for (int k = 0; k < 3; ++k) {
+        if (!std::isfinite(c[k]) || c[k] < 0.0f || c[k] > 1.0f + 1e-4f) {
+          throw InputError({path, 0, 0}, "albedo texels must be in [0, 1]; pixel (" +
+                                             std::to_string(x) + ", " + std::to_string(y) + ") is not");
+        }
+      }
+      values_[static_cast<std::size_t>(y) * width_ + x] = glm::min(c, glm::vec3(1.0f));
+    }
+  }
+}
+
+glm::vec3 ColorMap::at(int x, int y) const {
+  x %= width_;
+  y %= height_;
+  if (x < 0) x += width_;
+  if (y < 0) y += height_;
+  return values_[static_cast<std::size_t>(y) * width_ + x];
+}
+
+glm::vec3 ColorMap::sample(double u, double v) const {
+  const double x = (u - std::floor(u)) * width_ - 0.5, y = (v - std::floor(v)) * height_ - 0.5;
+  const double fx = std::floor(x), fy = std::floor(y);
+  const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
+  const float tx = static_cast<float>(x - fx), ty = static_cast<float>(y - fy);
+  return (at(ix, iy) * (1 - tx) + at(ix + 1, iy) * tx) * (1 - ty) +
+         (at(ix, iy + 1) * (1 - tx) + at(ix + 1, iy + 1) * tx) * ty;
 }
 
 }  // namespace arbor::mat

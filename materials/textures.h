@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 namespace arbor::mat {
 
 // A single-channel image (the luminance of colour images), repeating in both directions.
@@ -21,6 +23,21 @@ class HeightMap {
  private:
   float at(int x, int y) const;
   std::vector<float> values_;
+  int width_ = 0, height_ = 0;
+};
+
+// An RGB albedo image converted to scene-linear through OCIO (from the colour space OIIO reports
+// for the file: sRGB for 8-bit formats, linear for EXR), repeating in both directions. Texels
+// must lie in [0, 1] (an albedo above 1 would create energy).
+class ColorMap {
+ public:
+  ColorMap(const std::string& path, const std::string& ocio_config);
+  // Bilinear sample at (u, v); both wrap with period 1.
+  glm::vec3 sample(double u, double v) const;
+
+ private:
+  glm::vec3 at(int x, int y) const;
+  std::vector<glm::vec3> values_;
   int width_ = 0, height_ = 0;
 };
 

@@ -138,6 +138,7 @@ void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned prim
     hit.geometric_normal = from_front ? front : -front;
     hit.shading_normal = hit.geometric_normal;
     hit.leaf = lm.leaf[primitive];
+    hit.uv = lm.uvs[tri[0]] * (1.0f - u - v) + lm.uvs[tri[1]] * u + lm.uvs[tri[2]] * v;
     hit.tangent = glm::normalize(b - a);
   }
 }

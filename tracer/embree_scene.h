@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "generator/tree_geometry.h"
@@ -35,6 +36,7 @@ struct SurfaceHit {
   gen::BarkCoordinates bark;         // for curves and grids
   glm::vec3 tangent{0.0f};           // along the limb (curves and grids), for bump mapping
   std::int32_t leaf = -1;            // Skeleton leaf index for leaf hits
+  glm::vec2 uv{0.0f};                // over the unit leaf, for leaf hits
 };
 
 class TreePrototype {

@@ -103,10 +103,18 @@ Shading shade(const World& world, const WorldHit& hit) {
     if (s.kind == SurfaceKind::Leaf) {
       sh.leaf = true;
       const glm::vec3 r = s.material == gen::kMaterialLeafBack ? look.leaf_back : look.leaf_front;
-      sh.leaf_bsdf.reflectance = glm::dvec3(r);
-      sh.leaf_bsdf.transmittance = glm::dvec3(look.leaf_transmittance);
+      const glm::vec3 tex = look.leaf_albedo_map ? look.leaf_albedo_map->sample(s.uv.x, s.uv.y) : glm::vec3(1.0f);
+      sh.leaf_bsdf.reflectance = glm::dvec3(r * tex);
+      sh.leaf_bsdf.transmittance = glm::dvec3(look.leaf_transmittance * tex);
     } else {
-      sh.lambert.albedo = glm::dvec3(look.bark_albedo);
+      glm::vec3 albedo = look.bark_albedo;
+      if (look.bark_albedo_map) {
+        // Tiled like the bump map: whole repeats round the limb, every bump_tile metres along it.
+        constexpr double kTwoPi = 6.283185307179586;
+        const double repeats = std::max(1.0, std::round(kTwoPi * s.bark.radius / look.bump_tile));
+        albedo *= look.bark_albedo_map->sample(s.bark.azimuth / kTwoPi * repeats, s.bark.along / look.bump_tile);
+      }
+      sh.lambert.albedo = glm::dvec3(albedo);
       sh.lambert.sigma = look.bark_roughness;
       sh.normal = bumped_normal(s, look);
     }

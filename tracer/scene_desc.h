@@ -62,11 +62,13 @@ struct BarkOverride {
   std::optional<Rgb> albedo;
   std::string bump_map;  // image path; empty: procedural bark
   std::optional<double> bump_height;
-  double bump_tile = 0.25;  // metres along and around the limb covered by one repeat of bump_map
+  double bump_tile = 0.25;  // metres along and around the limb per repeat of bump_map, albedo_map
+  std::string albedo_map;   // image multiplying the albedo; empty: none
   std::optional<double> roughness;  // degrees, Oren–Nayar σ
 };
 struct LeafOverride {
   std::optional<Rgb> reflectance, back_reflectance, transmittance;
+  std::string albedo_map;  // image over the leaf's uv multiplying R, back R and T; empty: none
 };
 
 struct Placement {

@@ -199,6 +199,7 @@ class SceneReader {
       else if (k == "bump_height") b.bump_height = number(n, owner + ".bark.bump_height", 0.0, 1.0);
       else if (k == "bump_tile") b.bump_tile = number(n, owner + ".bark.bump_tile", 1e-3, 100.0);
       else if (k == "roughness") b.roughness = number(n, owner + ".bark.roughness", 0.0, 90.0);
+      else if (k == "albedo_map") b.albedo_map = file(n, owner + ".bark.albedo_map");
       else unknown(key, owner + ".bark");
     }
   }
@@ -209,6 +210,7 @@ class SceneReader {
       if (k == "reflectance") l.reflectance = triple(n, owner + ".leaf.reflectance", 0.0, 1.0);
       else if (k == "back_reflectance") l.back_reflectance = triple(n, owner + ".leaf.back_reflectance", 0.0, 1.0);
       else if (k == "transmittance") l.transmittance = triple(n, owner + ".leaf.transmittance", 0.0, 1.0);
+      else if (k == "albedo_map") l.albedo_map = file(n, owner + ".leaf.albedo_map");
       else unknown(key, owner + ".leaf");
     }
   }

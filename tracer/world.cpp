@@ -17,6 +17,7 @@
 #include "common/progress.h"
 #include "common/rng.h"
 #include "generator/weber_penn.h"
+#include "tracer/image_output.h"
 
 namespace arbor::trace {
 
@@ -63,6 +64,14 @@ int World::prototype_for(const std::string& path, std::uint64_t seed, double tim
   return index;
 }
 
+const mat::ColorMap* World::albedo_map(const std::string& path) {
+  for (const auto& [p, map] : albedo_maps_) {
+    if (p == path) return map.get();
+  }
+  albedo_maps_.emplace_back(path, std::make_unique<mat::ColorMap>(path, ocio_config_path()));
+  return albedo_maps_.back().second.get();
+}
+
 TreeLook World::look_for(const gen::Species& sp, const BarkOverride& bark,
                          const LeafOverride& leaf, const SourceLocation& where) {
   TreeLook look;
@@ -71,6 +80,8 @@ TreeLook World::look_for(const gen::Species& sp, const BarkOverride& bark,
   look.bark_roughness =
       static_cast<float>(bark.roughness.value_or(sp.bark.roughness) * 3.14159265358979323846 / 180.0);
   look.bump_tile = static_cast<float>(bark.bump_tile);
+  if (!bark.albedo_map.empty()) look.bark_albedo_map = albedo_map(bark.albedo_map);
+  if (!leaf.albedo_map.empty()) look.leaf_albedo_map = albedo_map(leaf.albedo_map);
   if (!bark.bump_map.empty()) {
     for (const auto& [p, map] : bump_maps_) {
       if (p == bark.bump_map) look.bump_map = map.get();

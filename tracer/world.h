@@ -28,7 +28,9 @@ struct TreeLook {
   float bark_roughness = 0.0f;  // radians (Oren–Nayar σ)
   float bump_height = 0.0f;  // metres
   const mat::HeightMap* bump_map = nullptr;  // null: procedural bark
-  float bump_tile = 0.25f;   // metres per repeat of bump_map
+  float bump_tile = 0.25f;   // metres per repeat of bump_map and bark_albedo_map
+  const mat::ColorMap* bark_albedo_map = nullptr;  // multiplies bark_albedo
+  const mat::ColorMap* leaf_albedo_map = nullptr;  // over leaf uv, multiplies R and T
   glm::vec3 leaf_front{0.1f}, leaf_back{0.1f}, leaf_transmittance{0.1f};
 };
 
@@ -56,6 +58,7 @@ struct WorldStats {
 
 class World {
  public:
+  // ocio_config: the config albedo textures are converted with (arbor's own unless $OCIO).
   World(const SceneDesc& scene, const EmbreeDevice& device, Progress* progress = nullptr);
   ~World();
   World(const World&) = delete;
@@ -106,6 +109,9 @@ class World {
   };
   std::vector<Mesh> meshes_;
   std::vector<std::pair<std::string, std::unique_ptr<mat::HeightMap>>> bump_maps_;
+  std::vector<std::pair<std::string, std::unique_ptr<mat::ColorMap>>> albedo_maps_;
+  const mat::ColorMap* albedo_map(const std::string& path);
+  std::string ocio_config_;
   std::vector<int> mesh_of_geometry_;     // Embree geometry id in the top scene → mesh
   WorldStats stats_;
 };

@@ -6,6 +6,9 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <OpenImageIO/imagebuf.h>
+
+#include "common/error.h"
 #include "common/rng.h"
 #include "materials/lambert.h"
 #include "materials/textures.h"
@@ -51,6 +54,35 @@ TEST(HeightMap, WrapsAndInterpolates) {
   EXPECT_FLOAT_EQ(m.sample(1.25, -0.75), 0.0f);  // wraps in both directions
   EXPECT_FLOAT_EQ(m.sample(0.5, 0.25), 0.5f);    // halfway between 0 and 1
   EXPECT_FLOAT_EQ(m.sample(0.0, 0.25), 0.5f);    // across the seam: between 1 and 0
+}
+
+TEST(ColorMap, DecodesSrgbImagesAndRejectsAlbedosAboveOne) {
+  const std::string config = std::string(ARBOR_SOURCE_DIR) + "/tracer/ocio/config.ocio";
+  const std::string png = ::testing::TempDir() + "grey.png";
+  OIIO::ImageBuf grey(OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::UINT8));
+  const float half[3] = {128.0f / 255.0f, 128.0f / 255.0f, 1.0f};
+  for (int y = 0; y < 2; ++y) for (int x = 0; x < 2; ++x) grey.setpixel(x, y, half);
+  ASSERT_TRUE(grey.write(png));
+  const ColorMap decoded(png, config);
+  // sRGB 128/255 is 0.2159 linear; 1 stays 1.
+  EXPECT_NEAR(decoded.sample(0.3, 0.7).x, 0.2159f, 2e-3f);
+  EXPECT_NEAR(decoded.sample(0.3, 0.7).z, 1.0f, 1e-4f);
+
+  const std::string exr = ::testing::TempDir() + "bright.exr";
+  OIIO::ImageBuf bright(OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::FLOAT));
+  const float ok[3] = {0.25f, 0.5f, 0.75f}, too_much[3] = {1.5f, 0.5f, 0.5f};
+  for (int y = 0; y < 2; ++y) for (int x = 0; x < 2; ++x) bright.setpixel(x, y, ok);
+  ASSERT_TRUE(bright.write(exr));
+  EXPECT_NEAR(ColorMap(exr, config).sample(0.1, 0.1).y, 0.5f, 1e-6f);  // linear files stay linear
+  bright.setpixel(1, 1, too_much);
+  ASSERT_TRUE(bright.write(exr));
+  try {
+    ColorMap rejected(exr, config);
+    FAIL() << "an albedo above 1 was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.message().find("[0, 1]"), std::string::npos);
+    EXPECT_EQ(e.where().path, exr);
+  }
 }
 
 }  // namespace arbor::mat
