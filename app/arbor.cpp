@@ -155,7 +155,7 @@ int run_render(const RenderArgs& a) {
   Progress build_progress("build", 1);
   const trace::World world(scene, device, &build_progress);
   build_progress.finish();
-  const trace::Sky sky(scene.sky, scene.sun);
+  const trace::Sky sky(scene.sky, scene.sun, trace::xyz_to_scene_linear());
   Progress progress("render", 1);
   trace::RenderStats stats;
   const trace::Image image = trace::render_path(scene, world, sky, color.to_output(), &progress, stats);

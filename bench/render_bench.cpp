@@ -69,7 +69,7 @@ void path_tracer(benchmark::State& state) {
   scene.render.spp = 16;
   const trace::EmbreeDevice device("threads=1");
   const trace::World world(scene, device);
-  const trace::Sky sky(scene.sky, scene.sun);
+  const trace::Sky sky(scene.sky, scene.sun, trace::xyz_to_scene_linear());
   std::uint64_t rays = 0, samples = 0;
   for (auto _ : state) {
     trace::RenderStats stats;

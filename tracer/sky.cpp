@@ -4,10 +4,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include <OpenColorIO/OpenColorIO.h>
 #include <OpenImageIO/imagebuf.h>
 #include <glm/geometric.hpp>
 
 #include "common/error.h"
+#include "tracer/image_output.h"
+
+namespace OCIO = OCIO_NAMESPACE;
 
 namespace arbor::trace {
 
@@ -23,7 +27,7 @@ double perez(double theta, double gamma, const double c[5]) {
 }
 }  // namespace
 
-glm::vec3 preetham_radiance(double T, double theta, double gamma, double theta_s, double sun_e) {
+glm::dvec3 preetham_xyz(double T, double theta, double gamma, double theta_s, double sun_e) {
   // Preetham, Shirley & Smits 1999, appendix: Perez coefficients linear in turbidity T.
   const double cY[5] = {0.1787 * T - 1.4630, -0.3554 * T + 0.4275, -0.0227 * T + 5.3251,
                         0.1206 * T - 2.5771, -0.0670 * T + 0.3703};
@@ -43,14 +47,23 @@ glm::vec3 preetham_radiance(double T, double theta, double gamma, double theta_s
   const double Y = Yz * perez(theta, gamma, cY) / perez(0.0, theta_s, cY);
   const double x = xz * perez(theta, gamma, cx) / perez(0.0, theta_s, cx);
   const double y = yz * perez(theta, gamma, cy) / perez(0.0, theta_s, cy);
-  // xyY → XYZ → linear Rec.709 (D65). A sun of irradiance E stands for 100 klux: the sky keeps
-  // the model's ratio to it.
+  // xyY → XYZ. A sun of irradiance E stands for 100 klux: the sky keeps the model's ratio to it.
   const double X = x / y * Y, Z = (1.0 - x - y) / y * Y;
   const double scale = std::max(0.0, sun_e) * 1000.0 / 100000.0;
-  const double r = 3.2404542 * X - 1.5371385 * Y - 0.4985314 * Z;
-  const double g = -0.9692660 * X + 1.8760108 * Y + 0.0415560 * Z;
-  const double b = 0.0556434 * X - 0.2040259 * Y + 1.0572252 * Z;
-  return glm::vec3(glm::max(glm::dvec3(r, g, b), glm::dvec3(0.0)) * scale);
+  return glm::dvec3(X, Y, Z) * scale;
+}
+
+ColorConversion xyz_to_scene_linear() {
+  const std::string path = ocio_config_path();
+  try {
+    OCIO::ConstConfigRcPtr config = OCIO::Config::CreateFromFile(path.c_str());
+    OCIO::ConstCPUProcessorRcPtr cpu =
+        config->getProcessor("Linear CIE-XYZ-D65", OCIO::ROLE_SCENE_LINEAR)->getDefaultCPUProcessor();
+    return [cpu](float rgb[3]) { cpu->applyRGB(rgb); };
+  } catch (const OCIO::Exception& e) {
+    throw InputError({path, 0, 0}, std::string("the OCIO config cannot convert the sky's CIE XYZ "
+                                               "(it needs \"Linear CIE-XYZ-D65\"): ") + e.what());
+  }
 }
 
 Distribution2D::Distribution2D(const std::vector<float>& w, int width, int height)
@@ -90,7 +103,7 @@ float Distribution2D::pdf(glm::vec2 p) const {
   return static_cast<float>(weights_[static_cast<size_t>(j) * width_ + i] / total_ * width_ * height_);
 }
 
-Sky::Sky(const SkyDesc& sky, const SunDesc& sun, int width) {
+Sky::Sky(const SkyDesc& sky, const SunDesc& sun, const ColorConversion& xyz_to_linear, int width) {
   const double elevation = sun.elevation * kPi / 180.0, azimuth = sun.azimuth * kPi / 180.0;
   sun_direction_ = glm::vec3(std::cos(elevation) * std::cos(azimuth),
                              std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
@@ -137,8 +150,12 @@ Sky::Sky(const SkyDesc& sky, const SunDesc& sun, int width) {
           c = glm::vec3(sky.color[0], sky.color[1], sky.color[2]);
         } else if (d.z > 0.0f) {
           const double gamma = std::acos(std::clamp(double(glm::dot(d, sun_direction_)), -1.0, 1.0));
-          c = preetham_radiance(sky.turbidity, std::acos(double(d.z)), gamma, std::min(theta_s, kPi / 2.0 - 1e-3),
-                                sun.irradiance);
+          const glm::dvec3 xyz = preetham_xyz(sky.turbidity, std::acos(double(d.z)), gamma,
+                                              std::min(theta_s, kPi / 2.0 - 1e-3), sun.irradiance);
+          float rgb[3] = {static_cast<float>(xyz.x), static_cast<float>(xyz.y), static_cast<float>(xyz.z)};
+          xyz_to_linear(rgb);
+          // Out-of-gamut negatives (none for daylight) would be emission of negative light.
+          c = glm::max(glm::vec3(rgb[0], rgb[1], rgb[2]), glm::vec3(0.0f));
         }
         map_[static_cast<size_t>(j) * width_ + i] = c;
       }

@@ -2,6 +2,7 @@
 // sampled lat-long radiance map, and the sun as a disk of given angular diameter and irradiance.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,10 +37,15 @@ struct LightSample {
   float pdf = 0.0f;           // solid angle
 };
 
+// Converts a colour in place (for the sky: CIE XYZ D65 → scene-linear, through OCIO).
+using ColorConversion = std::function<void(float rgb[3])>;
+
 class Sky {
  public:
   // Builds the map at `width` × width/2; throws InputError for an unreadable environment map.
-  Sky(const SkyDesc& sky, const SunDesc& sun, int width = 512);
+  // `xyz_to_scene_linear` converts the Preetham model's XYZ (see xyz_to_scene_linear()).
+  Sky(const SkyDesc& sky, const SunDesc& sun, const ColorConversion& xyz_to_scene_linear,
+      int width = 512);
 
   glm::vec3 radiance(const glm::vec3& direction) const;  // sky only, not the sun
   LightSample sample(glm::vec2 u) const;
@@ -69,10 +75,14 @@ class Sky {
   float sun_cos_ = 1.0f;
 };
 
-// Preetham, Shirley & Smits 1999 sky radiance (scene-linear Rec.709 relative to a sun of
-// irradiance `sun_irradiance`) for a view direction at zenith angle theta and angle gamma from
-// the sun, with the sun at zenith angle theta_sun.
-glm::vec3 preetham_radiance(double turbidity, double theta, double gamma, double theta_sun,
-                            double sun_irradiance);
+// Preetham, Shirley & Smits 1999 sky radiance as CIE XYZ (relative to a sun of irradiance
+// `sun_irradiance`) for a view direction at zenith angle theta and angle gamma from the sun,
+// with the sun at zenith angle theta_sun.
+glm::dvec3 preetham_xyz(double turbidity, double theta, double gamma, double theta_sun,
+                        double sun_irradiance);
+
+// CIE XYZ D65 → scene_linear through arbor's OCIO config (or $OCIO's, which must define
+// "Linear CIE-XYZ-D65").
+ColorConversion xyz_to_scene_linear();
 
 }  // namespace arbor::trace

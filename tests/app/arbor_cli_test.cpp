@@ -7,6 +7,10 @@
 #include <sstream>
 #include <string>
 
+#include <cstring>
+#include <vector>
+
+#include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 
 namespace {
@@ -137,6 +141,28 @@ TEST(ArborCli, UnbuiltCommandsSaySo) {
                           "/scenes/default.toml --integrator treemaker -o x.exr");
   EXPECT_EQ(tm.code, 1);
   EXPECT_NE(tm.err.find("not available in this build yet"), std::string::npos);
+}
+
+TEST(ArborCli, RenderedExrPixelsAreIdenticalAtOneAndTwoThreads) {
+  const std::string dir = ::testing::TempDir();
+  const std::string scene = write_temp(
+      "threads.toml",
+      "[render]\nwidth = 40\nheight = 30\nspp = 4\n[camera]\nposition = [10.0, -14.0, 3.0]\n"
+      "look_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) +
+      "/generator/species/black_tupelo.toml\"\n[output]\naovs = [\"albedo\", \"normal\", "
+      "\"depth\", \"variance\"]\npixel_type = \"float\"\n");
+  ASSERT_EQ(arbor("render " + scene + " --threads 1 -o " + dir + "one.exr").code, 0);
+  ASSERT_EQ(arbor("render " + scene + " --threads 2 -o " + dir + "two.exr").code, 0);
+  OIIO::ImageBuf one(dir + "one.exr"), two(dir + "two.exr");
+  ASSERT_TRUE(one.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+  ASSERT_TRUE(two.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+  ASSERT_EQ(one.nchannels(), 13);
+  std::vector<float> a(40 * 30 * 13), b(a.size());
+  one.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, a.data());
+  two.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, b.data());
+  EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
+  EXPECT_EQ(one.spec().get_string_attribute("arbor:colorspace"), "ACEScg");
+  EXPECT_EQ(one.spec().get_int_attribute("arbor:spp"), 4);
 }
 
 TEST(ArborCli, RenderRejectsBadScenesWithPosition) {

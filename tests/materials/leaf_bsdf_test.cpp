@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "chi_square.h"
 #include "common/rng.h"
 
 namespace arbor::mat {
@@ -48,6 +49,16 @@ TEST(LeafBsdf, SamplingMatchesPdfChiSquare) {
   }
   // 319 degrees of freedom: the 99.9th percentile of χ² is about 405.
   EXPECT_LT(chi2, 405.0);
+}
+
+TEST(LeafBsdf, SamplingMatchesItsOwnPdfFromBothSides) {
+  const LeafBsdf bsdf{Rgb(0.2, 0.3, 0.1), Rgb(0.5, 0.4, 0.2)};
+  for (const Dir& wo : {glm::normalize(Dir(0.4, -0.2, 0.7)), glm::normalize(Dir(0.1, 0.3, -0.9))}) {
+    const auto r = testing::chi_square(
+        [&](Rng& rng) { return bsdf.sample(wo, {rng.uniform(), rng.uniform(), rng.uniform()}); },
+        [&](const Dir& wi) { return bsdf.pdf(wo, wi); }, 200000, 17);
+    EXPECT_LT(r.chi2, testing::chi_square_critical(r.degrees_of_freedom));
+  }
 }
 
 TEST(LeafBsdf, ReflectsAndTransmitsExactlyItsAlbedos) {

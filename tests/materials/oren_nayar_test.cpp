@@ -10,10 +10,25 @@
 
 #include "common/error.h"
 #include "common/rng.h"
+#include "chi_square.h"
 #include "materials/lambert.h"
 #include "materials/textures.h"
 
 namespace arbor::mat {
+
+TEST(OrenNayar, SamplingMatchesPdfChiSquare) {
+  for (double sigma : {0.0, 0.3, 0.8}) {
+    for (double theta_o : {0.1, 0.9, 1.4}) {
+      const OrenNayar on{Rgb(0.6), sigma};
+      const Dir wo(std::sin(theta_o), 0.0, std::cos(theta_o));
+      const auto r = testing::chi_square(
+          [&](Rng& rng) { return on.sample(wo, {rng.uniform(), rng.uniform()}); },
+          [&](const Dir& wi) { return on.pdf(wo, wi); }, 200000, 31);
+      EXPECT_LT(r.chi2, testing::chi_square_critical(r.degrees_of_freedom))
+          << "sigma " << sigma << " theta_o " << theta_o;
+    }
+  }
+}
 
 TEST(OrenNayar, ZeroRoughnessIsLambert) {
   const OrenNayar on{Rgb(0.4), 0.0};

@@ -11,6 +11,7 @@
 
 #include "tracer/camera.h"
 #include "tracer/film.h"
+#include "tracer/image_output.h"
 #include "tracer/sampler.h"
 #include "tracer/sky.h"
 #include "tracer/world.h"
@@ -44,7 +45,7 @@ TreeDesc aspen() {
 Image render(const SceneDesc& scene, RenderStats& stats) {
   const EmbreeDevice device(scene.render.threads > 0 ? "threads=" + std::to_string(scene.render.threads) : "");
   const World world(scene, device);
-  const Sky sky(scene.sky, scene.sun, 128);
+  const Sky sky(scene.sky, scene.sun, xyz_to_scene_linear(), 128);
   return render_path(scene, world, sky, kIdentity, nullptr, stats);
 }
 
@@ -255,7 +256,7 @@ TEST(Sky, SamplingIsConsistentWithItsPdfAndRadiance) {
     desc.path = path;
     desc.rotation = 30.0;
     SunDesc sun;
-    const Sky sky(desc, sun, 128);
+    const Sky sky(desc, sun, xyz_to_scene_linear(), 128);
     // (1) pdf() agrees with sample(); (2) E[L / pdf] equals the integral of L over the sphere.
     glm::dvec3 estimate(0.0);
     const int n = 200000;
