@@ -16,7 +16,7 @@
 #include "generator/tree_geometry.h"
 #include "generator/tree_mesh.h"
 #include "generator/tree_stats.h"
-#include "generator/weber_penn.h"
+#include "generator/grow.h"
 #include "tracer/embree_device.h"
 #include "tracer/film.h"
 #include "tracer/image_output.h"
@@ -66,7 +66,7 @@ int run_grow(const GrowArgs& a) {
   const auto start = std::chrono::steady_clock::now();
   gen::Skeleton skeleton;
   try {
-    skeleton = gen::grow_weber_penn(species.weber_penn, options);
+    skeleton = gen::grow_tree(species, options);
   } catch (const RuntimeFailure& e) {
     // Refusing an absurd size is about the input: report it against the species file.
     throw InputError({a.species, 0, 0}, e.what());
@@ -197,7 +197,7 @@ int main(int argc, char** argv) {
   CLI::App* grow_cmd = app.add_subcommand(
       "grow", "Grow a tree from a species file and report or export it");
   grow_cmd->add_option("SPECIES", grow.species,
-                       "species file: .toml (model = \"weber-penn\") or .xml (Arbaro)")
+                       "species file: .toml (model = \"weber-penn\"), .xml (Arbaro) or .lsys (L-system)")
       ->required();
   grow_cmd->add_option("--seed", grow.seed, "random seed (same seed, same tree)")
       ->check(CLI::Validator(

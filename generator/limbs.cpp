@@ -61,7 +61,8 @@ Topology branch_topology(const Skeleton& sk) {
       continue;
     }
     const Stem& p = sk.stems[static_cast<size_t>(c.parent)];
-    const std::uint32_t k = nearest_knot(p, c.parent_offset);
+    const std::uint32_t k = c.parent_point >= 0 ? static_cast<std::uint32_t>(c.parent_point)
+                                                : nearest_knot(p, c.parent_offset);
     const double gap = glm::length(point_of(sk, static_cast<std::int32_t>(i), 0) -
                                    point_of(sk, c.parent, k));
     if (k >= 1 && gap <= 1e-5 * std::max(1.0f, p.length)) {

@@ -66,8 +66,14 @@ std::string validate(const Skeleton& sk) {
     }
     if (s.parent >= 0) {
       const Stem& parent = sk.stems[static_cast<size_t>(s.parent)];
+      if (s.parent_point >= static_cast<std::int32_t>(parent.point_count)) {
+        return name + " starts at point " + std::to_string(s.parent_point) +
+               " of its parent, which has only " + std::to_string(parent.point_count);
+      }
       const double z = parent.length > 0.0f ? s.parent_offset / parent.length : 0.0;
-      const float parent_radius = sk.radius_at(parent, std::clamp(z, 0.0, 1.0));
+      const float parent_radius =
+          s.parent_point >= 0 ? sk.points[parent.first_point + static_cast<std::uint32_t>(s.parent_point)].radius
+                              : sk.radius_at(parent, std::clamp(z, 0.0, 1.0));
       const float own = sk.points[s.first_point].radius;
       if (own > parent_radius * 1.0001f + 1e-7f) {
         return name + " starts with radius " + std::to_string(own) +

@@ -23,6 +23,8 @@ struct Stem {
   std::int32_t parent = -1;       // index of the stem it grows from; -1 only for the root
   bool is_clone = false;          // split off its parent at the same level (Weber & Penn §4.2)
   float parent_offset = 0.0f;     // metres along the parent's axis where this stem starts
+  std::int32_t parent_point = -1; // the parent's point it starts at (a branch point), or -1 when
+                                  // it starts between two of the parent's points
   std::uint32_t first_point = 0;  // range in Skeleton::points; the first point is the base
   std::uint32_t point_count = 0;
   float length = 0.0f;            // metres of the whole stem (a clone shares its twin's length)

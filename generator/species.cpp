@@ -35,13 +35,21 @@ bool ends_with(const std::string& s, std::string_view suffix) {
 Species load_species(const std::string& path) {
   if (ends_with(path, ".toml")) return parse_species_toml(read_text_file(path), path);
   if (ends_with(path, ".xml")) return parse_arbaro_xml(read_text_file(path), path);
-  if (ends_with(path, ".tmpl") || ends_with(path, ".lsys") || ends_with(path, ".skel")) {
+  if (ends_with(path, ".lsys")) {
+    Species sp;
+    sp.path = path;
+    sp.name = path;
+    sp.model = Model::LSystem;
+    sp.lsystem = parse_lsystem(read_text_file(path), path);
+    return sp;
+  }
+  if (ends_with(path, ".tmpl") || ends_with(path, ".skel")) {
     throw InputError({path, 0, 0},
-                     "this build of arbor does not read TREE-MAKER templates, L-systems or "
-                     "skeleton files yet; species formats available: .toml, .xml (Arbaro)");
+                     "this build of arbor does not read TREE-MAKER templates or skeleton files "
+                     "yet; species formats available: .toml, .xml (Arbaro), .lsys");
   }
   throw InputError({path, 0, 0},
-                   "unknown species format: expected a .toml species or an .xml Arbaro file");
+                   "unknown species format: expected .toml, .xml (Arbaro) or .lsys");
 }
 
 }  // namespace arbor::gen

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "generator/lsystem.h"
 #include "generator/weber_penn_params.h"
 
 namespace arbor::gen {
@@ -29,13 +30,14 @@ struct LeafLook {
   double hinge_angle = 0.0;  // degrees; > 0: Bloomenthal's hinged three-polygon leaf (§10)
 };
 
-enum class Model { WeberPenn };
+enum class Model { WeberPenn, LSystem };
 
 struct Species {
   std::string name;
   std::string path;
   Model model = Model::WeberPenn;
-  WeberPennParams weber_penn;
+  WeberPennParams weber_penn;  // for Model::WeberPenn
+  LSystem lsystem;             // for Model::LSystem
   BarkLook bark;
   LeafLook leaf;
   // Non-fatal notes from reading the file ("path:line:col: warning: …"), to show the user.

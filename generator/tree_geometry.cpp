@@ -97,9 +97,11 @@ void add_limb_curves(const Skeleton& sk, const Limb& limb, std::int32_t limb_ind
     // The exact sub-segment of the spline: Hermite data are position and dP/dt × h.
     const glm::dvec3 pa = spline.position(a), pb = spline.position(b);
     const glm::dvec3 da = spline.derivative(a) * h, db = spline.derivative(b) * h;
-    const double ra = allowed_radius(sk, limb, a), rb = allowed_radius(sk, limb, b);
-    // Radius slopes by one-sided differences inside the piece (the law may kink at knots).
+    // Radius at both ends from inside the piece: the law may step at a knot (an L-system's r(n)
+    // between stems), and each piece follows its own side of the step. Slopes by one-sided
+    // differences inside the piece.
     const double e = 1e-4 * h;
+    const double ra = allowed_radius(sk, limb, a), rb = allowed_radius(sk, limb, b - 1e-6 * h);
     const double dra = (allowed_radius(sk, limb, a + e) - ra) / e * h;
     const double drb = (rb - allowed_radius(sk, limb, b - e)) / e * h;
     c.points.emplace_back(glm::vec3(pa), static_cast<float>(ra));

@@ -47,6 +47,7 @@ struct StemSpec {
   double length = 0.0;
   double base_radius = 0.0;
   int first_segment = 0;
+  int parent_first_segment = 0;  // for clones: the first segment of the stem they split from
   std::uint64_t key = 0;
   double split_correction = 0.0;  // radians per remaining segment (§4.2 back-rotation)
   double pending_correction = 0.0;  // joins split_correction after the next segment
@@ -302,6 +303,10 @@ class Grower {
       st.parent = s.parent;
       st.is_clone = s.is_clone;
       st.parent_offset = static_cast<float>(s.parent_offset);
+      if (s.is_clone) {
+        // A clone starts at its twin's point at the split (twin's points begin at its own start).
+        st.parent_point = s.first_segment - s.parent_first_segment;
+      }
       st.length = static_cast<float>(s.length);
       st.base_radius = static_cast<float>(s.base_radius);
       st.z_start = static_cast<float>(static_cast<double>(s.first_segment) / n);
@@ -433,6 +438,7 @@ class Grower {
       c.parent_offset = (i + 1) * (s.length / n);
       c.position = pos;
       c.first_segment = i + 1;
+      c.parent_first_segment = s.first_segment;
       c.key = derive_key(s.key, kCloneBase + static_cast<std::uint64_t>(i + 1) * 64 + j);
       c.frame = axis.rotated_x(radians(angle)).rotated_about(kUp, radians(azimuth));
       c.pending_correction = correction;

@@ -16,7 +16,7 @@
 #include "common/error.h"
 #include "common/progress.h"
 #include "common/rng.h"
-#include "generator/weber_penn.h"
+#include "generator/grow.h"
 #include "tracer/image_output.h"
 
 namespace arbor::trace {
@@ -47,7 +47,7 @@ int World::prototype_for(const std::string& path, std::uint64_t seed, double tim
   options.time = time;
   gen::Skeleton skeleton;
   try {
-    skeleton = gen::grow_weber_penn(sp.weber_penn, options);
+    skeleton = gen::grow_tree(sp, options);
   } catch (const RuntimeFailure& e) {
     throw InputError(where, std::string(e.what()));
   }

@@ -1,0 +1,23 @@
+// Model dispatch.
+#include "generator/grow.h"
+
+#include "generator/lsystem.h"
+
+namespace arbor::gen {
+
+Skeleton grow_tree(const Species& species, const GrowOptions& options) {
+  switch (species.model) {
+    case Model::LSystem: {
+      LSystemOptions o;
+      o.seed = options.seed;
+      o.force = options.force;
+      o.max_segments = options.max_stems;
+      return grow_lsystem(species.lsystem, o);
+    }
+    case Model::WeberPenn:
+    default:
+      return grow_weber_penn(species.weber_penn, options);
+  }
+}
+
+}  // namespace arbor::gen

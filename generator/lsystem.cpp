@@ -1,0 +1,456 @@
+// L-system language (Borenszweig 2008) with arbor's directives, and its 3D turtle.
+#include "generator/lsystem.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include <glm/geometric.hpp>
+
+#include "common/frame.h"
+#include "common/rng.h"
+
+namespace arbor::gen {
+
+namespace {
+
+class Parser {
+ public:
+  Parser(const std::string& text, const std::string& path) : text_(text), path_(path) {}
+
+  LSystem parse() {
+    LSystem sys;
+    sys.path = path_;
+    std::map<std::string, SourceLocation> seen;
+    for (skip_space(); !at_end(); skip_space()) {
+      const char c = peek();
+      if (c >= 'A' && c <= 'Z') {
+        sys.rules.push_back(rule());
+      } else if (c >= 'a' && c <= 'z') {
+        const SourceLocation where = here();
+        const std::string name = word();
+        if (seen.count(name)) throw InputError(where, "'" + name + "' is set twice");
+        seen[name] = where;
+        directive(sys, name, where);
+      } else {
+        throw InputError(here(), std::string("expected a rule (A-Z) or a setting, found '") + c + "'");
+      }
+    }
+    if (sys.rules.empty()) throw InputError({path_, 1, 1}, "the L-system has no rules");
+    // Every rule reference must name a rule.
+    std::map<char, bool> defined;
+    for (const LRule& r : sys.rules) defined[r.name] = true;
+    for (const LRule& r : sys.rules) check_references(r.body, defined);
+    return sys;
+  }
+
+ private:
+  bool at_end() const { return pos_ >= text_.size(); }
+  char peek() const { return text_[pos_]; }
+  SourceLocation here() const { return {path_, line_, column_}; }
+  void advance() {
+    if (text_[pos_] == '\n') {
+      ++line_;
+      column_ = 1;
+    } else {
+      ++column_;
+    }
+    ++pos_;
+  }
+  void skip_space() {
+    while (!at_end()) {
+      if (std::isspace(static_cast<unsigned char>(peek()))) {
+        advance();
+      } else if (peek() == '#') {
+        while (!at_end() && peek() != '\n') advance();
+      } else {
+        break;
+      }
+    }
+  }
+  void expect(char c, const std::string& what) {
+    skip_space();
+    if (at_end()) throw InputError(here(), "the file ends where " + what + " was expected");
+    if (peek() != c) throw InputError(here(), "expected " + what + ", found '" + std::string(1, peek()) + "'");
+    advance();
+  }
+  std::string word() {
+    std::string w;
+    while (!at_end() && (std::islower(static_cast<unsigned char>(peek())) || peek() == '_')) {
+      w += peek();
+      advance();
+    }
+    return w;
+  }
+  double number() {
+    skip_space();
+    const SourceLocation where = here();
+    std::string digits;
+    while (!at_end() && (std::isdigit(static_cast<unsigned char>(peek())) || peek() == '.')) {
+      digits += peek();
+      advance();
+    }
+    if (digits.empty() || digits.front() == '.' || digits.back() == '.' ||
+        digits.find('.') != digits.rfind('.')) {
+      throw InputError(where, "expected a number such as 2 or 0.5");
+    }
+    return std::stod(digits);
+  }
+  double parenthesized() {
+    expect('(', "'('");
+    const double v = number();
+    expect(')', "')'");
+    return v;
+  }
+
+  void directive(LSystem& sys, const std::string& name, const SourceLocation& where) {
+    expect('=', "'=' after '" + name + "'");
+    const SourceLocation value_at = (skip_space(), here());
+    const double v = number();
+    expect(';', "';' after the value of '" + name + "'");
+    auto range = [&](double lo, double hi) {
+      if (v < lo || v > hi) {
+        char buf[128];
+        std::snprintf(buf, sizeof buf, "%s = %g is out of range [%g, %g]", name.c_str(), v, lo, hi);
+        throw InputError(value_at, buf);
+      }
+    };
+    auto whole = [&]() {
+      if (v != std::floor(v)) throw InputError(value_at, name + " must be a whole number");
+    };
+    if (name == "iterations") { range(0, 64); whole(); sys.iterations = static_cast<int>(v); }
+    else if (name == "step") { range(1e-4, 1000); sys.step = v; }
+    else if (name == "angle") { range(0, 360); sys.angle = v; }
+    else if (name == "radius") { range(1e-5, 100); sys.radius = v; }
+    else if (name == "randomness") { range(0, 0.99); sys.randomness = v; }
+    else if (name == "leaves") { range(0, 1000); whole(); sys.leaves = static_cast<int>(v); }
+    else if (name == "leaf_length") { range(1e-4, 10); sys.leaf_length = v; }
+    else if (name == "leaf_width") { range(1e-4, 10); sys.leaf_width = v; }
+    else if (name == "leaf_shape") { range(0, 5); whole(); sys.leaf_shape = static_cast<int>(v); }
+    else throw InputError(where, "unknown setting '" + name + "' (known: iterations, step, angle, radius, randomness, leaves, leaf_length, leaf_width, leaf_shape)");
+  }
+
+  LRule rule() {
+    LRule r;
+    r.where = here();
+    r.name = peek();
+    advance();
+    skip_space();
+    if (!at_end() && peek() == '(') {
+      const SourceLocation at = here();
+      r.weight = parenthesized();
+      if (r.weight <= 0.0) throw InputError(at, "a rule's weight must be above 0");
+    }
+    expect(':', "':' after the rule name");
+    r.body = actions(false);
+    expect(';', std::string("';' to end rule ") + r.name);
+    if (r.body.empty()) throw InputError(r.where, std::string("rule ") + r.name + " is empty");
+    return r;
+  }
+
+  std::vector<LAction> actions(bool in_branch) {
+    std::vector<LAction> out;
+    for (;;) {
+      skip_space();
+      if (at_end()) {
+        if (in_branch) throw InputError(here(), "the file ends inside a branch: a ']' is missing");
+        return out;
+      }
+      const char c = peek();
+      if (c == ';') {
+        if (in_branch) throw InputError(here(), "';' inside a branch: a ']' is missing");
+        return out;
+      }
+      if (c == ']') {
+        if (!in_branch) throw InputError(here(), "']' without a matching '['");
+        return out;
+      }
+      LAction a;
+      a.where = here();
+      advance();
+      switch (c) {
+        case 'f': case '+': case '-': case '<': case '>': case 'v': case '^':
+          a.kind = static_cast<LAction::Kind>(c);
+          skip_space();
+          if (!at_end() && peek() == '(') {
+            a.has_number = true;
+            a.number = parenthesized();
+          }
+          break;
+        case 's': case 'h': case 'u': case 'l': case 'r':
+          a.kind = static_cast<LAction::Kind>(c);
+          a.has_number = true;
+          a.number = parenthesized();
+          if (c == 'r' && (a.number <= 0.0 || a.number > 1.0)) {
+            throw InputError(a.where, "r(n) needs 0 < n ≤ 1: limbs do not thicken toward their tips");
+          }
+          if (c == 's' && a.number <= 0.0) throw InputError(a.where, "s(n) needs n > 0");
+          break;
+        case '[':
+          a.kind = LAction::Branch;
+          a.branch = actions(true);
+          expect(']', "']'");
+          break;
+        default:
+          if (c >= 'A' && c <= 'Z') {
+            a.kind = LAction::Rule;
+            a.rule = c;
+          } else {
+            throw InputError(a.where, std::string("unknown action '") + c + "'");
+          }
+      }
+      out.push_back(std::move(a));
+    }
+  }
+
+  void check_references(const std::vector<LAction>& body, const std::map<char, bool>& defined) {
+    for (const LAction& a : body) {
+      if (a.kind == LAction::Rule && !defined.count(a.rule)) {
+        throw InputError(a.where, std::string("rule ") + a.rule + " is used but never defined");
+      }
+      if (a.kind == LAction::Branch) check_references(a.branch, defined);
+    }
+  }
+
+  const std::string& text_;
+  std::string path_;
+  std::size_t pos_ = 0;
+  int line_ = 1, column_ = 1;
+};
+
+// Number of f segments one interpretation of `body` draws at recursion depth `depth`.
+double count_segments(const LSystem& sys, const std::vector<LAction>& body, int depth,
+                      std::map<std::pair<char, int>, double>& memo);
+
+double count_rule(const LSystem& sys, char name, int depth, std::map<std::pair<char, int>, double>& memo) {
+  const auto key = std::make_pair(name, depth);
+  const auto it = memo.find(key);
+  if (it != memo.end()) return it->second;
+  double worst = 0.0;
+  for (const LRule& r : sys.rules) {
+    if (r.name == name) worst = std::max(worst, count_segments(sys, r.body, depth, memo));
+  }
+  return memo[key] = worst;
+}
+
+double count_segments(const LSystem& sys, const std::vector<LAction>& body, int depth,
+                      std::map<std::pair<char, int>, double>& memo) {
+  double n = 0.0;
+  for (const LAction& a : body) {
+    if (a.kind == LAction::Forward) n += 1.0;
+    else if (a.kind == LAction::Branch) n += count_segments(sys, a.branch, depth, memo);
+    else if (a.kind == LAction::Rule && depth + 1 <= sys.iterations) n += count_rule(sys, a.rule, depth + 1, memo);
+  }
+  return n;
+}
+
+// The turtle: position, orientation (heading, left, up), and the multipliers of the language.
+struct Turtle {
+  Vec3 position{0.0};
+  Vec3 heading{0, 0, 1}, left{1, 0, 0}, up{0, 1, 0};
+  double step = 1.0, radius = 0.05;
+  double yaw = 1.0, pitch = 1.0, roll = 1.0;  // u, l, h multipliers
+  int stem = -1;          // stem being drawn; -1 before its first f
+  int parent_stem = -1;   // stem this branch grows from
+  int parent_point = -1;  // that stem's point where it starts
+};
+
+class Interpreter {
+ public:
+  Interpreter(const LSystem& sys, const LSystemOptions& o)
+      : sys_(sys), o_(o), jitter_(derive_key(o.seed, 1)), choice_(derive_key(o.seed, 2)) {}
+
+  Skeleton run() {
+    Turtle t;
+    t.step = sys_.step;
+    t.radius = sys_.radius;
+    expand(sys_.rules.front().name, 0, t);
+    finish_stems();
+    add_leaves();
+    int levels = 1;
+    for (const Stem& s : sk_.stems) levels = std::max(levels, s.level + 1);
+    sk_.levels = levels;
+    return std::move(sk_);
+  }
+
+ private:
+  double vary() { return sys_.randomness > 0.0 ? 1.0 + sys_.randomness * jitter_.symmetric() : 1.0; }
+
+  void expand(char name, int depth, Turtle& t) {
+    // Rules of this name, chosen by weight (the number after a rule's name).
+    double total = 0.0;
+    for (const LRule& r : sys_.rules) total += r.name == name ? r.weight : 0.0;
+    double pick = choice_.uniform() * total;
+    for (const LRule& r : sys_.rules) {
+      if (r.name != name) continue;
+      pick -= r.weight;
+      if (pick <= 0.0) {
+        run_actions(r.body, depth, t);
+        return;
+      }
+    }
+    for (auto it = sys_.rules.rbegin(); it != sys_.rules.rend(); ++it) {
+      if (it->name == name) return run_actions(it->body, depth, t);
+    }
+  }
+
+  void turn(Vec3& a, Vec3& b, double degrees) {
+    const double r = radians(degrees), c = std::cos(r), s = std::sin(r);
+    const Vec3 na = a * c + b * s, nb = b * c - a * s;
+    a = na;
+    b = nb;
+  }
+
+  void forward(const LAction& a, Turtle& t) {
+    if (++segments_ > 2.0 * o_.max_segments && !o_.force) {
+      throw RuntimeFailure("the L-system drew more than " + std::to_string(segments_) +
+                           " segments; use --force to grow it anyway");
+    }
+    if (t.stem < 0) {
+      if (t.parent_stem < 0 && !stems_.empty()) {
+        throw InputError(a.where, "a second trunk starts here: a tree has one root, so every "
+                                  "stem but the first must grow from another one");
+      }
+      start_stem(t);
+    }
+    const double length = t.step * (a.has_number ? a.number : 1.0) * vary();
+    t.position += t.heading * length;
+    stems_[static_cast<size_t>(t.stem)].points.push_back({glm::vec3(t.position), static_cast<float>(t.radius)});
+  }
+
+  void start_stem(Turtle& t) {
+    OpenStem s;
+    s.stem.parent = t.parent_stem;
+    s.stem.parent_point = t.parent_point;
+    s.stem.level = t.parent_stem < 0 ? 0 : stems_[static_cast<size_t>(t.parent_stem)].stem.level + 1;
+    s.stem.taper = -1.0f;
+    s.points.push_back({glm::vec3(t.position), static_cast<float>(t.radius)});
+    if (t.parent_stem >= 0) {
+      // Where along the parent: the arc length to the branch point.
+      const OpenStem& p = stems_[static_cast<size_t>(t.parent_stem)];
+      float arc = 0.0f;
+      for (int i = 1; i <= t.parent_point; ++i) arc += glm::length(p.points[static_cast<size_t>(i)].position - p.points[static_cast<size_t>(i - 1)].position);
+      s.stem.parent_offset = arc;
+      stems_[static_cast<size_t>(t.parent_stem)].has_children = true;
+    }
+    stems_.push_back(std::move(s));
+    t.stem = static_cast<int>(stems_.size()) - 1;
+  }
+
+  void run_actions(const std::vector<LAction>& body, int depth, Turtle& t) {
+    for (const LAction& a : body) {
+      const double amount = a.has_number ? a.number : sys_.angle;
+      switch (a.kind) {
+        case LAction::Forward: forward(a, t); break;
+        case LAction::TurnLeft: turn(t.heading, t.left, amount * t.yaw * vary()); break;
+        case LAction::TurnRight: turn(t.heading, t.left, -amount * t.yaw * vary()); break;
+        case LAction::PitchUp: turn(t.heading, t.up, amount * t.pitch * vary()); break;
+        case LAction::PitchDown: turn(t.heading, t.up, -amount * t.pitch * vary()); break;
+        case LAction::RollLeft: turn(t.left, t.up, amount * t.roll * vary()); break;
+        case LAction::RollRight: turn(t.left, t.up, -amount * t.roll * vary()); break;
+        case LAction::ScaleStep: t.step *= a.number; break;
+        case LAction::ScaleRoll: t.roll *= a.number; break;
+        case LAction::ScaleYaw: t.yaw *= a.number; break;
+        case LAction::ScalePitch: t.pitch *= a.number; break;
+        case LAction::ScaleRadius: t.radius *= a.number; break;
+        case LAction::Rule:
+          // Iterations bound the recursion: a rule is consumed only down to that depth.
+          if (depth + 1 <= sys_.iterations) expand(a.rule, depth + 1, t);
+          break;
+        case LAction::Branch: {
+          Turtle inner = t;
+          if (t.stem >= 0) {
+            inner.parent_stem = t.stem;
+            inner.parent_point = static_cast<int>(stems_[static_cast<size_t>(t.stem)].points.size()) - 1;
+          }
+          inner.stem = -1;
+          run_actions(a.branch, depth, inner);
+          break;
+        }
+      }
+    }
+  }
+
+  void finish_stems() {
+    for (OpenStem& s : stems_) {
+      ARBOR_CHECK(s.points.size() >= 2);  // a stem starts at its first f: base and one point
+      Stem st = s.stem;
+      st.first_point = static_cast<std::uint32_t>(sk_.points.size());
+      st.point_count = static_cast<std::uint32_t>(s.points.size());
+      float length = 0.0f;
+      for (std::size_t i = 1; i < s.points.size(); ++i) length += glm::length(s.points[i].position - s.points[i - 1].position);
+      st.length = length;
+      st.base_radius = s.points.front().radius;
+      sk_.points.insert(sk_.points.end(), s.points.begin(), s.points.end());
+      sk_.stems.push_back(st);
+      tips_.push_back(!s.has_children);
+    }
+  }
+
+  // Leaves at the tip of every stem without branches, set evenly round it, 45° out.
+  void add_leaves() {
+    if (sys_.leaves <= 0) return;
+    for (std::size_t i = 0; i < sk_.stems.size(); ++i) {
+      if (!tips_[i]) continue;
+      const Stem& s = sk_.stems[i];
+      const glm::dvec3 tip(sk_.points[s.first_point + s.point_count - 1].position);
+      const glm::dvec3 prev(sk_.points[s.first_point + s.point_count - 2].position);
+      const glm::dvec3 h = glm::normalize(tip - prev);
+      const glm::dvec3 side = glm::normalize(glm::cross(h, std::fabs(h.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0)));
+      for (int k = 0; k < sys_.leaves; ++k) {
+        const glm::dvec3 out = rotate(side, h, 2.0 * kPi * k / sys_.leaves);
+        const glm::dvec3 axis = glm::normalize(h + out);
+        Leaf leaf;
+        leaf.position = glm::vec3(tip);
+        leaf.axis = glm::vec3(axis);
+        leaf.normal = glm::vec3(glm::normalize(glm::cross(axis, glm::cross(out, h))));
+        leaf.length = static_cast<float>(sys_.leaf_length);
+        leaf.width = static_cast<float>(sys_.leaf_width);
+        leaf.stem = static_cast<std::int32_t>(i);
+        leaf.shape = sys_.leaf_shape;
+        sk_.leaves.push_back(leaf);
+      }
+    }
+  }
+
+  struct OpenStem {
+    Stem stem;
+    std::vector<SkeletonPoint> points;
+    bool has_children = false;
+  };
+
+  const LSystem& sys_;
+  const LSystemOptions& o_;
+  Rng jitter_, choice_;
+  std::vector<OpenStem> stems_;
+  std::vector<bool> tips_;
+  double segments_ = 0.0;
+  Skeleton sk_;
+};
+
+}  // namespace
+
+LSystem parse_lsystem(const std::string& text, const std::string& path) {
+  return Parser(text, path).parse();
+}
+
+double estimate_segments(const LSystem& sys) {
+  std::map<std::pair<char, int>, double> memo;
+  return count_rule(sys, sys.rules.front().name, 0, memo);
+}
+
+Skeleton grow_lsystem(const LSystem& sys, const LSystemOptions& o) {
+  const double estimate = estimate_segments(sys);
+  if (!o.force && estimate > o.max_segments) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "the L-system would draw about %.3g segments (limit %.3g); use --force to grow "
+                  "it anyway",
+                  estimate, o.max_segments);
+    throw RuntimeFailure(buf);
+  }
+  return Interpreter(sys, o).run();
+}
+
+}  // namespace arbor::gen
