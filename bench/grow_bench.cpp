@@ -1,13 +1,14 @@
-// Benchmark: `grow` of the four appendix species of Weber & Penn 1995 (seed 1, quality 1, one
-// thread), reporting stems and leaves grown and the peak resident memory of the process.
+// Benchmark: `grow` of the four appendix species of Weber & Penn 1995 and of the shipped
+// L-systems (seed 1, quality 1, one thread), reporting stems and leaves grown and the peak
+// resident memory of the process.
 #include <sys/resource.h>
 
 #include <string>
 
 #include <benchmark/benchmark.h>
 
+#include "generator/grow.h"
 #include "generator/species.h"
-#include "generator/weber_penn.h"
 
 namespace {
 
@@ -18,7 +19,7 @@ void grow_species(benchmark::State& state, const char* file) {
   options.seed = 1;
   size_t stems = 0, leaves = 0;
   for (auto _ : state) {
-    arbor::gen::Skeleton skeleton = arbor::gen::grow_weber_penn(species.weber_penn, options);
+    arbor::gen::Skeleton skeleton = arbor::gen::grow_tree(species, options);
     stems = skeleton.stems.size();
     leaves = skeleton.leaves.size();
     benchmark::DoNotOptimize(skeleton.points.data());
@@ -36,5 +37,10 @@ BENCHMARK_CAPTURE(grow_species, quaking_aspen, "quaking_aspen.toml")->Unit(bench
 BENCHMARK_CAPTURE(grow_species, black_tupelo, "black_tupelo.toml")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(grow_species, ca_black_oak, "ca_black_oak.toml")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(grow_species, weeping_willow, "weeping_willow.toml")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, lsystem_2d_branching, "lsystem_2d_branching.lsys")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, lsystem_weed, "lsystem_weed.lsys")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, lsystem_bush, "lsystem_bush.lsys")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, lsystem_realistic_tree, "lsystem_realistic_tree.lsys")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, lsystem_almost_real, "lsystem_almost_real.lsys")->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

@@ -1,0 +1,179 @@
+// Tests of the L-system language and its turtle.
+#include "generator/lsystem.h"
+
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "generator/grow.h"
+#include "generator/tree_stats.h"
+
+namespace arbor::gen {
+
+namespace {
+
+void expect_error(const std::string& text, int line, int column, const std::string& fragment) {
+  try {
+    parse_lsystem(text, "t.lsys");
+    ADD_FAILURE() << "accepted:\n" << text;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().path, "t.lsys");
+    EXPECT_EQ(e.where().line, line) << e.what();
+    EXPECT_EQ(e.where().column, column) << e.what();
+    EXPECT_NE(e.message().find(fragment), std::string::npos) << e.what();
+  }
+}
+
+Skeleton grow(const std::string& text, std::uint64_t seed = 1) {
+  LSystemOptions o;
+  o.seed = seed;
+  return grow_lsystem(parse_lsystem(text, "t.lsys"), o);
+}
+
+}  // namespace
+
+TEST(LSystem, ParsesTheGrammar) {
+  const LSystem s = parse_lsystem(
+      "# comment\niterations = 3;\nangle = 30;\nA: f [-s(0.6)C] f(2) +(10) <>v^ h(2)u(0.5)l(1) r(0.5) B;\n"
+      "B(2): f;\nB(1): f f;\nC: f;\n",
+      "t.lsys");
+  EXPECT_EQ(s.iterations, 3);
+  EXPECT_DOUBLE_EQ(s.angle, 30.0);
+  ASSERT_EQ(s.rules.size(), 4u);
+  EXPECT_EQ(s.rules[0].name, 'A');
+  EXPECT_DOUBLE_EQ(s.rules[1].weight, 2.0);
+  const std::vector<LAction>& a = s.rules[0].body;
+  EXPECT_EQ(a[0].kind, LAction::Forward);
+  EXPECT_EQ(a[1].kind, LAction::Branch);
+  EXPECT_EQ(a[1].branch.size(), 3u);
+  EXPECT_TRUE(a[2].has_number);
+  EXPECT_DOUBLE_EQ(a[2].number, 2.0);
+  EXPECT_EQ(a.back().kind, LAction::Rule);
+  EXPECT_EQ(a.back().rule, 'B');
+}
+
+TEST(LSystem, MalformedInputIsRefusedWithItsPosition) {
+  expect_error("A: f[+A;\n", 1, 8, "']' is missing");
+  expect_error("A: f]+A;\n", 1, 5, "']' without a matching '['");
+  expect_error("A: ;\n", 1, 1, "rule A is empty");
+  expect_error("A: fB;\n", 1, 5, "rule B is used but never defined");
+  expect_error("A: f x;\n", 1, 6, "unknown action 'x'");
+  expect_error("A: f s;\n", 1, 7, "expected '('");
+  expect_error("A: f s(x);\n", 1, 8, "expected a number");
+  expect_error("A: f r(1.5);\n", 1, 6, "r(n) needs 0 < n");
+  expect_error("A: f", 1, 5, "the file ends where ';' to end rule A was expected");
+  expect_error("A: f[+A]", 1, 9, "';' to end rule A");
+  expect_error("iterations = 100;\nA: f;\n", 1, 14, "iterations = 100 is out of range");
+  expect_error("iterations = 2.5;\nA: f;\n", 1, 14, "whole number");
+  expect_error("depth = 3;\nA: f;\n", 1, 1, "unknown setting 'depth'");
+  expect_error("angle = 3;\nangle = 4;\nA: f;\n", 2, 1, "set twice");
+  expect_error("# only a comment\n", 1, 1, "no rules");
+  expect_error("A(0): f;\n", 1, 2, "weight must be above 0");
+  expect_error("A: f; 7\n", 1, 7, "expected a rule");
+}
+
+TEST(LSystem, IterationsBoundTheRecursion) {
+  // A: f[+A][-A] draws 2^(n+1) - 1 segments with n iterations.
+  for (int n : {0, 1, 2, 5}) {
+    const Skeleton sk = grow("iterations = " + std::to_string(n) + ";\nA: f[+A][-A];\n");
+    long long segments = 0;
+    for (const Stem& s : sk.stems) segments += s.point_count - 1;
+    EXPECT_EQ(segments, (1LL << (n + 1)) - 1) << n;
+    EXPECT_EQ(validate(sk), "");
+  }
+  EXPECT_DOUBLE_EQ(estimate_segments(parse_lsystem("iterations = 5;\nA: f[+A][-A];\n", "t")), 63.0);
+}
+
+TEST(LSystem, TurtleStepsTurnsAndMultipliers) {
+  // f(2) at step 0.5 then a 90° left turn and f: ends at (1, 0, 1) (turning toward +x, "left").
+  const Skeleton sk = grow("step = 0.5;\nangle = 90;\nA: f(2) + f;\n");
+  ASSERT_EQ(sk.stems.size(), 1u);
+  const glm::vec3 end = sk.points[sk.stems[0].first_point + 2].position;
+  EXPECT_NEAR(end.x, 0.5f, 1e-6f);
+  EXPECT_NEAR(end.z, 1.0f, 1e-6f);
+  // s multiplies the step; u multiplies the + angle; r the radius.
+  const Skeleton m = grow("step = 1;\nangle = 90;\nradius = 0.1;\nA: s(0.5) u(0.5) + r(0.5) f;\n");
+  const glm::vec3 p = m.points[m.stems[0].first_point + 1].position;
+  EXPECT_NEAR(p.x, 0.5f * std::sin(0.7853982f), 1e-6f);
+  EXPECT_NEAR(p.z, 0.5f * std::cos(0.7853982f), 1e-6f);
+  EXPECT_NEAR(m.points[m.stems[0].first_point + 1].radius, 0.05f, 1e-7f);
+  // A number after a turn is its angle in degrees.
+  const Skeleton d = grow("A: ^(90) f;\n");
+  const glm::vec3 q = d.points[d.stems[0].first_point + 1].position;
+  EXPECT_NEAR(q.y, 1.0f, 1e-6f);  // pitched up toward the turtle's up (+y)
+}
+
+TEST(LSystem, BranchesStartAtTheirParentsPointAndRestoreTheTurtle) {
+  const Skeleton sk = grow("angle = 90;\nA: f [+f] [-f] f;\n");
+  ASSERT_EQ(sk.stems.size(), 3u);
+  EXPECT_EQ(validate(sk), "");
+  for (int c = 1; c <= 2; ++c) {
+    const Stem& child = sk.stems[static_cast<size_t>(c)];
+    EXPECT_EQ(child.parent, 0);
+    EXPECT_EQ(child.parent_point, 1);
+    EXPECT_EQ(child.level, 1);
+  }
+  // After the branches the trunk goes on straight up.
+  const glm::vec3 top = sk.points[sk.stems[0].first_point + 2].position;
+  EXPECT_NEAR(top.z, 2.0f, 1e-6f);
+  EXPECT_NEAR(top.x, 0.0f, 1e-6f);
+}
+
+TEST(LSystem, SameSeedSameTreeAndRandomnessVaries) {
+  const std::string text = "iterations = 4;\nrandomness = 0.2;\nA: f[+A][-A];\n";
+  const Skeleton a = grow(text, 3), b = grow(text, 3), c = grow(text, 4);
+  ASSERT_EQ(a.points.size(), b.points.size());
+  EXPECT_EQ(std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(SkeletonPoint)), 0);
+  EXPECT_NE(std::memcmp(a.points.data(), c.points.data(), a.points.size() * sizeof(SkeletonPoint)), 0);
+}
+
+TEST(LSystem, RuleWeightsChooseAlternativesInProportion) {
+  // B(3): f and B(1): f f — the first is chosen about 3 times in 4.
+  const LSystem s = parse_lsystem("iterations = 1;\nA: f[B][B][B][B][B][B][B][B];\nB(3): f;\nB(1): f f;\n", "t");
+  long long one = 0, two = 0;
+  for (std::uint64_t seed = 0; seed < 200; ++seed) {
+    LSystemOptions o;
+    o.seed = seed;
+    for (const Stem& st : grow_lsystem(s, o).stems) {
+      if (st.level == 1) (st.point_count == 2 ? one : two) += 1;
+    }
+  }
+  EXPECT_NEAR(double(one) / double(one + two), 0.75, 0.03);
+}
+
+TEST(LSystem, AbsurdSizesAreRefusedWithTheEstimate) {
+  const LSystem s = parse_lsystem("iterations = 30;\nA: f[+A][-A][^A];\n", "t");
+  try {
+    grow_lsystem(s, LSystemOptions{});
+    FAIL() << "an absurd L-system was grown";
+  } catch (const RuntimeFailure& e) {
+    EXPECT_NE(std::string(e.what()).find("about 3.09e+14 segments"), std::string::npos) << e.what();
+  }
+}
+
+TEST(LSystem, SeveralTrunksAreRefused) {
+  try {
+    grow("A: [f][f];\n");
+    FAIL() << "two roots were accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().line, 1);
+    EXPECT_EQ(e.where().column, 8);
+  }
+}
+
+TEST(LSystem, ShippedExamplesGrowValidTrees) {
+  for (const char* name : {"lsystem_2d_branching", "lsystem_weed", "lsystem_bush",
+                           "lsystem_realistic_tree", "lsystem_almost_real"}) {
+    const Species sp = load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/" + name + ".lsys");
+    GrowOptions o;
+    const Skeleton sk = grow_tree(sp, o);
+    EXPECT_EQ(validate(sk), "") << name;
+    EXPECT_GT(sk.stems.size(), 10u) << name;
+    EXPECT_GT(compute_stats(sk).height, 1.0) << name;
+  }
+}
+
+}  // namespace arbor::gen
