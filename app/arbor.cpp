@@ -12,6 +12,7 @@
 #include "common/error.h"
 #include "common/progress.h"
 #include "generator/export_pbrt.h"
+#include "generator/skeleton_file.h"
 #include "generator/species.h"
 #include "generator/tree_geometry.h"
 #include "generator/tree_mesh.h"
@@ -48,10 +49,8 @@ int run_grow(const GrowArgs& a) {
     throw InputError({}, "--quality must be in (0, 100]");
   }
   if (!a.out.empty() && !ends_with(a.out, ".obj") && !ends_with(a.out, ".ply") &&
-      !ends_with(a.out, ".pbrt")) {
-    throw InputError({}, "-o " + a.out +
-                             ": this build writes .obj, .ply and .pbrt (.skel comes with the "
-                             "skeleton-file work)");
+      !ends_with(a.out, ".pbrt") && !ends_with(a.out, ".skel")) {
+    throw InputError({}, "-o " + a.out + ": the output must be .obj, .ply, .pbrt or .skel");
   }
   gen::Species species = gen::load_species(a.species);
   for (const std::string& w : species.warnings) std::fprintf(stderr, "%s\n", w.c_str());
@@ -83,7 +82,9 @@ int run_grow(const GrowArgs& a) {
     gen::add_geometry_stats(
         stats, geometry.stats,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - geometry_start).count());
-    if (ends_with(a.out, ".pbrt")) {
+    if (ends_with(a.out, ".skel")) {
+      gen::write_skeleton_file(skeleton, a.out);
+    } else if (ends_with(a.out, ".pbrt")) {
       gen::write_pbrt(geometry, species.bark, species.leaf, a.out);
     } else if (!a.out.empty()) {
       const gen::TreeMesh mesh = gen::tessellate(geometry);
@@ -197,7 +198,7 @@ int main(int argc, char** argv) {
   CLI::App* grow_cmd = app.add_subcommand(
       "grow", "Grow a tree from a species file and report or export it");
   grow_cmd->add_option("SPECIES", grow.species,
-                       "species file: .toml (model = \"weber-penn\"), .xml (Arbaro) or .lsys (L-system)")
+                       "species file: .toml (model = \"weber-penn\"), .xml (Arbaro), .lsys (L-system) or .skel (skeleton)")
       ->required();
   grow_cmd->add_option("--seed", grow.seed, "random seed (same seed, same tree)")
       ->check(CLI::Validator(
@@ -214,8 +215,8 @@ int main(int argc, char** argv) {
                        "leaf quality factor: leaf count x Q, leaf size / sqrt(Q)")
       ->capture_default_str();
   grow_cmd->add_option("-o,--output", grow.out,
-                       "write the tree: .obj or .ply (tessellated mesh, bark and leaf groups) or "
-                       ".pbrt (pbrt-v4, limbs as curves)");
+                       "write the tree: .obj or .ply (tessellated mesh, bark and leaf groups), "
+                       ".pbrt (pbrt-v4, limbs as curves) or .skel (skeleton file)");
   grow_cmd->add_flag("--stats", grow.stats, "print statistics of the tree");
   grow_cmd->add_flag("--json", grow.json, "print the statistics as one JSON object");
   grow_cmd->add_flag("--force", grow.force,

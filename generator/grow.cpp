@@ -14,6 +14,8 @@ Skeleton grow_tree(const Species& species, const GrowOptions& options) {
       o.max_segments = options.max_stems;
       return grow_lsystem(species.lsystem, o);
     }
+    case Model::SkeletonFile:
+      return species.skeleton;  // a skeleton file is the tree itself: seed and time do nothing
     case Model::WeberPenn:
     default:
       return grow_weber_penn(species.weber_penn, options);

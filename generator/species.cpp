@@ -1,6 +1,8 @@
 // Species loading: dispatch on the file extension.
 #include "generator/species.h"
 
+#include "generator/skeleton_file.h"
+
 #include <fstream>
 #include <sstream>
 
@@ -43,13 +45,21 @@ Species load_species(const std::string& path) {
     sp.lsystem = parse_lsystem(read_text_file(path), path);
     return sp;
   }
-  if (ends_with(path, ".tmpl") || ends_with(path, ".skel")) {
+  if (ends_with(path, ".skel")) {
+    Species sp;
+    sp.path = path;
+    sp.name = path;
+    sp.model = Model::SkeletonFile;
+    sp.skeleton = parse_skeleton_file(read_text_file(path), path);
+    return sp;
+  }
+  if (ends_with(path, ".tmpl")) {
     throw InputError({path, 0, 0},
-                     "this build of arbor does not read TREE-MAKER templates or skeleton files "
-                     "yet; species formats available: .toml, .xml (Arbaro), .lsys");
+                     "this build of arbor does not read TREE-MAKER templates yet; species formats "
+                     "available: .toml, .xml (Arbaro), .lsys, .skel");
   }
   throw InputError({path, 0, 0},
-                   "unknown species format: expected .toml, .xml (Arbaro) or .lsys");
+                   "unknown species format: expected .toml, .xml (Arbaro), .lsys or .skel");
 }
 
 }  // namespace arbor::gen

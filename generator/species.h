@@ -9,6 +9,7 @@
 
 #include "common/error.h"
 #include "generator/lsystem.h"
+#include "generator/skeleton.h"
 #include "generator/weber_penn_params.h"
 
 namespace arbor::gen {
@@ -30,7 +31,7 @@ struct LeafLook {
   double hinge_angle = 0.0;  // degrees; > 0: Bloomenthal's hinged three-polygon leaf (§10)
 };
 
-enum class Model { WeberPenn, LSystem };
+enum class Model { WeberPenn, LSystem, SkeletonFile };
 
 struct Species {
   std::string name;
@@ -38,6 +39,7 @@ struct Species {
   Model model = Model::WeberPenn;
   WeberPennParams weber_penn;  // for Model::WeberPenn
   LSystem lsystem;             // for Model::LSystem
+  Skeleton skeleton;           // for Model::SkeletonFile
   BarkLook bark;
   LeafLook leaf;
   // Non-fatal notes from reading the file ("path:line:col: warning: …"), to show the user.

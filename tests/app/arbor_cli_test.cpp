@@ -112,7 +112,7 @@ TEST(ArborCli, BadInputExitsTwoWithPosition) {
   EXPECT_EQ(arbor("grow " + species("quaking_aspen.toml") + " --bogus").code, 2);
   EXPECT_EQ(arbor("grow " + species("quaking_aspen.toml") + " --quality 0").code, 2);
   EXPECT_EQ(arbor("grow " + species("quaking_aspen.toml") + " --seed -3").code, 2);
-  EXPECT_EQ(arbor("grow " + species("quaking_aspen.toml") + " -o tree.skel").code, 2);
+  EXPECT_EQ(arbor("grow " + species("quaking_aspen.toml") + " -o tree.stl").code, 2);
   EXPECT_EQ(arbor("frobnicate").code, 2);
 }
 

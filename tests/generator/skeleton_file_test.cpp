@@ -1,0 +1,109 @@
+// Tests of skeleton files: Bloomenthal's validation rules with positions, and exact round trips.
+#include "generator/skeleton_file.h"
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "generator/grow.h"
+#include "generator/tree_geometry.h"
+
+namespace arbor::gen {
+
+namespace {
+
+void expect_error(const std::string& text, int line, int column, const std::string& fragment) {
+  try {
+    parse_skeleton_file(text, "t.skel");
+    ADD_FAILURE() << "accepted:\n" << text;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().path, "t.skel");
+    EXPECT_EQ(e.where().line, line) << e.what();
+    EXPECT_EQ(e.where().column, column) << e.what();
+    EXPECT_NE(e.message().find(fragment), std::string::npos) << e.what();
+  }
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+TEST(SkeletonFile, ReadsPointsAndConnections) {
+  // A Y: a trunk 0→1→2 with a branch 1→3; radius given per point or by default.
+  const Skeleton sk = parse_skeleton_file(
+      "# a small tree\nradius 0.05\npoint 0 0 0 0 0.2\npoint 1 0 0 2 0.15\npoint 2 0 0 4 0.1\n"
+      "point 3 1 0 3\nconnect 0 1\nconnect 1 2\nconnect 1 3\n",
+      "t.skel");
+  ASSERT_EQ(sk.stems.size(), 2u);
+  EXPECT_EQ(sk.stems[0].point_count, 3u);
+  EXPECT_EQ(sk.stems[1].parent, 0);
+  EXPECT_EQ(sk.stems[1].parent_point, 1);
+  EXPECT_EQ(sk.stems[1].level, 1);
+  EXPECT_FLOAT_EQ(sk.points[sk.stems[1].first_point + 1].radius, 0.05f);
+  EXPECT_EQ(validate(sk), "");
+  // It renders like any tree: two limbs (dominance continues the trunk).
+  const TreeGeometry g = build_tree_geometry(sk);
+  EXPECT_EQ(g.stats.limbs, 2u);
+}
+
+TEST(SkeletonFile, ViolationsNameThePointAndLine) {
+  const std::string pts = "point 0 0 0 0 0.1\npoint 1 0 0 1 0.1\npoint 2 0 1 1 0.1\n";
+  expect_error(pts + "connect 0 1\nconnect 0 2\nconnect 1 2\n", 6, 11, "point 2 already has an incoming limb (from point 0)");
+  expect_error(pts + "connect 0 1\n", 3, 1, "exactly one root");               // point 2 is a second root
+  expect_error(pts + "connect 0 1\nconnect 1 2\nconnect 2 0\n", 1, 1, "exactly one root");  // a cycle: no root
+  // A loop off to the side: every point has one incoming limb, but 3 and 4 never reach the root.
+  expect_error(pts + "point 3 5 5 5\npoint 4 5 5 6\nconnect 0 1\nconnect 1 2\nconnect 3 4\nconnect 4 3\n", 4, 1, "point 3 is not connected to the root");
+  expect_error(pts + "connect 0 7\n", 4, 11, "point 7 is not defined");
+  expect_error(pts + "point 1 3 3 3\n", 4, 7, "point 1 is defined twice (first on line 2)");
+  expect_error("point 0 0 0 zero\n", 1, 13, "'zero' is not a number");
+  expect_error("point 0 0 0 nan\n", 1, 13, "not a finite number");
+  expect_error("point 0 0 0\n", 1, 1, "'point' takes 4 to 5 values");
+  expect_error("point 0 0 0 0 -1\n", 1, 15, "must not be negative");
+  expect_error("joint 0 0 0 0\n", 1, 1, "unknown record 'joint'");
+  expect_error(pts + "connect 0 0\n", 4, 11, "connected to itself");
+  expect_error(pts + "connect 0 1\nconnect 1 2\nbranch 2 on 0 1 1.5\n", 6, 17, "in [0, 1]");
+  expect_error("", 1, 1, "no points");
+}
+
+TEST(SkeletonFile, UnconnectedPointsAreErrors) {
+  // Point 3 hangs on nothing: with one root and one incoming limb each, it can only be a root.
+  expect_error("point 0 0 0 0 0.1\npoint 1 0 0 1 0.1\npoint 3 2 2 2 0.1\nconnect 0 1\n", 3, 1, "exactly one root");
+}
+
+TEST(SkeletonFile, RoundTripsAnyModelExactly) {
+  for (const char* name : {"ca_black_oak.toml", "quaking_aspen.toml", "lsystem_almost_real.lsys"}) {
+    const Species sp = load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/" + name);
+    GrowOptions o;
+    o.seed = 2;
+    o.quality = 0.3;
+    const Skeleton original = grow_tree(sp, o);
+    const std::string path = ::testing::TempDir() + "round.skel";
+    write_skeleton_file(original, path);
+    const Skeleton back = parse_skeleton_file(slurp(path), path);
+    ASSERT_EQ(back.stems.size(), original.stems.size()) << name;
+    ASSERT_EQ(back.leaves.size(), original.leaves.size()) << name;
+    for (std::size_t i = 0; i < original.stems.size(); ++i) {
+      ASSERT_EQ(back.stems[i].parent, original.stems[i].parent) << name << " stem " << i;
+      ASSERT_EQ(back.stems[i].parent_point, original.stems[i].parent_point) << name << " stem " << i;
+      ASSERT_EQ(back.stems[i].level, original.stems[i].level) << name;
+    }
+    const TreeGeometry a = build_tree_geometry(original), b = build_tree_geometry(back);
+    ASSERT_EQ(a.curves.points.size(), b.curves.points.size()) << name;
+    EXPECT_EQ(std::memcmp(a.curves.points.data(), b.curves.points.data(), a.curves.points.size() * sizeof(glm::vec4)), 0) << name;
+    EXPECT_EQ(std::memcmp(a.curves.tangents.data(), b.curves.tangents.data(), a.curves.tangents.size() * sizeof(glm::vec4)), 0) << name;
+    ASSERT_EQ(a.grids.vertices.size(), b.grids.vertices.size()) << name;
+    EXPECT_EQ(std::memcmp(a.grids.vertices.data(), b.grids.vertices.data(), a.grids.vertices.size() * sizeof(glm::vec3)), 0) << name;
+    ASSERT_EQ(a.leaves.positions.size(), b.leaves.positions.size()) << name;
+    EXPECT_EQ(std::memcmp(a.leaves.positions.data(), b.leaves.positions.data(), a.leaves.positions.size() * sizeof(glm::vec3)), 0) << name;
+  }
+}
+
+}  // namespace arbor::gen
