@@ -14,6 +14,14 @@ Skeleton grow_tree(const Species& species, const GrowOptions& options) {
       o.max_segments = options.max_stems;
       return grow_lsystem(species.lsystem, o);
     }
+    case Model::Fractal: {
+      FractalOptions o;
+      o.seed = options.seed;
+      o.time = options.time;
+      o.force = options.force;
+      o.max_stems = options.max_stems;
+      return grow_fractal(species.fractal, o);
+    }
     case Model::SkeletonFile:
       return species.skeleton;  // a skeleton file is the tree itself: seed and time do nothing
     case Model::WeberPenn:

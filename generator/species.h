@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "generator/fractal.h"
 #include "generator/lsystem.h"
 #include "generator/skeleton.h"
 #include "generator/weber_penn_params.h"
@@ -31,7 +32,7 @@ struct LeafLook {
   double hinge_angle = 0.0;  // degrees; > 0: Bloomenthal's hinged three-polygon leaf (§10)
 };
 
-enum class Model { WeberPenn, LSystem, SkeletonFile };
+enum class Model { WeberPenn, LSystem, SkeletonFile, Fractal };
 
 struct Species {
   std::string name;
@@ -40,6 +41,7 @@ struct Species {
   WeberPennParams weber_penn;  // for Model::WeberPenn
   LSystem lsystem;             // for Model::LSystem
   Skeleton skeleton;           // for Model::SkeletonFile
+  FractalParams fractal;       // for Model::Fractal
   BarkLook bark;
   LeafLook leaf;
   // Non-fatal notes from reading the file ("path:line:col: warning: …"), to show the user.

@@ -135,6 +135,48 @@ class TomlSpecies {
     }
   }
 
+  // model = "fractal": Ünal's parameters (docs/fractal-format.md).
+  void fractal_key(Species& sp, const std::string& k, const toml::node& node, const toml::key& key) {
+    FractalParams& f = sp.fractal;
+    struct Real { const char* name; double lo, hi; double FractalParams::*field; };
+    struct Whole { const char* name; int lo, hi; int FractalParams::*field; };
+    static const Real reals[] = {
+        {"cone_angle", 0, 180, &FractalParams::cone_angle}, {"size_ratio", 0.01, 1.5, &FractalParams::size_ratio},
+        {"taper", 0.01, 1, &FractalParams::taper}, {"length", 1e-3, 500, &FractalParams::length},
+        {"radius", 1e-5, 50, &FractalParams::radius}, {"twist", -360, 360, &FractalParams::twist},
+        {"prune", 0, 0.99, &FractalParams::prune}, {"length_variation", 0, 0.99, &FractalParams::length_variation},
+        {"angle_variation", 0, 0.99, &FractalParams::angle_variation}, {"wiggle", 0, 0.5, &FractalParams::wiggle},
+        {"radius_variation", 0, 0.5, &FractalParams::radius_variation},
+        {"years_per_level", 1e-3, 1e4, &FractalParams::years_per_level}, {"age", 0, 1e6, &FractalParams::age},
+        {"cone_widening", 0, 1, &FractalParams::cone_widening}, {"leaf_length", 1e-4, 10, &FractalParams::leaf_length},
+        {"leaf_width", 1e-4, 10, &FractalParams::leaf_width}};
+    static const Whole wholes[] = {{"depth", 1, 32, &FractalParams::depth}, {"branches", 1, 64, &FractalParams::branches},
+                                   {"discs", 2, 256, &FractalParams::discs}, {"leaves", 0, 1000, &FractalParams::leaves},
+                                   {"leaf_shape", 0, 5, &FractalParams::leaf_shape}};
+    for (const Real& r : reals) {
+      if (k != r.name) continue;
+      const double v = number(node, k);
+      if (v < r.lo || v > r.hi) {
+        throw InputError(at(node.source()), k + " = " + std::to_string(v) + " is out of range [" +
+                                                std::to_string(r.lo) + ", " + std::to_string(r.hi) + "]");
+      }
+      f.*r.field = v;
+      return;
+    }
+    for (const Whole& w : wholes) {
+      if (k != w.name) continue;
+      if (!node.is_integer()) throw InputError(at(node.source()), k + " must be a whole number");
+      const double v = number(node, k);
+      if (v < w.lo || v > w.hi) {
+        throw InputError(at(node.source()), k + " = " + std::to_string(static_cast<long long>(v)) +
+                                                " is out of range [" + std::to_string(w.lo) + ", " + std::to_string(w.hi) + "]");
+      }
+      f.*w.field = static_cast<int>(v);
+      return;
+    }
+    throw InputError(at(key.source()), "unknown key '" + k + "' for model = \"fractal\"");
+  }
+
   Species read(std::string_view source) {
     toml::table root;
     try {
@@ -145,15 +187,20 @@ class TomlSpecies {
     Species sp;
     sp.path = path_;
     bool has_model = false;
+    if (const toml::node* m = root.get("model")) {
+      const std::string model = text(*m, "model");
+      if (model == "fractal") sp.model = Model::Fractal;
+      else if (model != "weber-penn") {
+        throw InputError(at(m->source()),
+                         "model '" + model + "' is not known; known: weber-penn, fractal");
+      }
+    }
     for (auto&& [key, node] : root) {
       const std::string k(key.str());
       if (k == "model") {
-        const std::string m = text(node, "model");
-        if (m != "weber-penn") {
-          throw InputError(at(node.source()),
-                           "model '" + m + "' is not available in this build; known: weber-penn");
-        }
         has_model = true;
+      } else if (sp.model == Model::Fractal && k != "name" && k != "bark" && k != "leaf") {
+        fractal_key(sp, k, node, key);
       } else if (k == "name") {
         sp.name = text(node, "name");
       } else if (k == "level") {
