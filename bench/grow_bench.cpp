@@ -1,5 +1,5 @@
 // Benchmark: `grow` of the four appendix species of Weber & Penn 1995 and of the shipped
-// L-systems (seed 1, quality 1, one thread), reporting stems and leaves grown and the peak
+// L-systems, fractal trees and skeleton file (seed 1, quality 1, one thread), reporting stems and leaves grown and the peak
 // resident memory of the process.
 #include <sys/resource.h>
 
@@ -42,5 +42,8 @@ BENCHMARK_CAPTURE(grow_species, lsystem_weed, "lsystem_weed.lsys")->Unit(benchma
 BENCHMARK_CAPTURE(grow_species, lsystem_bush, "lsystem_bush.lsys")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(grow_species, lsystem_realistic_tree, "lsystem_realistic_tree.lsys")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(grow_species, lsystem_almost_real, "lsystem_almost_real.lsys")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, fractal_basic, "fractal_basic.toml")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, fractal_broadleaf, "fractal_broadleaf.toml")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, young_tree_skel, "young_tree.skel")->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();
