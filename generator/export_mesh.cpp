@@ -4,29 +4,18 @@
 #include <string>
 
 #include "common/atomic_file.h"
+#include "generator/text_output.h"
 #include "generator/tree_mesh.h"
 
 namespace arbor::gen {
 
 namespace {
 
-// Appends floats in the shortest form that reads back exactly.
-void put(std::string& out, float v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  out.append(buf, r.ptr);
-}
+void put(std::string& out, float v) { put_number(out, v); }
 void put(std::string& out, std::uint32_t v) {
   char buf[16];
   const auto r = std::to_chars(buf, buf + sizeof buf, v);
   out.append(buf, r.ptr);
-}
-
-void flush_if_large(std::string& buffer, AtomicFile& file) {
-  if (buffer.size() > (1u << 20)) {
-    file.write(buffer);
-    buffer.clear();
-  }
 }
 
 }  // namespace

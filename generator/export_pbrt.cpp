@@ -4,15 +4,14 @@
 #include <charconv>
 
 #include "common/atomic_file.h"
+#include "generator/text_output.h"
 
 namespace arbor::gen {
 
 namespace {
 
 void put(std::string& out, float v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  out.append(buf, r.ptr);
+  put_number(out, v);
   out += ' ';
 }
 
@@ -20,13 +19,6 @@ void put_rgb(std::string& out, const char* name, const Rgb& c) {
   out += std::string("\"rgb ") + name + "\" [ ";
   for (double v : c) put(out, static_cast<float>(v));
   out += "] ";
-}
-
-void flush_if_large(std::string& out, AtomicFile& file) {
-  if (out.size() > (1u << 20)) {
-    file.write(out);
-    out.clear();
-  }
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "generator/text_output.h"
 
 namespace arbor::gen {
 
@@ -354,11 +355,7 @@ class Reader {
   float default_radius_ = 0.0f;
 };
 
-void put(std::string& out, float v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  out.append(buf, r.ptr);
-}
+void put(std::string& out, float v) { put_number(out, v); }
 
 }  // namespace
 

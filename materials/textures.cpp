@@ -12,6 +12,26 @@
 
 namespace arbor::mat {
 
+namespace {
+// Bilinear lookup of a width × height image that repeats in both directions (period 1 in u, v).
+template <typename T>
+T wrapped_bilinear(const std::vector<T>& values, int width, int height, double u, double v) {
+  auto at = [&](int x, int y) {
+    x %= width;
+    y %= height;
+    if (x < 0) x += width;
+    if (y < 0) y += height;
+    return values[static_cast<std::size_t>(y) * width + x];
+  };
+  const double x = (u - std::floor(u)) * width - 0.5, y = (v - std::floor(v)) * height - 0.5;
+  const double fx = std::floor(x), fy = std::floor(y);
+  const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
+  const float tx = static_cast<float>(x - fx), ty = static_cast<float>(y - fy);
+  return (at(ix, iy) * (1 - tx) + at(ix + 1, iy) * tx) * (1 - ty) +
+         (at(ix, iy + 1) * (1 - tx) + at(ix + 1, iy + 1) * tx) * ty;
+}
+}  // namespace
+
 HeightMap::HeightMap(const std::string& path) {
   OIIO::ImageBuf image(path);
   if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
@@ -36,21 +56,8 @@ HeightMap::HeightMap(const std::string& path) {
 HeightMap::HeightMap(std::vector<float> values, int width, int height)
     : values_(std::move(values)), width_(width), height_(height) {}
 
-float HeightMap::at(int x, int y) const {
-  x %= width_;
-  y %= height_;
-  if (x < 0) x += width_;
-  if (y < 0) y += height_;
-  return values_[static_cast<std::size_t>(y) * width_ + x];
-}
-
 float HeightMap::sample(double u, double v) const {
-  const double x = (u - std::floor(u)) * width_ - 0.5, y = (v - std::floor(v)) * height_ - 0.5;
-  const double fx = std::floor(x), fy = std::floor(y);
-  const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
-  const float tx = static_cast<float>(x - fx), ty = static_cast<float>(y - fy);
-  const float a = at(ix, iy), b = at(ix + 1, iy), c = at(ix, iy + 1), d = at(ix + 1, iy + 1);
-  return (a * (1 - tx) + b * tx) * (1 - ty) + (c * (1 - tx) + d * tx) * ty;
+  return wrapped_bilinear(values_, width_, height_, u, v);
 }
 
 ColorMap::ColorMap(const std::string& path, const std::string& ocio_config) {
@@ -92,21 +99,8 @@ ColorMap::ColorMap(const std::string& path, const std::string& ocio_config) {
   }
 }
 
-glm::vec3 ColorMap::at(int x, int y) const {
-  x %= width_;
-  y %= height_;
-  if (x < 0) x += width_;
-  if (y < 0) y += height_;
-  return values_[static_cast<std::size_t>(y) * width_ + x];
-}
-
 glm::vec3 ColorMap::sample(double u, double v) const {
-  const double x = (u - std::floor(u)) * width_ - 0.5, y = (v - std::floor(v)) * height_ - 0.5;
-  const double fx = std::floor(x), fy = std::floor(y);
-  const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
-  const float tx = static_cast<float>(x - fx), ty = static_cast<float>(y - fy);
-  return (at(ix, iy) * (1 - tx) + at(ix + 1, iy) * tx) * (1 - ty) +
-         (at(ix, iy + 1) * (1 - tx) + at(ix + 1, iy + 1) * tx) * ty;
+  return wrapped_bilinear(values_, width_, height_, u, v);
 }
 
 }  // namespace arbor::mat

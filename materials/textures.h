@@ -21,7 +21,6 @@ class HeightMap {
   int height() const { return height_; }
 
  private:
-  float at(int x, int y) const;
   std::vector<float> values_;
   int width_ = 0, height_ = 0;
 };
@@ -36,7 +35,6 @@ class ColorMap {
   glm::vec3 sample(double u, double v) const;
 
  private:
-  glm::vec3 at(int x, int y) const;
   std::vector<glm::vec3> values_;
   int width_ = 0, height_ = 0;
 };

@@ -40,6 +40,16 @@ EmbreeDevice::~EmbreeDevice() {
   if (device_) rtcReleaseDevice(device_);
 }
 
+void SceneRelease::operator()(RTCSceneTy* scene) const {
+  if (scene) rtcReleaseScene(scene);
+}
+
+SceneHandle new_scene(const EmbreeDevice& device) {
+  SceneHandle scene(rtcNewScene(device.get()));
+  device.check("creating a scene");
+  return scene;
+}
+
 std::string EmbreeDevice::version() {
   RTCDevice device = rtcNewDevice(nullptr);
   if (!device) return "unknown";

@@ -4,7 +4,10 @@
 
 #include <string>
 
+#include <memory>
+
 struct RTCDeviceTy;
+struct RTCSceneTy;
 
 namespace arbor::trace {
 
@@ -25,5 +28,14 @@ class EmbreeDevice {
  private:
   RTCDeviceTy* device_ = nullptr;
 };
+
+// Owns an Embree scene from its creation, so a constructor that throws half-way releases it.
+struct SceneRelease {
+  void operator()(RTCSceneTy* scene) const;
+};
+using SceneHandle = std::unique_ptr<RTCSceneTy, SceneRelease>;
+
+// A new, empty scene on the device (checked).
+SceneHandle new_scene(const EmbreeDevice& device);
 
 }  // namespace arbor::trace

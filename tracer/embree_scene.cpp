@@ -32,8 +32,7 @@ unsigned attach(RTCScene scene, RTCGeometry g) {
 TreePrototype::TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry& geometry)
     : geometry_(geometry) {
   const auto start = std::chrono::steady_clock::now();
-  scene_ = rtcNewScene(device.get());
-  device.check("creating a scene");
+  scene_ = new_scene(device);
   const gen::CurveSet& c = geometry.curves;
   if (c.size() > 0) {
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_ROUND_HERMITE_CURVE);
@@ -42,7 +41,7 @@ TreePrototype::TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry
     fill(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT, index.data(), sizeof(std::uint32_t), index.size());
     fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT4, c.points.data(), sizeof(glm::vec4), c.points.size());
     fill(g, RTC_BUFFER_TYPE_TANGENT, RTC_FORMAT_FLOAT4, c.tangents.data(), sizeof(glm::vec4), c.tangents.size());
-    curve_id_ = attach(scene_, g);
+    curve_id_ = attach(scene_.get(), g);
   }
   const gen::GridSet& gs = geometry.grids;
   if (!gs.grids.empty()) {
@@ -54,23 +53,21 @@ TreePrototype::TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry
     }
     fill(g, RTC_BUFFER_TYPE_GRID, RTC_FORMAT_GRID, grids.data(), sizeof(RTCGrid), grids.size());
     fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, gs.vertices.data(), sizeof(glm::vec3), gs.vertices.size());
-    grid_id_ = attach(scene_, g);
+    grid_id_ = attach(scene_.get(), g);
   }
   const gen::LeafMesh& lm = geometry.leaves;
   if (lm.triangle_count() > 0) {
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
     fill(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, lm.indices.data(), 3 * sizeof(std::uint32_t), lm.triangle_count());
     fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, lm.positions.data(), sizeof(glm::vec3), lm.positions.size());
-    leaf_id_ = attach(scene_, g);
+    leaf_id_ = attach(scene_.get(), g);
   }
-  rtcCommitScene(scene_);
+  rtcCommitScene(scene_.get());
   device.check("building the tree's BVH");
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-TreePrototype::~TreePrototype() {
-  if (scene_) rtcReleaseScene(scene_);
-}
+TreePrototype::~TreePrototype() = default;
 
 bool TreePrototype::intersect(const Ray& ray, SurfaceHit& hit) const {
   RTCIntersectContext context;
@@ -86,7 +83,7 @@ bool TreePrototype::intersect(const Ray& ray, SurfaceHit& hit) const {
   rh.ray.tfar = ray.t_max;
   rh.ray.mask = ~0u;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene_, &context, &rh);
+  rtcIntersect1(scene_.get(), &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
 
   describe_hit(ray, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar,

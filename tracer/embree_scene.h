@@ -48,7 +48,7 @@ class TreePrototype {
   TreePrototype(const TreePrototype&) = delete;
   TreePrototype& operator=(const TreePrototype&) = delete;
 
-  RTCSceneTy* scene() const { return scene_; }
+  RTCSceneTy* scene() const { return scene_.get(); }
   const gen::TreeGeometry& geometry() const { return geometry_; }
   double build_seconds() const { return build_seconds_; }
 
@@ -62,7 +62,7 @@ class TreePrototype {
 
  private:
   const gen::TreeGeometry& geometry_;
-  RTCSceneTy* scene_ = nullptr;
+  SceneHandle scene_;
   unsigned curve_id_ = ~0u, grid_id_ = ~0u, leaf_id_ = ~0u;
   double build_seconds_ = 0.0;
 };

@@ -119,7 +119,7 @@ void World::add_instance(int prototype, const Placement& pl, const TreeLook& loo
   rtcSetGeometryInstancedScene(g, prototypes_[static_cast<size_t>(prototype)].embree->scene());
   rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &m[0][0]);
   rtcCommitGeometry(g);
-  const unsigned id = rtcAttachGeometry(scene_, g);
+  const unsigned id = rtcAttachGeometry(scene_.get(), g);
   rtcReleaseGeometry(g);
   if (instance_of_geometry_.size() <= id) instance_of_geometry_.resize(id + 1, -1);
   instance_of_geometry_[id] = static_cast<int>(instances_.size());
@@ -203,7 +203,7 @@ void World::add_mesh(const MeshDesc& d) {
   auto* ix = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), mesh.indices.size() / 3);
   std::memcpy(ix, mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t));
   rtcCommitGeometry(g);
-  const unsigned id = rtcAttachGeometry(scene_, g);
+  const unsigned id = rtcAttachGeometry(scene_.get(), g);
   rtcReleaseGeometry(g);
   if (mesh_of_geometry_.size() <= id) mesh_of_geometry_.resize(id + 1, -1);
   mesh_of_geometry_[id] = static_cast<int>(meshes_.size());
@@ -214,7 +214,7 @@ void World::add_mesh(const MeshDesc& d) {
 World::World(const SceneDesc& scene, const EmbreeDevice& device, Progress* progress)
     : device_(device) {
   const auto start = std::chrono::steady_clock::now();
-  scene_ = rtcNewScene(device.get());
+  scene_ = new_scene(device);
   std::size_t total = scene.trees.size(), done = 0;
   for (const ForestDesc& f : scene.forests) total += static_cast<std::size_t>(f.variants);
   if (progress) progress->set_total(total);
@@ -252,19 +252,17 @@ World::World(const SceneDesc& scene, const EmbreeDevice& device, Progress* progr
     const unsigned tris[6] = {0, 1, 2, 0, 2, 3};
     std::copy(tris, tris + 6, idx);
     rtcCommitGeometry(g);
-    ground_id_ = rtcAttachGeometry(scene_, g);
+    ground_id_ = rtcAttachGeometry(scene_.get(), g);
     rtcReleaseGeometry(g);
   }
-  rtcCommitScene(scene_);
+  rtcCommitScene(scene_.get());
   device.check("building the scene");
   stats_.prototypes = prototypes_.size();
   stats_.instances = instances_.size();
   stats_.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-World::~World() {
-  if (scene_) rtcReleaseScene(scene_);
-}
+World::~World() = default;
 
 bool World::intersect(const Ray& ray, WorldHit& hit) const {
   RTCIntersectContext context;
@@ -277,7 +275,7 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
   rh.ray.mask = ~0u;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene_, &context, &rh);
+  rtcIntersect1(scene_.get(), &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   hit.mesh = nullptr;
   if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && rh.hit.geomID < mesh_of_geometry_.size() &&
@@ -344,7 +342,7 @@ bool World::occluded(const Ray& ray) const {
   r.tnear = ray.t_min;
   r.tfar = ray.t_max;
   r.mask = ~0u;
-  rtcOccluded1(scene_, &context, &r);
+  rtcOccluded1(scene_.get(), &context, &r);
   return r.tfar < 0.0f;
 }
 

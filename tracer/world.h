@@ -71,7 +71,7 @@ class World {
   const TreeLook& look(int instance) const { return instances_[static_cast<size_t>(instance)].look; }
   const glm::vec3& ground_albedo() const { return ground_albedo_; }
   const WorldStats& stats() const { return stats_; }
-  RTCSceneTy* embree_scene() const { return scene_; }  // for benchmarks of raw Embree throughput
+  RTCSceneTy* embree_scene() const { return scene_.get(); }  // for benchmarks of raw Embree throughput
 
  private:
   struct Prototype {
@@ -93,7 +93,7 @@ class World {
                     const LeafOverride& leaf, const SourceLocation& where);
 
   const EmbreeDevice& device_;
-  RTCSceneTy* scene_ = nullptr;
+  SceneHandle scene_;
   unsigned ground_id_ = ~0u;
   glm::vec3 ground_albedo_{0.0f};
   std::vector<std::pair<std::string, std::unique_ptr<gen::Species>>> species_;

@@ -8,6 +8,8 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "expect_input_error.h"
+
 #include "generator/grow.h"
 #include "generator/tree_stats.h"
 
@@ -16,15 +18,7 @@ namespace arbor::gen {
 namespace {
 
 void expect_error(const std::string& text, int line, int column, const std::string& fragment) {
-  try {
-    parse_lsystem(text, "t.lsys");
-    ADD_FAILURE() << "accepted:\n" << text;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.where().path, "t.lsys");
-    EXPECT_EQ(e.where().line, line) << e.what();
-    EXPECT_EQ(e.where().column, column) << e.what();
-    EXPECT_NE(e.message().find(fragment), std::string::npos) << e.what();
-  }
+  testing::expect_input_error([&] { parse_lsystem(text, "t.lsys"); }, "t.lsys", line, column, fragment);
 }
 
 Skeleton grow(const std::string& text, std::uint64_t seed = 1) {

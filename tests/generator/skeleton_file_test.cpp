@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "expect_input_error.h"
+
 #include "generator/grow.h"
 #include "generator/tree_geometry.h"
 
@@ -16,15 +18,7 @@ namespace arbor::gen {
 namespace {
 
 void expect_error(const std::string& text, int line, int column, const std::string& fragment) {
-  try {
-    parse_skeleton_file(text, "t.skel");
-    ADD_FAILURE() << "accepted:\n" << text;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.where().path, "t.skel");
-    EXPECT_EQ(e.where().line, line) << e.what();
-    EXPECT_EQ(e.where().column, column) << e.what();
-    EXPECT_NE(e.message().find(fragment), std::string::npos) << e.what();
-  }
+  testing::expect_input_error([&] { parse_skeleton_file(text, "t.skel"); }, "t.skel", line, column, fragment);
 }
 
 std::string slurp(const std::string& path) {

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "expect_input_error.h"
+
 namespace arbor::gen {
 
 namespace {
@@ -16,15 +18,7 @@ const char* const kMinimal = "model = \"weber-penn\"\n";
 
 // Expects parsing `text` to fail at line:column with a message containing `fragment`.
 void expect_toml_error(const std::string& text, int line, int column, const std::string& fragment) {
-  try {
-    parse_species_toml(text, "t.toml");
-    ADD_FAILURE() << "accepted:\n" << text;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.where().path, "t.toml");
-    EXPECT_EQ(e.where().line, line) << e.what();
-    EXPECT_EQ(e.where().column, column) << e.what();
-    EXPECT_NE(e.message().find(fragment), std::string::npos) << e.what();
-  }
+  testing::expect_input_error([&] { parse_species_toml(text, "t.toml"); }, "t.toml", line, column, fragment);
 }
 
 void expect_xml_error(const std::string& text, int line, const std::string& fragment) {

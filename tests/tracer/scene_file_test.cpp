@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "expect_input_error.h"
+
 #include "tracer/scene_desc.h"
 
 namespace arbor::trace {
@@ -11,15 +13,7 @@ namespace arbor::trace {
 namespace {
 
 void expect_error(const std::string& text, int line, int column, const std::string& fragment) {
-  try {
-    parse_scene(text, "dir/s.toml");
-    ADD_FAILURE() << "accepted:\n" << text;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.where().path, "dir/s.toml");
-    EXPECT_EQ(e.where().line, line) << e.what();
-    EXPECT_EQ(e.where().column, column) << e.what();
-    EXPECT_NE(e.message().find(fragment), std::string::npos) << e.what();
-  }
+  testing::expect_input_error([&] { parse_scene(text, "dir/s.toml"); }, "dir/s.toml", line, column, fragment);
 }
 
 }  // namespace
