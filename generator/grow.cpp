@@ -2,6 +2,7 @@
 #include "generator/grow.h"
 
 #include "generator/lsystem.h"
+#include "generator/treemaker.h"
 
 namespace arbor::gen {
 
@@ -21,6 +22,13 @@ Skeleton grow_tree(const Species& species, const GrowOptions& options) {
       o.force = options.force;
       o.max_stems = options.max_stems;
       return grow_fractal(species.fractal, o);
+    }
+    case Model::TreeMaker: {
+      TreeMakerOptions o;
+      o.seed = options.seed;
+      o.force = options.force;
+      o.max_stems = options.max_stems;
+      return grow_treemaker(species.treemaker, o);
     }
     case Model::SkeletonFile:
       return species.skeleton;  // a skeleton file is the tree itself: seed and time do nothing

@@ -41,6 +41,13 @@ glm::vec3 Skeleton::position_at_offset(const Stem& s, double offset) const {
   return points[s.first_point].position;
 }
 
+std::size_t Skeleton::leaf_count() const {
+  std::int32_t free = -1;
+  for (const LeafTriangle& t : leaf_triangles) free = std::max(free, t.leaf);
+  for (const LeafLine& l : leaf_lines) free = std::max(free, l.leaf);
+  return leaves.size() + static_cast<std::size_t>(free + 1);
+}
+
 std::string validate(const Skeleton& sk) {
   int roots = 0;
   for (size_t i = 0; i < sk.stems.size(); ++i) {

@@ -31,6 +31,7 @@ struct Stem {
   float base_radius = 0.0f;       // radius at Z = 0 of the (unsplit) stem
   float z_start = 0.0f;           // normalised position Z of the first point (> 0 for clones)
   float taper = -1.0f;            // Weber & Penn nTaper (0–3); < 0: interpolate point radii
+  glm::vec3 color{1.0f};          // multiplies the bark albedo (TREE-MAKER limb colours)
 };
 
 // A leaf blade placed on a stem. The blade spans `length` along `axis` from `position`, and
@@ -45,6 +46,22 @@ struct Leaf {
   std::int32_t shape = 0;  // index into leaf_shapes()
 };
 
+// A free-form leaf element already placed in the tree (TREE-MAKER's tri= and ln=): a triangle
+// (counter-clockwise = front) or a line drawn as a thin limb, with the albedo it multiplies.
+struct LeafTriangle {
+  glm::vec3 v[3]{};
+  glm::vec3 color{1.0f};
+  std::int32_t stem = -1;
+  std::int32_t leaf = 0;  // which placed leaf it belongs to (elements of one leaf share it)
+};
+struct LeafLine {
+  glm::vec3 a{0.0f}, b{0.0f};
+  float radius = 0.001f;
+  glm::vec3 color{1.0f};
+  std::int32_t stem = -1;
+  std::int32_t leaf = 0;
+};
+
 // Radial displacement of level-0 stems (Weber & Penn §4.4): flare near the base, lobed section.
 struct TrunkDisplacement {
   float flare = 0.0f;
@@ -56,11 +73,15 @@ struct Skeleton {
   std::vector<SkeletonPoint> points;
   std::vector<Stem> stems;
   std::vector<Leaf> leaves;
+  std::vector<LeafTriangle> leaf_triangles;
+  std::vector<LeafLine> leaf_lines;
   TrunkDisplacement trunk;
   std::int32_t levels = 1;  // number of stem levels present (max level + 1)
 
   // Radius of stem s at normalised position z (0 base, 1 tip), from its taper when it has one.
   float radius_at(const Stem& s, double z) const;
+  // Leaves of every kind: shaped leaves plus leaves made of free-form elements.
+  std::size_t leaf_count() const;
   // Position on stem s's axis at `offset` metres from the base of the whole stem.
   glm::vec3 position_at_offset(const Stem& s, double offset) const;
 };

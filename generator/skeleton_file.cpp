@@ -35,6 +35,7 @@ struct StemRecord {
   bool clone = false;
   float taper = -1.0f, base_radius = 0.0f, length = 0.0f, z_start = 0.0f;
   float offset = -1.0f;  // metres along the parent where it starts; -1: computed
+  glm::vec3 color{1.0f};  // multiplies the bark albedo
   float start = -1.0f;   // radius of the stem's own first point (a shared branch point has the
                          // parent's radius in the file); -1: the point's
   int line = 0;
@@ -154,6 +155,9 @@ class Reader {
         else if (key == "zstart") s.z_start = static_cast<float>(v);
         else if (key == "offset") s.offset = static_cast<float>(v);
         else if (key == "start") s.start = static_cast<float>(v);
+        else if (key == "red") s.color.x = static_cast<float>(v);
+        else if (key == "green") s.color.y = static_cast<float>(v);
+        else if (key == "blue") s.color.z = static_cast<float>(v);
         else fail(k, "unknown stem property '" + key + "'");
       }
       stems_[p] = s;
@@ -171,6 +175,28 @@ class Reader {
       if (l.length <= 0.0f || l.width <= 0.0f) fail(11, "a leaf needs a positive length and width");
       if (l.shape < 0 || l.shape > 5) fail(13, "leaf shapes are 0 to 5");
       leaves_.emplace_back(p, l);
+    } else if (kind == "leaftri" || kind == "leafline") {
+      // leaftri P LEAF x y z x y z x y z R G B / leafline P LEAF x y z x y z RADIUS R G B
+      const bool tri = kind == "leaftri";
+      count(tri ? 15 : 13, tri ? 15 : 13);
+      const int p = known(1);
+      const int leaf = static_cast<int>(real(2));
+      if (tri) {
+        LeafTriangle t;
+        for (int k = 0; k < 3; ++k) t.v[k] = glm::vec3(real(3 + 3 * k), real(4 + 3 * k), real(5 + 3 * k));
+        t.color = glm::vec3(real(12), real(13), real(14));
+        t.leaf = leaf;
+        free_triangles_.emplace_back(p, t);
+      } else {
+        LeafLine l;
+        l.a = glm::vec3(real(3), real(4), real(5));
+        l.b = glm::vec3(real(6), real(7), real(8));
+        l.radius = static_cast<float>(real(9));
+        l.color = glm::vec3(real(10), real(11), real(12));
+        l.leaf = leaf;
+        if (l.radius <= 0.0f) fail(9, "a line needs a positive radius");
+        free_lines_.emplace_back(p, l);
+      }
     } else if (kind == "trunk") {
       count(4, 4);
       trunk_.flare = static_cast<float>(real(1));
@@ -181,7 +207,7 @@ class Reader {
       default_radius_ = static_cast<float>(real(1));
       if (default_radius_ < 0.0f) fail(1, "a radius must not be negative");
     } else {
-      fail(0, "unknown record '" + kind + "' (known: point, connect, branch, stem, leaf, trunk, radius)");
+      fail(0, "unknown record '" + kind + "' (known: point, connect, branch, stem, leaf, leaftri, leafline, trunk, radius)");
     }
   }
 
@@ -231,12 +257,28 @@ class Reader {
       l.stem = it->second;
       sk.leaves.push_back(l);
     }
+    for (auto [p, t] : free_triangles_) {
+      t.stem = stem_on(p);
+      sk.leaf_triangles.push_back(t);
+    }
+    for (auto [p, l] : free_lines_) {
+      l.stem = stem_on(p);
+      sk.leaf_lines.push_back(l);
+    }
     int levels = 1;
     for (const Stem& s : sk.stems) levels = std::max(levels, s.level + 1);
     sk.levels = levels;
     const std::string problem = validate(sk);
     if (!problem.empty()) throw InputError({path_, 1, 1}, problem);
     return sk;
+  }
+
+  int stem_on(int point) const {
+    const auto it = stem_of_point_.find(point);
+    if (it == stem_of_point_.end()) {
+      throw InputError({path_, 1, 1}, "a leaf element names point " + std::to_string(point) + ", which is on no stem");
+    }
+    return it->second;
   }
 
   // Orders stems as the file lists them (by the line of the connection into each stem's second
@@ -302,6 +344,7 @@ class Reader {
       if (r.base_radius > 0.0f) st.base_radius = r.base_radius;
       st.z_start = r.z_start;
       if (r.start >= 0.0f) sk.points[st.first_point].radius = r.start;
+      st.color = r.color;
     }
     if (parent >= 0) {
       const Stem& p = sk.stems[static_cast<size_t>(parent)];
@@ -349,6 +392,8 @@ class Reader {
   std::vector<int> order_;
   std::map<int, StemRecord> stems_;
   std::vector<std::pair<int, Leaf>> leaves_;
+  std::vector<std::pair<int, LeafTriangle>> free_triangles_;
+  std::vector<std::pair<int, LeafLine>> free_lines_;
   std::map<int, int> stem_of_point_;
   std::vector<int> stem_lines_;  // per stem (depth-first index): line of its first connection
   TrunkDisplacement trunk_;
@@ -421,6 +466,11 @@ void write_skeleton_file(const Skeleton& sk, const std::string& path) {
     put(out, st.parent >= 0 ? st.parent_offset : -1.0f);
     out += " start ";
     put(out, sk.points[st.first_point].radius);
+    if (st.color != glm::vec3(1.0f)) {
+      out += " red "; put(out, st.color.x);
+      out += " green "; put(out, st.color.y);
+      out += " blue "; put(out, st.color.z);
+    }
     out += '\n';
   }
   for (const Leaf& l : sk.leaves) {
@@ -431,6 +481,22 @@ void write_skeleton_file(const Skeleton& sk, const std::string& path) {
       put(out, v);
     }
     out += " " + std::to_string(l.shape) + "\n";
+  }
+  for (const LeafTriangle& t : sk.leaf_triangles) {
+    out += "leaftri " + std::to_string(ids[static_cast<size_t>(t.stem)][1]) + " " + std::to_string(t.leaf);
+    for (int k = 0; k < 3; ++k) {
+      for (int c = 0; c < 3; ++c) { out += ' '; put(out, t.v[k][c]); }
+    }
+    for (int c = 0; c < 3; ++c) { out += ' '; put(out, t.color[c]); }
+    out += '\n';
+  }
+  for (const LeafLine& l : sk.leaf_lines) {
+    out += "leafline " + std::to_string(ids[static_cast<size_t>(l.stem)][1]) + " " + std::to_string(l.leaf);
+    for (float v : {l.a.x, l.a.y, l.a.z, l.b.x, l.b.y, l.b.z, l.radius, l.color.x, l.color.y, l.color.z}) {
+      out += ' ';
+      put(out, v);
+    }
+    out += '\n';
   }
   AtomicFile file(path);
   file.write(out);

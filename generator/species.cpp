@@ -54,12 +54,20 @@ Species load_species(const std::string& path) {
     return sp;
   }
   if (ends_with(path, ".tmpl")) {
-    throw InputError({path, 0, 0},
-                     "this build of arbor does not read TREE-MAKER templates yet; species formats "
-                     "available: .toml, .xml (Arbaro), .lsys, .skel");
+    Species sp;
+    sp.path = path;
+    sp.name = path;
+    sp.model = Model::TreeMaker;
+    sp.treemaker = parse_treemaker_template(read_text_file(path), path);
+    // Colours come from the template: the looks only scale them.
+    sp.bark.albedo = {1.0, 1.0, 1.0};
+    sp.bark.bump_height = 0.0;
+    sp.leaf.reflectance = sp.leaf.back_reflectance = {0.75, 0.75, 0.75};
+    sp.leaf.transmittance = {0.25, 0.25, 0.25};
+    return sp;
   }
   throw InputError({path, 0, 0},
-                   "unknown species format: expected .toml, .xml (Arbaro), .lsys or .skel");
+                   "unknown species format: expected .toml, .xml (Arbaro), .lsys, .skel or .tmpl");
 }
 
 }  // namespace arbor::gen

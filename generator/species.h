@@ -11,6 +11,7 @@
 #include "generator/fractal.h"
 #include "generator/lsystem.h"
 #include "generator/skeleton.h"
+#include "generator/treemaker_template.h"
 #include "generator/weber_penn_params.h"
 
 namespace arbor::gen {
@@ -32,7 +33,7 @@ struct LeafLook {
   double hinge_angle = 0.0;  // degrees; > 0: Bloomenthal's hinged three-polygon leaf (§10)
 };
 
-enum class Model { WeberPenn, LSystem, SkeletonFile, Fractal };
+enum class Model { WeberPenn, LSystem, SkeletonFile, Fractal, TreeMaker };
 
 struct Species {
   std::string name;
@@ -42,6 +43,7 @@ struct Species {
   LSystem lsystem;             // for Model::LSystem
   Skeleton skeleton;           // for Model::SkeletonFile
   FractalParams fractal;       // for Model::Fractal
+  TreeMakerTemplate treemaker; // for Model::TreeMaker
   BarkLook bark;
   LeafLook leaf;
   // Non-fatal notes from reading the file ("path:line:col: warning: …"), to show the user.

@@ -110,6 +110,7 @@ void add_limb_curves(const Skeleton& sk, const Limb& limb, std::int32_t limb_ind
     c.tangents.emplace_back(glm::vec3(db), static_cast<float>(drb));
     CurveSegment seg;
     seg.limb = limb_index;
+    seg.color = sk.stems[static_cast<size_t>(limb.knots[std::min(limb.knots.size() - 1, static_cast<std::size_t>(1))].stem)].color;
     seg.arc0 = static_cast<float>(limb.arc_at(a));
     seg.arc1 = static_cast<float>(limb.arc_at(b));
     seg.normal0 = glm::vec3(frames[j].normal);
@@ -275,7 +276,40 @@ void add_leaves(const Skeleton& sk, const GeometryOptions& o, TreeGeometry& g) {
       m.front_material.push_back(kMaterialLeafFront);
       m.back_material.push_back(kMaterialLeafBack);
       m.leaf.push_back(static_cast<std::int32_t>(li));
+      m.color.emplace_back(1.0f);
     }
+  }
+  // Free-form elements (TREE-MAKER): triangles as they are, uv over their own corners.
+  for (const LeafTriangle& tri : sk.leaf_triangles) {
+    const auto first = static_cast<std::uint32_t>(m.positions.size());
+    for (int k = 0; k < 3; ++k) m.positions.push_back(tri.v[k]);
+    m.uvs.insert(m.uvs.end(), {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(0, 1)});
+    m.indices.insert(m.indices.end(), {first, first + 1, first + 2});
+    m.front_material.push_back(kMaterialLeafFront);
+    m.back_material.push_back(kMaterialLeafBack);
+    m.leaf.push_back(-1);
+    m.color.push_back(tri.color);
+  }
+}
+
+// Lines of leaves (TREE-MAKER's ln=) as thin straight limbs of constant radius.
+void add_leaf_lines(const Skeleton& sk, TreeGeometry& g) {
+  for (const LeafLine& l : sk.leaf_lines) {
+    const glm::vec3 d = l.b - l.a;
+    if (glm::length(d) <= 2.0f * l.radius) continue;  // too short to be a line
+    CurveSet& c = g.curves;
+    c.points.emplace_back(l.a, l.radius);
+    c.points.emplace_back(l.b, l.radius);
+    c.tangents.emplace_back(d, 0.0f);
+    c.tangents.emplace_back(d, 0.0f);
+    CurveSegment seg;
+    seg.limb = -1;
+    seg.arc0 = 0.0f;
+    seg.arc1 = glm::length(d);
+    const glm::vec3 n = glm::normalize(glm::cross(d, std::fabs(d.z) < 0.9f * glm::length(d) ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0)));
+    seg.normal0 = seg.normal1 = n;
+    seg.color = l.color;
+    c.segments.push_back(seg);
   }
 }
 
@@ -293,7 +327,7 @@ void finish(TreeGeometry& g) {
             bytes_of(g.grids.vertices) + bytes_of(g.grids.normals) + bytes_of(g.grids.bark) +
             bytes_of(g.grids.grids) + bytes_of(g.leaves.positions) + bytes_of(g.leaves.uvs) +
             bytes_of(g.leaves.indices) + bytes_of(g.leaves.front_material) +
-            bytes_of(g.leaves.back_material) + bytes_of(g.leaves.leaf);
+            bytes_of(g.leaves.back_material) + bytes_of(g.leaves.leaf) + bytes_of(g.leaves.color);
   bool any = false;
   auto grow = [&](const glm::vec3& p, float r) {
     if (!any) {
@@ -343,6 +377,7 @@ TreeGeometry build_tree_geometry(const Skeleton& sk, const GeometryOptions& o) {
     }
   }
   add_leaves(sk, o, g);
+  add_leaf_lines(sk, g);
   finish(g);
   return g;
 }

@@ -23,6 +23,7 @@ struct CurveSegment {
   float arc0 = 0.0f, arc1 = 0.0f;   // bark arc length (m) at u = 0 and u = 1
   glm::vec3 normal0{0.0f}, normal1{0.0f};  // rotation-minimising frame normal at the ends
   std::uint16_t material = kMaterialBark;
+  glm::vec3 color{1.0f};  // multiplies the material's albedo (TREE-MAKER colours)
 };
 
 // Embree's ROUND_HERMITE_CURVE layout: segment i uses points[2i], points[2i+1] (x, y, z, radius)
@@ -61,6 +62,7 @@ struct LeafMesh {
   std::vector<std::uint32_t> indices;  // three per triangle
   std::vector<std::uint16_t> front_material, back_material;  // per triangle
   std::vector<std::int32_t> leaf;                            // per triangle: Skeleton leaf index
+  std::vector<glm::vec3> color;  // per triangle: multiplies R and T (1 unless the model colours)
   std::size_t triangle_count() const { return indices.size() / 3; }
 };
 

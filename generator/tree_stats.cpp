@@ -26,7 +26,7 @@ TreeStats compute_stats(const Skeleton& sk) {
     st.skeleton_segments += s.point_count > 0 ? s.point_count - 1 : 0;
   }
   st.points = static_cast<long long>(sk.points.size());
-  st.leaves = static_cast<long long>(sk.leaves.size());
+  st.leaves = static_cast<long long>(sk.leaf_count());
   // The trunk's base (stems append their points after their children's, so not points[0]).
   const glm::vec3 axis = sk.stems.empty() ? glm::vec3(0.0f)
                                           : sk.points[sk.stems.front().first_point].position;
@@ -40,6 +40,10 @@ TreeStats compute_stats(const Skeleton& sk) {
   for (const Leaf& l : sk.leaves) {
     st.leaf_triangles += static_cast<long long>(shapes[static_cast<size_t>(l.shape)].triangles.size());
     visit(l.position + l.axis * l.length, 0.5 * l.width);
+  }
+  st.leaf_triangles += static_cast<long long>(sk.leaf_triangles.size());
+  for (const LeafTriangle& t : sk.leaf_triangles) {
+    for (const glm::vec3& v : t.v) visit(v, 0.0);
   }
   st.triangles = st.leaf_triangles;
   st.curve_segments = st.skeleton_segments;

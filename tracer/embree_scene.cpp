@@ -109,6 +109,7 @@ void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned prim
     hit.shading_normal = hit.geometric_normal;
     hit.bark = gen::curve_bark(c, primitive, u, hit.position);
     hit.tangent = glm::normalize(glm::vec3(c.derivative(primitive, u)));
+    hit.color = c.segments[primitive].color;
   } else if (geom_id == grid_id_) {
     const gen::GridSet& g = geometry_.grids;
     const gen::DisplacedGrid& d = g.grids[primitive];
@@ -124,6 +125,7 @@ void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned prim
     const std::size_t base = d.first_vertex + static_cast<std::size_t>(row) * d.width + col;
     const glm::vec3 along = g.vertices[base + d.width] - g.vertices[base];
     hit.tangent = glm::length(along) > 0.0f ? glm::normalize(along) : glm::vec3(0, 0, 1);
+    hit.color = glm::vec3(1.0f);
   } else {
     hit.kind = SurfaceKind::Leaf;
     const gen::LeafMesh& lm = geometry_.leaves;
@@ -135,6 +137,7 @@ void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned prim
     hit.geometric_normal = from_front ? front : -front;
     hit.shading_normal = hit.geometric_normal;
     hit.leaf = lm.leaf[primitive];
+    hit.color = lm.color.empty() ? glm::vec3(1.0f) : lm.color[primitive];
     hit.uv = lm.uvs[tri[0]] * (1.0f - u - v) + lm.uvs[tri[1]] * u + lm.uvs[tri[2]] * v;
     hit.tangent = glm::normalize(b - a);
   }

@@ -37,6 +37,7 @@ struct SurfaceHit {
   glm::vec3 tangent{0.0f};           // along the limb (curves and grids), for bump mapping
   std::int32_t leaf = -1;            // Skeleton leaf index for leaf hits
   glm::vec2 uv{0.0f};                // over the unit leaf, for leaf hits
+  glm::vec3 color{1.0f};             // the primitive's colour (multiplies its material's albedo)
 };
 
 class TreePrototype {

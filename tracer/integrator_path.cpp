@@ -104,10 +104,10 @@ Shading shade(const World& world, const WorldHit& hit) {
       sh.leaf = true;
       const glm::vec3 r = s.material == gen::kMaterialLeafBack ? look.leaf_back : look.leaf_front;
       const glm::vec3 tex = look.leaf_albedo_map ? look.leaf_albedo_map->sample(s.uv.x, s.uv.y) : glm::vec3(1.0f);
-      sh.leaf_bsdf.reflectance = glm::dvec3(r * tex);
-      sh.leaf_bsdf.transmittance = glm::dvec3(look.leaf_transmittance * tex);
+      sh.leaf_bsdf.reflectance = glm::dvec3(r * tex * s.color);
+      sh.leaf_bsdf.transmittance = glm::dvec3(look.leaf_transmittance * tex * s.color);
     } else {
-      glm::vec3 albedo = look.bark_albedo;
+      glm::vec3 albedo = look.bark_albedo * s.color;
       if (look.bark_albedo_map) {
         // Tiled like the bump map: whole repeats round the limb, every bump_tile metres along it.
         constexpr double kTwoPi = 6.283185307179586;

@@ -2,6 +2,16 @@
 // malformed input is refused with its position.
 #include "generator/treemaker_template.h"
 
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "generator/grow.h"
+#include "generator/skeleton_file.h"
+#include "generator/tree_stats.h"
+#include "generator/treemaker.h"
+
+#include <cstring>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -87,6 +97,139 @@ TEST(TreeMakerTemplate, MalformedTemplatesAreRefusedWithTheirPosition) {
   expect_error(kColor + kRule + kLeaf, 1, 1, "at least one particle");
   expect_error(kColor + kRule + kParticle, 1, 1, "at least one leaf");
   expect_error("", 1, 1, "at least one branching rule");
+}
+
+namespace {
+
+Skeleton grow_template(const std::string& text, std::uint64_t seed = 1) {
+  TreeMakerOptions o;
+  o.seed = seed;
+  return grow_treemaker(parse_treemaker_template(text, "t.tmpl"), o);
+}
+
+Skeleton dogwood(std::uint64_t seed) {
+  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/dogwood.tmpl");
+  GrowOptions o;
+  o.seed = seed;
+  return grow_tree(s, o);
+}
+
+// A straight trunk growing 10 units (10 cm) a step for 5 iterations, no branching.
+std::string trunk(const std::string& extra_particle = "", const std::string& gravity = "0") {
+  return "iterations { i= 5 }\ngravity { g= " + gravity + " }\n" + kColor +
+         "branch { level= 1 number= 0 to 0.5 (p=1 angle= 90 to 90 dir= 0 to 0 factor= 1 to 1) }\n"
+         "particle { pos=0,0,0 mag= 10 to 10 dir= 0,0,1:0 growth= 0.5 color= green " + extra_particle + " }\n" + kLeaf;
+}
+
+}  // namespace
+
+TEST(TreeMakerGrowth, TheDogwoodGrowsAValidTreeWithLeavesAndFlowers) {
+  long long green = 0, white = 0;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const Skeleton sk = dogwood(seed);
+    ASSERT_EQ(validate(sk), "") << "seed " << seed;
+    const TreeStats st = compute_stats(sk);
+    // Level 1: number = 2 to 3, truncated: 2 at each of the trunk's 13 segments; the 2 born in
+    // the last iteration never grow (no length) and are left out.
+    EXPECT_EQ(st.stems_per_level[1], 24) << "seed " << seed;
+    EXPECT_GT(st.height, 1.0);
+    EXPECT_LT(st.height, 4.0);
+    // One leaf per branch end (§II): leaves (green, two triangles) or flowers (five, white first).
+    std::int32_t last = -1;
+    for (const LeafTriangle& t : sk.leaf_triangles) {
+      if (t.leaf == last) continue;
+      last = t.leaf;
+      (t.color.x > 0.5f ? white : green) += 1;
+    }
+  }
+  // p = 0.6 leaves, 0.4 flowers.
+  EXPECT_NEAR(double(green) / double(green + white), 0.6, 0.05);
+}
+
+TEST(TreeMakerGrowth, ParticlesAddSegmentsAndWidenTheirLimbs) {
+  const Skeleton sk = grow_template(trunk());
+  ASSERT_EQ(sk.stems.size(), 1u);
+  const Stem& t = sk.stems[0];
+  ASSERT_EQ(t.point_count, 6u);  // 5 stored positions and the end
+  for (std::uint32_t k = 0; k < t.point_count; ++k) {
+    EXPECT_NEAR(sk.points[t.first_point + k].position.z, 0.1f * k, 1e-6f);
+  }
+  // Widths: every stored position widens by growth each iteration: the base by 5 × 0.5 cm.
+  EXPECT_NEAR(sk.points[t.first_point].radius, 0.5f * 2.5f * 0.01f, 1e-7f);
+  EXPECT_NEAR(sk.points[t.first_point + 4].radius, 0.5f * 0.5f * 0.01f, 1e-7f);
+  EXPECT_EQ(sk.points[t.first_point + 5].radius, 0.0f);
+}
+
+TEST(TreeMakerGrowth, AgingShortensTheGrowthVector) {
+  const Skeleton sk = grow_template(trunk("acc= -2"));
+  const Stem& t = sk.stems[0];
+  for (std::uint32_t k = 1; k < t.point_count; ++k) {
+    const float step = sk.points[t.first_point + k].position.z - sk.points[t.first_point + k - 1].position.z;
+    EXPECT_NEAR(step, 0.01f * (10.0f - 2.0f * (k - 1)), 1e-6f);
+  }
+}
+
+TEST(TreeMakerGrowth, GravityPullsHorizontalGrowthDown) {
+  auto end_height = [](const std::string& g) {
+    const std::string text = "iterations { i= 8 }\ngravity { g= " + g + " }\n" + kColor +
+        "branch { level= 1 number= 0 to 0.5 (p=1 angle= 90 to 90 dir= 0 to 0 factor= 1 to 1) }\n"
+        "particle { pos=0,0,1 mag= 10 to 10 dir= 1,0,0:0 color= green }\n" + kLeaf;
+    const Skeleton sk = grow_template(text);
+    return sk.points[sk.stems[0].first_point + sk.stems[0].point_count - 1].position.z;
+  };
+  EXPECT_NEAR(end_height("0"), 0.01f, 1e-6f);
+  EXPECT_LT(end_height("2"), 0.009f);
+  EXPECT_LT(end_height("4"), end_height("2"));
+}
+
+TEST(TreeMakerGrowth, BranchesLeaveAtTheRuleAngleFromTheHorizontalDirection) {
+  // Every branch at 90° from a vertical trunk, dir 90: straight "up" in the turtle's sense, i.e.
+  // horizontal (the trunk is vertical), and the branch ends are all at its birth height.
+  const std::string text = "iterations { i= 3 }\n" + kColor +
+      "branch { level= 1 number= 1 to 1 (p=1 angle= 90 to 90 dir= 0 to 360 factor= 1 to 1) }\n"
+      "branch { level= 2 number= 0 to 0.5 (p=1 angle= 10 to 10 dir= 0 to 0 factor= 1 to 1) }\n"
+      "particle { pos=0,0,0 mag= 10 to 10 dir= 0,0,1:0 color= green }\n" + kLeaf;
+  const Skeleton sk = grow_template(text);
+  int branches = 0;
+  for (const Stem& s : sk.stems) {
+    if (s.level != 1) continue;
+    const glm::vec3 a = sk.points[s.first_point].position, b = sk.points[s.first_point + s.point_count - 1].position;
+    EXPECT_NEAR(b.z, a.z, 1e-5f);
+    ++branches;
+  }
+  EXPECT_EQ(branches, 2);  // born in iterations 1 and 2 (the last one's never grows)
+}
+
+TEST(TreeMakerGrowth, SameSeedSameTreeAndRoundTripsThroughSkeletonFiles) {
+  const Skeleton a = dogwood(5), b = dogwood(5), c = dogwood(6);
+  ASSERT_EQ(a.points.size(), b.points.size());
+  EXPECT_EQ(std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(SkeletonPoint)), 0);
+  EXPECT_NE(a.points.size() == c.points.size() &&
+                std::memcmp(a.points.data(), c.points.data(), a.points.size() * sizeof(SkeletonPoint)) == 0,
+            true);
+  const std::string path = ::testing::TempDir() + "dogwood.skel";
+  write_skeleton_file(a, path);
+  const Skeleton back = parse_skeleton_file(read_text_file(path), path);
+  ASSERT_EQ(back.stems.size(), a.stems.size());
+  ASSERT_EQ(back.leaf_triangles.size(), a.leaf_triangles.size());
+  for (std::size_t i = 0; i < a.stems.size(); ++i) {
+    ASSERT_EQ(back.stems[i].parent, a.stems[i].parent);
+    ASSERT_EQ(back.stems[i].parent_point, a.stems[i].parent_point);
+    ASSERT_EQ(back.stems[i].color, a.stems[i].color);
+  }
+  EXPECT_EQ(back.leaf_triangles[7].color, a.leaf_triangles[7].color);
+  EXPECT_EQ(back.leaf_triangles[7].v[2], a.leaf_triangles[7].v[2]);
+}
+
+TEST(TreeMakerGrowth, AbsurdTemplatesAreRefusedWithTheEstimate) {
+  const std::string text = "iterations { i= 40 }\n" + kColor +
+      "branch { level= 1 number= 3 to 4 (p=1 angle= 30 to 40 dir= 0 to 360 factor= 1 to 1) }\n" + kParticle + kLeaf;
+  try {
+    grow_template(text);
+    FAIL();
+  } catch (const RuntimeFailure& e) {
+    EXPECT_NE(std::string(e.what()).find("could grow about"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace arbor::gen
