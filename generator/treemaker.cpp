@@ -60,11 +60,15 @@ class Grower {
       p.age = def.age;
       p.def = static_cast<int>(i);
       p.color = shade(t_, def.color, uniform(rng, def.brightness));
-      if (i > 0) {
-        throw InputError({t_.path, 1, 1}, "this build grows templates with one particle (the tree's trunk); "
-                                          "several particles would make several roots");
+      if (i == 0) {
+        add_stem(p, -1, -1);
+      } else if (glm::length(def.pos - t_.particles[0].pos) < 1e-9) {
+        // Several particles from one point: stems of a shrub from the root point.
+        add_stem(p, 0, 0);
+      } else {
+        throw InputError(def.where, "every particle must start at the first particle's pos: a tree "
+                                    "has one root (Bloomenthal's skeleton)");
       }
-      add_stem(p, -1, -1);
       particles_.push_back(p);
     }
     for (int it = 0; it < t_.iterations; ++it) iterate();
@@ -112,7 +116,10 @@ class Grower {
     Branch b;
     b.parent = parent;
     b.parent_point = parent_point;
-    if (parent >= 0) b.parent_position = branches_[static_cast<size_t>(parent)].positions[static_cast<size_t>(parent_point)];
+    if (parent >= 0) {
+      const std::vector<Vec3>& ps = branches_[static_cast<size_t>(parent)].positions;
+      b.parent_position = ps.empty() ? p.pos : ps[static_cast<size_t>(parent_point)];
+    }
     b.level = p.level;
     b.color = p.color;
     branches_.push_back(b);

@@ -137,6 +137,7 @@ class Parser {
         branch(t, section.where);
       } else if (s == "particle") {
         particle(t);
+        t.particles.back().where = section.where;
       } else if (s == "leaf") {
         leaf(t, section.where);
       } else {

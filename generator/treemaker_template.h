@@ -48,6 +48,7 @@ struct TmParticle {
   double age = 0.0;            // added to growth each iteration
   std::string color;
   TmRange brightness{1.0, 1.0};
+  SourceLocation where;
 };
 
 // A triangle (three points) or a line (two) in leaf coordinates, with its colour.

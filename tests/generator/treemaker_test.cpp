@@ -8,6 +8,7 @@
 
 #include "generator/grow.h"
 #include "generator/skeleton_file.h"
+#include "generator/tree_geometry.h"
 #include "generator/tree_stats.h"
 #include "generator/treemaker.h"
 
@@ -219,6 +220,29 @@ TEST(TreeMakerGrowth, SameSeedSameTreeAndRoundTripsThroughSkeletonFiles) {
   }
   EXPECT_EQ(back.leaf_triangles[7].color, a.leaf_triangles[7].color);
   EXPECT_EQ(back.leaf_triangles[7].v[2], a.leaf_triangles[7].v[2]);
+}
+
+TEST(TreeMakerGrowth, SeveralParticlesFromOnePointMakeAShrub) {
+  const std::string two = kColor + kRule + kParticle + "particle { pos=0,0,0 mag= 8 to 9 dir= 1,0,1:5 color= green }\n" + kLeaf;
+  const Skeleton sk = grow_template("iterations { i= 4 }\n" + two);
+  EXPECT_EQ(validate(sk), "");
+  int from_root = 0;
+  for (const Stem& s : sk.stems) from_root += (s.parent == 0 && s.parent_point == 0) ? 1 : 0;
+  EXPECT_GE(from_root, 1);
+  const std::string apart = kColor + kRule + kParticle + "particle { pos=5,0,0 mag= 8 to 9 dir= 0,0,1:5 color= green }\n" + kLeaf;
+  testing::expect_input_error([&] { grow_template(apart); }, "t.tmpl", 4, 1, "one root");
+}
+
+TEST(TreeMakerGrowth, LeafLinesBecomeThinLimbs) {
+  const std::string text = "iterations { i= 2 }\n" + kColor + kRule + kParticle +
+      "leaf { p= 1 coord= limb out= 0 up= 0 color= green ln= 0,0,0 0,0,5 }\n";
+  const Skeleton sk = grow_template(text);
+  ASSERT_GT(sk.leaf_lines.size(), 0u);
+  EXPECT_NEAR(glm::length(sk.leaf_lines[0].b - sk.leaf_lines[0].a), 0.05f, 1e-5f);
+  const TreeGeometry g = build_tree_geometry(sk);
+  int thin = 0;
+  for (std::size_t i = 0; i < g.curves.size(); ++i) thin += g.curves.segments[i].limb < 0 ? 1 : 0;
+  EXPECT_EQ(thin, static_cast<int>(sk.leaf_lines.size()));
 }
 
 TEST(TreeMakerGrowth, AbsurdTemplatesAreRefusedWithTheEstimate) {
