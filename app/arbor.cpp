@@ -198,7 +198,7 @@ int main(int argc, char** argv) {
   CLI::App* grow_cmd = app.add_subcommand(
       "grow", "Grow a tree from a species file and report or export it");
   grow_cmd->add_option("SPECIES", grow.species,
-                       "species file: .toml (model = \"weber-penn\"), .xml (Arbaro), .lsys (L-system) or .skel (skeleton)")
+                       "species file: .toml (model = weber-penn or fractal), .xml (Arbaro), .lsys (L-system), .tmpl (TREE-MAKER) or .skel (skeleton)")
       ->required();
   grow_cmd->add_option("--seed", grow.seed, "random seed (same seed, same tree)")
       ->check(CLI::Validator(

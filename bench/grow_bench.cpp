@@ -1,5 +1,5 @@
 // Benchmark: `grow` of the four appendix species of Weber & Penn 1995 and of the shipped
-// L-systems, fractal trees and skeleton file (seed 1, quality 1, one thread), reporting stems and leaves grown and the peak
+// L-systems, fractal trees, TREE-MAKER templates and skeleton file (seed 1, quality 1, one thread), reporting stems and leaves grown and the peak
 // resident memory of the process.
 #include <sys/resource.h>
 
@@ -45,5 +45,8 @@ BENCHMARK_CAPTURE(grow_species, lsystem_almost_real, "lsystem_almost_real.lsys")
 BENCHMARK_CAPTURE(grow_species, fractal_basic, "fractal_basic.toml")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(grow_species, fractal_broadleaf, "fractal_broadleaf.toml")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(grow_species, young_tree_skel, "young_tree.skel")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, dogwood_tmpl, "dogwood.tmpl")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, young_pine_tmpl, "young_pine.tmpl")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, weeping_cherry_tmpl, "weeping_cherry.tmpl")->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

@@ -90,6 +90,19 @@ TEST(ArborCli, GrowWritesPbrtWithCurves) {
   EXPECT_NE(text.find("Shape \"trianglemesh\""), std::string::npos);
 }
 
+TEST(ArborCli, EveryShippedExampleOfEveryFormatGrowsWithStatistics) {
+  for (const char* name : {"quaking_aspen.toml", "fractal_broadleaf.toml", "lsystem_bush.lsys",
+                           "dogwood.tmpl", "young_pine.tmpl", "weeping_cherry.tmpl", "young_tree.skel",
+                           "lsystem_2d_branching.lsys", "fractal_basic.toml", "saguaro_cactus.toml"}) {
+    const CliRun r = arbor("grow " + species(name) + " --stats --json");
+    ASSERT_EQ(r.code, 0) << name << ": " << r.err;
+    for (const char* key : {"\"stems_per_level\"", "\"leaves\"", "\"curve_segments\"", "\"height\"",
+                            "\"crown_width\"", "\"seconds\""}) {
+      EXPECT_NE(r.out.find(key), std::string::npos) << name << " " << key;
+    }
+  }
+}
+
 TEST(ArborCli, SameSeedSameOutput) {
   const std::string a = ::testing::TempDir() + "a.obj", b = ::testing::TempDir() + "b.obj";
   ASSERT_EQ(arbor("grow " + species("black_tupelo.toml") + " --quality 0.2 --seed 8 -o " + a).code, 0);
