@@ -219,6 +219,32 @@ class Parser {
   int line_ = 1, column_ = 1;
 };
 
+// Actions interpreted (of any kind) by one interpretation of a rule at `depth`: what bounds the
+// time, even for a system that draws nothing (A: A A;).
+double count_work(const LSystem& sys, char name, int depth, std::map<std::pair<char, int>, double>& memo);
+
+double count_work_body(const LSystem& sys, const std::vector<LAction>& body, int depth,
+                       std::map<std::pair<char, int>, double>& memo) {
+  double n = 0.0;
+  for (const LAction& a : body) {
+    n += 1.0;
+    if (a.kind == LAction::Branch) n += count_work_body(sys, a.branch, depth, memo);
+    else if (a.kind == LAction::Rule && depth + 1 <= sys.iterations) n += count_work(sys, a.rule, depth + 1, memo);
+  }
+  return n;
+}
+
+double count_work(const LSystem& sys, char name, int depth, std::map<std::pair<char, int>, double>& memo) {
+  const auto key = std::make_pair(name, depth);
+  const auto it = memo.find(key);
+  if (it != memo.end()) return it->second;
+  double worst = 0.0;
+  for (const LRule& r : sys.rules) {
+    if (r.name == name) worst = std::max(worst, count_work_body(sys, r.body, depth, memo));
+  }
+  return memo[key] = worst;
+}
+
 // Number of f segments one interpretation of `body` draws at recursion depth `depth`.
 double count_segments(const LSystem& sys, const std::vector<LAction>& body, int depth,
                       std::map<std::pair<char, int>, double>& memo);
@@ -441,6 +467,16 @@ double estimate_segments(const LSystem& sys) {
 }
 
 Skeleton grow_lsystem(const LSystem& sys, const LSystemOptions& o) {
+  std::map<std::pair<char, int>, double> memo;
+  const double work = count_work(sys, sys.rules.front().name, 0, memo);
+  if (!o.force && work > 50.0 * o.max_segments) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "the L-system would interpret about %.3g actions (limit %.3g); use --force to "
+                  "grow it anyway",
+                  work, 50.0 * o.max_segments);
+    throw RuntimeFailure(buf);
+  }
   const double estimate = estimate_segments(sys);
   if (!o.force && estimate > o.max_segments) {
     char buf[200];

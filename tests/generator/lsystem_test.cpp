@@ -148,6 +148,17 @@ TEST(LSystem, AbsurdSizesAreRefusedWithTheEstimate) {
   }
 }
 
+TEST(LSystem, RecursionThatDrawsNothingIsRefusedNotHung) {
+  // Draws no segment but would expand 2^64 rules: refused at once with the estimate.
+  const LSystem s = parse_lsystem("iterations = 64;\nA: A A;\n", "t");
+  try {
+    grow_lsystem(s, LSystemOptions{});
+    FAIL() << "an unbounded recursion was accepted";
+  } catch (const RuntimeFailure& e) {
+    EXPECT_NE(std::string(e.what()).find("actions"), std::string::npos) << e.what();
+  }
+}
+
 TEST(LSystem, SeveralTrunksAreRefused) {
   try {
     grow("A: [f][f];\n");
