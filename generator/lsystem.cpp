@@ -467,6 +467,15 @@ double estimate_segments(const LSystem& sys) {
 }
 
 Skeleton grow_lsystem(const LSystem& sys, const LSystemOptions& o) {
+  const double estimate = estimate_segments(sys);
+  if (!o.force && estimate > o.max_segments) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "the L-system would draw about %.3g segments (limit %.3g); use --force to grow "
+                  "it anyway",
+                  estimate, o.max_segments);
+    throw RuntimeFailure(buf);
+  }
   std::map<std::pair<char, int>, double> memo;
   const double work = count_work(sys, sys.rules.front().name, 0, memo);
   if (!o.force && work > 50.0 * o.max_segments) {
@@ -475,15 +484,6 @@ Skeleton grow_lsystem(const LSystem& sys, const LSystemOptions& o) {
                   "the L-system would interpret about %.3g actions (limit %.3g); use --force to "
                   "grow it anyway",
                   work, 50.0 * o.max_segments);
-    throw RuntimeFailure(buf);
-  }
-  const double estimate = estimate_segments(sys);
-  if (!o.force && estimate > o.max_segments) {
-    char buf[200];
-    std::snprintf(buf, sizeof buf,
-                  "the L-system would draw about %.3g segments (limit %.3g); use --force to grow "
-                  "it anyway",
-                  estimate, o.max_segments);
     throw RuntimeFailure(buf);
   }
   return Interpreter(sys, o).run();
