@@ -34,30 +34,32 @@ bool ends_with(const std::string& s, std::string_view suffix) {
 }
 }  // namespace
 
+namespace {
+// A species read from a model's own file format: named after its file.
+Species from_file(const std::string& path, Model model) {
+  Species sp;
+  sp.path = path;
+  sp.name = path;
+  sp.model = model;
+  return sp;
+}
+}  // namespace
+
 Species load_species(const std::string& path) {
   if (ends_with(path, ".toml")) return parse_species_toml(read_text_file(path), path);
   if (ends_with(path, ".xml")) return parse_arbaro_xml(read_text_file(path), path);
   if (ends_with(path, ".lsys")) {
-    Species sp;
-    sp.path = path;
-    sp.name = path;
-    sp.model = Model::LSystem;
+    Species sp = from_file(path, Model::LSystem);
     sp.lsystem = parse_lsystem(read_text_file(path), path);
     return sp;
   }
   if (ends_with(path, ".skel")) {
-    Species sp;
-    sp.path = path;
-    sp.name = path;
-    sp.model = Model::SkeletonFile;
+    Species sp = from_file(path, Model::SkeletonFile);
     sp.skeleton = parse_skeleton_file(read_text_file(path), path);
     return sp;
   }
   if (ends_with(path, ".tmpl")) {
-    Species sp;
-    sp.path = path;
-    sp.name = path;
-    sp.model = Model::TreeMaker;
+    Species sp = from_file(path, Model::TreeMaker);
     sp.treemaker = parse_treemaker_template(read_text_file(path), path);
     // Colours come from the template: the looks only scale them.
     sp.bark.albedo = {1.0, 1.0, 1.0};
