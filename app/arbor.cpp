@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <new>
+
+#include <OpenImageIO/imageio.h>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -18,6 +20,7 @@
 #include "generator/tree_mesh.h"
 #include "generator/tree_stats.h"
 #include "generator/grow.h"
+#include "tracer/compare.h"
 #include "tracer/embree_device.h"
 #include "tracer/film.h"
 #include "tracer/image_output.h"
@@ -181,9 +184,83 @@ int run_render(const RenderArgs& a) {
   return 0;
 }
 
-int not_available(const char* command, const char* issue) {
-  std::fprintf(stderr, "arbor %s: not available in this build yet (%s)\n", command, issue);
-  return 1;
+struct CompareArgs {
+  std::string a, b;
+  std::string heatmap, side_by_side;
+  std::string display = "sRGB", view = "ACES 1.0 SDR-video";
+  bool json = false, reference_test = false, fit_treemaker = false;
+};
+
+// A number for JSON: infinities (PSNR of identical images) have no JSON spelling, so null.
+std::string json_number(double v) {
+  if (!std::isfinite(v)) return "null";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+void check_image_output(const std::string& path, const CompareArgs& a, const char* option) {
+  if (path.empty()) return;
+  if (path == a.a || path == a.b) {
+    throw arbor::InputError({}, std::string(option) + " " + path + " would overwrite an input image");
+  }
+  if (!OIIO::ImageOutput::create(path)) {
+    throw arbor::InputError({}, std::string(option) + " " + path +
+                                    ": no image format for this extension (use .png, .exr, .tif or .jpg)");
+  }
+}
+
+int run_compare(const CompareArgs& args) {
+  using namespace arbor;
+  if (args.fit_treemaker) {
+    std::fprintf(stderr, "arbor compare: --fit-treemaker needs the TREE-MAKER integrator's term AOVs, "
+                         "which this build does not write yet\n");
+    return 1;
+  }
+  check_image_output(args.heatmap, args, "--heatmap");
+  check_image_output(args.side_by_side, args, "--side-by-side");
+  const trace::CompareImage a = trace::read_compare_image(args.a);
+  const trace::CompareImage b = trace::read_compare_image(args.b);
+  const trace::CompareMetrics m = trace::compare_images(a, b);
+  trace::ZTest z;
+  if (args.reference_test) z = trace::reference_z_test(a, b);
+  if (!args.heatmap.empty()) trace::write_heatmap(a, b, args.heatmap);
+  if (!args.side_by_side.empty()) {
+    trace::write_side_by_side(a, b, args.display, args.view, args.side_by_side);
+  }
+  if (args.json) {
+    std::printf("{\"rmse\": %s, \"mean_abs\": %s, \"rel_mse\": %s, \"max_abs\": %s, "
+                "\"max_at\": [%d, %d], \"psnr\": %s",
+                json_number(m.rmse).c_str(), json_number(m.mean_abs).c_str(),
+                json_number(m.rel_mse).c_str(), json_number(m.max_abs).c_str(), m.max_x, m.max_y,
+                json_number(m.psnr).c_str());
+    if (args.reference_test) {
+      std::printf(", \"z_test_pass_fraction\": %s, \"z_critical\": %s, \"pixels\": %lld, "
+                  "\"failed_pixels\": %lld, \"passed\": %s",
+                  json_number(z.pass_fraction).c_str(), json_number(z.z_critical).c_str(), z.pixels,
+                  z.failed, z.passed ? "true" : "false");
+    }
+    std::printf("}\n");
+  } else {
+    std::printf("rmse      %.6g\nmean_abs  %.6g\nrel_mse   %.6g\nmax_abs   %.6g at (%d, %d)\n",
+                m.rmse, m.mean_abs, m.rel_mse, m.max_abs, m.max_x, m.max_y);
+    if (std::isfinite(m.psnr)) {
+      std::printf("psnr      %.2f dB\n", m.psnr);
+    } else {
+      std::printf("psnr      inf (identical)\n");
+    }
+    if (args.reference_test) {
+      std::printf("z-test    %.3f %% of %lld pixels pass (|z| <= %.2f: alpha 0.01, Sidak-corrected); "
+                  "needs %.1f %%: %s\n",
+                  100.0 * z.pass_fraction, z.pixels, z.z_critical, 100.0 * z.required,
+                  z.passed ? "PASS" : "FAIL");
+    }
+  }
+  if (args.reference_test && !z.a_has_variance) {
+    std::fprintf(stderr, "arbor compare: note: %s has no variance channels; the test used the "
+                         "reference's variance alone\n", args.a.c_str());
+  }
+  return args.reference_test && !z.passed ? 1 : 0;
 }
 
 }  // namespace
@@ -236,9 +313,25 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--height", render.height, "image height")->check(CLI::Range(1, 16384));
   render_cmd->add_option("--time", render.time, "seconds of wind sway for every [[tree]]")
       ->each([&render](const std::string&) { render.time_set = true; });
+  CompareArgs cmp;
   CLI::App* compare_cmd = app.add_subcommand(
-      "compare", "Compare two EXR images (not available in this build yet)");
-  compare_cmd->allow_extras();
+      "compare", "Compare image A against reference B: error metrics, heatmap, z-test");
+  compare_cmd->add_option("A", cmp.a, "image to test (EXR, or any format OIIO reads)")->required();
+  compare_cmd->add_option("B", cmp.b, "reference image (with variance.R/G/B for --reference-test)")
+      ->required();
+  compare_cmd->add_option("--heatmap", cmp.heatmap,
+                          "write a false-colour image of the per-pixel error with a scale bar");
+  compare_cmd->add_option("--side-by-side", cmp.side_by_side,
+                          "write A, B and the heatmap in one picture through the display view");
+  compare_cmd->add_option("--display", cmp.display, "OCIO display for --side-by-side")
+      ->capture_default_str();
+  compare_cmd->add_option("--view", cmp.view, "OCIO view for --side-by-side")->capture_default_str();
+  compare_cmd->add_flag("--json", cmp.json, "print the metrics as one JSON object");
+  compare_cmd->add_flag("--reference-test", cmp.reference_test,
+                        "per-pixel z-test against B's variance (alpha 0.01, Sidak-corrected); "
+                        "exit 0 when at least 99.5 % of pixels pass, 1 otherwise");
+  compare_cmd->add_flag("--fit-treemaker", cmp.fit_treemaker,
+                        "fit TREE-MAKER weights to A (not available in this build yet)");
 
   try {
     app.parse(argc, argv);
@@ -250,7 +343,7 @@ int main(int argc, char** argv) {
   try {
     if (*grow_cmd) return run_grow(grow);
     if (*render_cmd) return run_render(render);
-    if (*compare_cmd) return not_available("compare", "comes with the reference-image work");
+    if (*compare_cmd) return run_compare(cmp);
   } catch (const arbor::InputError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;

@@ -18,6 +18,7 @@ packages=(
   libtinyobjloader-dev   # tinyobjloader: OBJ meshes
   libgtest-dev libgmock-dev  # GoogleTest
   libbenchmark-dev       # Google Benchmark
+  fonts-dejavu-core      # the font of the scale bar in compare heatmaps
 )
 
 missing=()

@@ -13,6 +13,7 @@
 
 #include "arbor/version.h"
 #include "common/error.h"
+#include "tracer/image_file.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 
@@ -186,10 +187,14 @@ void write_png(const Image& img, const OutputDesc& o, const ColorPipeline& color
                                         "", &config)) {
     throw RuntimeFailure("cannot apply the display view for " + path + ": " + shown.geterror());
   }
+  write_imagebuf_atomic(shown, path, OIIO::TypeDesc::UINT8);
+}
+
+void write_imagebuf_atomic(const OIIO::ImageBuf& buf, const std::string& path, OIIO::TypeDesc type) {
   const std::string tmp = temporary_for(path);
-  if (!shown.write(tmp, OIIO::TypeDesc::UINT8)) {
+  if (!buf.write(tmp, type)) {
     std::remove(tmp.c_str());
-    throw RuntimeFailure("cannot write " + path + ": " + shown.geterror());
+    throw RuntimeFailure("cannot write " + path + ": " + buf.geterror());
   }
   commit(tmp, path);
 }

@@ -146,10 +146,78 @@ TEST(ArborCli, FailedWriteExitsOneAndLeavesNoFile) {
   EXPECT_FALSE(exists("/no/such/dir/tree.obj"));
 }
 
+// Writes a w x h EXR of constant RGB, optionally with variance channels.
+std::string write_exr(const char* name, int w, int h, float value, float variance) {
+  const std::string path = ::testing::TempDir() + name;
+  const int nch = variance >= 0 ? 6 : 3;
+  OIIO::ImageSpec spec(w, h, nch, OIIO::TypeDesc::FLOAT);
+  if (nch == 6) spec.channelnames = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
+  OIIO::ImageBuf buf(spec);
+  const float px[6] = {value, value, value, variance, variance, variance};
+  for (int y = 0; y < h; ++y) for (int x = 0; x < w; ++x) buf.setpixel(x, y, px);
+  EXPECT_TRUE(buf.write(path));
+  return path;
+}
+
+TEST(ArborCli, CompareMetricsJsonAndImages) {
+  const std::string a = write_exr("cmp_a.exr", 40, 30, 0.6f, 1e-4f);
+  const std::string b = write_exr("cmp_b.exr", 40, 30, 0.5f, 1e-4f);
+  const std::string heat = ::testing::TempDir() + "cmp_heat.png";
+  const std::string side = ::testing::TempDir() + "cmp_side.png";
+  std::remove(heat.c_str());
+  std::remove(side.c_str());
+  const CliRun r = arbor("compare " + a + " " + b + " --json --heatmap " + heat + " --side-by-side " + side);
+  EXPECT_EQ(r.code, 0) << r.err;
+  auto value = [&](const std::string& key) {
+    const auto at = r.out.find("\"" + key + "\": ");
+    EXPECT_NE(at, std::string::npos) << key << " in " << r.out;
+    return at == std::string::npos ? -1.0 : std::strtod(r.out.c_str() + at + key.size() + 4, nullptr);
+  };
+  EXPECT_NEAR(value("rmse"), 0.1, 1e-6);
+  EXPECT_NEAR(value("mean_abs"), 0.1, 1e-6);
+  EXPECT_NEAR(value("max_abs"), 0.1, 1e-6);
+  EXPECT_NEAR(value("rel_mse"), 0.01 / 0.26, 1e-6);
+  EXPECT_NEAR(value("psnr"), 20.0, 1e-4);
+  OIIO::ImageBuf h(heat), s(side);
+  ASSERT_TRUE(h.read()) << h.geterror();
+  EXPECT_EQ(h.spec().width, 40);
+  EXPECT_GT(h.spec().height, 30);  // the scale bar below
+  ASSERT_TRUE(s.read()) << s.geterror();
+  EXPECT_GT(s.spec().width, 3 * 40);
+
+  // Identical images: PSNR has no finite value and JSON spells it null.
+  const CliRun same = arbor("compare " + b + " " + b + " --json");
+  EXPECT_EQ(same.code, 0);
+  EXPECT_NE(same.out.find("\"psnr\": null"), std::string::npos) << same.out;
+}
+
+TEST(ArborCli, CompareReferenceTestExitCodes) {
+  const std::string ref = write_exr("rt_ref.exr", 16, 16, 0.5f, 1e-4f);
+  const std::string close = write_exr("rt_close.exr", 16, 16, 0.505f, 1e-4f);  // 0.35 sigma
+  const std::string far = write_exr("rt_far.exr", 16, 16, 0.6f, 1e-4f);        // 7 sigma
+  const CliRun pass = arbor("compare " + close + " " + ref + " --reference-test --json");
+  EXPECT_EQ(pass.code, 0) << pass.out << pass.err;
+  EXPECT_NE(pass.out.find("\"z_test_pass_fraction\": 1"), std::string::npos) << pass.out;
+  EXPECT_NE(pass.out.find("\"passed\": true"), std::string::npos) << pass.out;
+  const CliRun fail = arbor("compare " + far + " " + ref + " --reference-test");
+  EXPECT_EQ(fail.code, 1) << fail.out << fail.err;
+  EXPECT_NE(fail.out.find("FAIL"), std::string::npos) << fail.out;
+  // The reference must carry variance; inputs are never overwritten.
+  const std::string plain = write_exr("rt_plain.exr", 16, 16, 0.5f, -1.0f);
+  const CliRun novar = arbor("compare " + close + " " + plain + " --reference-test");
+  EXPECT_EQ(novar.code, 2);
+  EXPECT_NE(novar.err.find(plain + ": error: has no variance"), std::string::npos) << novar.err;
+  EXPECT_EQ(arbor("compare " + close + " " + ref + " --heatmap " + ref).code, 2);
+  EXPECT_EQ(arbor("compare " + close + " /no/such.exr").code, 2);
+  const CliRun small = arbor("compare " + close + " " + write_exr("rt_small.exr", 8, 8, 0.5f, 1e-4f));
+  EXPECT_EQ(small.code, 2);
+  EXPECT_NE(small.err.find("same size"), std::string::npos) << small.err;
+}
+
 TEST(ArborCli, UnbuiltCommandsSaySo) {
-  const CliRun r = arbor("compare a.exr b.exr");
-  EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find("not available in this build yet"), std::string::npos);
+  const CliRun fit = arbor("compare a.exr b.exr --fit-treemaker");
+  EXPECT_EQ(fit.code, 1);
+  EXPECT_NE(fit.err.find("does not write yet"), std::string::npos) << fit.err;
   const CliRun tm = arbor("render " + std::string(ARBOR_SOURCE_DIR) +
                           "/scenes/default.toml --integrator treemaker -o x.exr");
   EXPECT_EQ(tm.code, 1);

@@ -1,0 +1,141 @@
+// Tests of image comparison: the metrics on images with known differences, the z-test's
+// behaviour on synthetic noise of known variance (it passes pure noise, fails a bias), the
+// normal quantile, and the refusal of bad images.
+#include <cmath>
+#include <random>
+#include <string>
+
+#include <OpenImageIO/imagebuf.h>
+#include <gtest/gtest.h>
+
+#include "common/error.h"
+#include "expect_input_error.h"
+#include "tracer/compare.h"
+
+namespace arbor::trace {
+namespace {
+
+CompareImage flat(int w, int h, float value, float variance = -1.0f) {
+  CompareImage im;
+  im.path = "flat";
+  im.width = w;
+  im.height = h;
+  im.rgb.assign(static_cast<std::size_t>(w) * h * 3, value);
+  if (variance >= 0) im.variance.assign(im.rgb.size(), variance);
+  return im;
+}
+
+TEST(Compare, NormalQuantileMatchesTables) {
+  EXPECT_NEAR(normal_two_sided_critical(0.05), 1.959964, 1e-5);
+  EXPECT_NEAR(normal_two_sided_critical(0.01), 2.575829, 1e-5);
+  EXPECT_NEAR(normal_two_sided_critical(1e-6), 4.891638, 1e-5);
+}
+
+TEST(Compare, MetricsOfAConstantOffset) {
+  const CompareImage b = flat(8, 4, 0.5f), a = flat(8, 4, 0.6f);
+  const CompareMetrics m = compare_images(a, b);
+  EXPECT_NEAR(m.rmse, 0.1, 1e-6);
+  EXPECT_NEAR(m.mean_abs, 0.1, 1e-6);
+  EXPECT_NEAR(m.max_abs, 0.1, 1e-6);
+  EXPECT_NEAR(m.psnr, 20.0, 1e-4);  // 20 log10(1 / 0.1)
+  EXPECT_NEAR(m.rel_mse, 0.01 / (0.25 + 0.01), 1e-6);
+}
+
+TEST(Compare, MetricsFindTheWorstPixel) {
+  const CompareImage b = flat(8, 4, 0.5f);
+  CompareImage a = b;
+  a.rgb[3 * (2 * 8 + 5) + 1] = 0.9f;  // pixel (5, 2), green
+  const CompareMetrics m = compare_images(a, b);
+  EXPECT_NEAR(m.max_abs, 0.4, 1e-6);
+  EXPECT_EQ(m.max_x, 5);
+  EXPECT_EQ(m.max_y, 2);
+  EXPECT_NEAR(m.mean_abs, 0.4 / (8 * 4 * 3), 1e-7);
+  const CompareMetrics same = compare_images(b, b);
+  EXPECT_EQ(same.rmse, 0.0);
+  EXPECT_TRUE(std::isinf(same.psnr));
+}
+
+TEST(Compare, DifferentSizesAreRefused) {
+  EXPECT_THROW(compare_images(flat(8, 4, 0.5f), flat(4, 8, 0.5f)), InputError);
+}
+
+// A is the reference mean plus Gaussian noise of exactly the variance both images state.
+CompareImage noisy(const CompareImage& mean, float variance, float bias, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> noise(0.0f, std::sqrt(2.0f * variance));
+  CompareImage a = mean;
+  a.path = "noisy";
+  for (float& v : a.rgb) v += bias + noise(rng);
+  a.variance.assign(a.rgb.size(), variance);
+  return a;
+}
+
+TEST(Compare, ZTestPassesNoiseOfTheStatedVariance) {
+  const CompareImage b = flat(64, 64, 1.0f, 1e-4f);
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    const ZTest t = reference_z_test(noisy(b, 1e-4f, 0.0f, seed), b);
+    EXPECT_TRUE(t.passed) << "seed " << seed << ": " << t.pass_fraction;
+    EXPECT_GT(t.pass_fraction, 0.999);
+    EXPECT_EQ(t.pixels, 64 * 64);
+  }
+}
+
+TEST(Compare, ZTestUsesTheSidakCorrection) {
+  const CompareImage b = flat(64, 64, 1.0f, 1e-4f);
+  const ZTest t = reference_z_test(b, b);
+  const double n = 3.0 * 64 * 64;
+  EXPECT_NEAR(t.alpha_channel, 1.0 - std::pow(1.0 - 0.01, 1.0 / n), 1e-12);
+  EXPECT_NEAR(std::erfc(t.z_critical / std::sqrt(2.0)), t.alpha_channel, 1e-9);
+  EXPECT_EQ(t.failed, 0);
+}
+
+TEST(Compare, ZTestFailsABiasAndNoiseUnderstated) {
+  const CompareImage b = flat(64, 64, 1.0f, 1e-4f);
+  // A bias of 10 standard deviations of the difference fails nearly every pixel.
+  const ZTest biased = reference_z_test(noisy(b, 1e-4f, 10.0f * std::sqrt(2e-4f), 3), b);
+  EXPECT_FALSE(biased.passed);
+  EXPECT_LT(biased.pass_fraction, 0.01);
+  // Noise 4x the stated standard deviation: a few percent of pixels fail, enough to fail.
+  CompareImage loud = noisy(b, 16e-4f, 0.0f, 4);
+  loud.variance.assign(loud.rgb.size(), 1e-4f);
+  EXPECT_FALSE(reference_z_test(loud, b).passed);
+}
+
+TEST(Compare, ZTestNeedsTheReferenceVariance) {
+  try {
+    reference_z_test(flat(4, 4, 1.0f), flat(4, 4, 1.0f));
+    ADD_FAILURE() << "accepted a reference without variance";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.message().find("variance"), std::string::npos);
+  }
+}
+
+TEST(Compare, ReadingRefusesNonFinitePixels) {
+  const std::string path = ::testing::TempDir() + "compare_nan.exr";
+  OIIO::ImageBuf buf(OIIO::ImageSpec(4, 3, 3, OIIO::TypeDesc::FLOAT));
+  const float nan_px[3] = {0.0f, std::nanf(""), 0.0f};
+  buf.setpixel(2, 1, nan_px);
+  ASSERT_TRUE(buf.write(path));
+  arbor::testing::expect_input_error([&] { read_compare_image(path); }, path, 0, 0,
+                                     "pixel (2, 1) is not a finite number");
+  arbor::testing::expect_input_error([&] { read_compare_image(path + ".missing"); },
+                                     path + ".missing", 0, 0, "cannot read the image");
+}
+
+TEST(Compare, ReadingFindsVarianceChannels) {
+  const std::string path = ::testing::TempDir() + "compare_var.exr";
+  OIIO::ImageSpec spec(2, 2, 6, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
+  OIIO::ImageBuf buf(spec);
+  const float px[6] = {0.25f, 0.5f, 0.75f, 1e-3f, 2e-3f, 3e-3f};
+  for (int y = 0; y < 2; ++y) for (int x = 0; x < 2; ++x) buf.setpixel(x, y, px);
+  ASSERT_TRUE(buf.write(path));
+  const CompareImage im = read_compare_image(path);
+  ASSERT_EQ(im.variance.size(), 12u);
+  EXPECT_FLOAT_EQ(im.rgb[1], 0.5f);
+  EXPECT_FLOAT_EQ(im.variance[2], 3e-3f);
+  EXPECT_FALSE(im.half_beauty);
+}
+
+}  // namespace
+}  // namespace arbor::trace
