@@ -64,7 +64,14 @@ TEST(ArborCli, VersionAndHelp) {
   EXPECT_NE(h.out.find("--quality"), std::string::npos);
   EXPECT_NE(h.out.find(".obj or .ply"), std::string::npos);
   const CliRun top = arbor("--help");
-  EXPECT_NE(top.out.find("not available in this build yet"), std::string::npos);
+  EXPECT_NE(top.out.find("Compare image A against reference B"), std::string::npos) << top.out;
+  const CliRun c = arbor("compare --help");
+  EXPECT_EQ(c.code, 0);
+  for (const char* opt : {"--heatmap", "--side-by-side", "--json", "--reference-test", "--fit-treemaker"}) {
+    EXPECT_NE(c.out.find(opt), std::string::npos) << opt << " in " << c.out;
+  }
+  const CliRun r = arbor("render --help");
+  EXPECT_NE(r.out.find("treemaker: not yet"), std::string::npos) << r.out;
 }
 
 TEST(ArborCli, GrowPrintsTheContractStatistics) {
