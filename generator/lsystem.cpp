@@ -10,6 +10,7 @@
 
 #include "common/frame.h"
 #include "common/rng.h"
+#include "common/text_cursor.h"
 
 namespace arbor::gen {
 
@@ -17,7 +18,7 @@ namespace {
 
 class Parser {
  public:
-  Parser(const std::string& text, const std::string& path) : text_(text), path_(path) {}
+  Parser(const std::string& text, const std::string& path) : cursor_(text, path), path_(path) {}
 
   LSystem parse() {
     LSystem sys;
@@ -46,18 +47,10 @@ class Parser {
   }
 
  private:
-  bool at_end() const { return pos_ >= text_.size(); }
-  char peek() const { return text_[pos_]; }
-  SourceLocation here() const { return {path_, line_, column_}; }
-  void advance() {
-    if (text_[pos_] == '\n') {
-      ++line_;
-      column_ = 1;
-    } else {
-      ++column_;
-    }
-    ++pos_;
-  }
+  bool at_end() const { return cursor_.at_end(); }
+  char peek() const { return cursor_.peek(); }
+  SourceLocation here() const { return cursor_.here(); }
+  void advance() { cursor_.advance(); }
   void skip_space() {
     while (!at_end()) {
       if (std::isspace(static_cast<unsigned char>(peek()))) {
@@ -213,10 +206,8 @@ class Parser {
     }
   }
 
-  const std::string& text_;
+  TextCursor cursor_;
   std::string path_;
-  std::size_t pos_ = 0;
-  int line_ = 1, column_ = 1;
 };
 
 // Actions interpreted (of any kind) by one interpretation of a rule at `depth`: what bounds the

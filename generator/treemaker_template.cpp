@@ -8,6 +8,8 @@
 #include <cmath>
 #include <map>
 
+#include "common/text_cursor.h"
+
 namespace arbor::gen {
 
 const TmColor* TreeMakerTemplate::color(const std::string& name) const {
@@ -36,27 +38,27 @@ struct Token {
 
 class Lexer {
  public:
-  Lexer(const std::string& text, const std::string& path) : text_(text), path_(path) {}
+  Lexer(const std::string& text, const std::string& path) : cursor_(text, path) {}
 
   Token next() {
     skip();
     Token t;
-    t.where = {path_, line_, column_};
-    if (pos_ >= text_.size()) return t;
-    const char c = text_[pos_];
+    t.where = cursor_.here();
+    if (cursor_.at_end()) return t;
+    const char c = cursor_.peek();
     if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {
       t.kind = Token::Word;
-      while (pos_ < text_.size() && (std::isalnum(static_cast<unsigned char>(text_[pos_])) || text_[pos_] == '_')) {
-        t.text += text_[pos_];
+      while (!cursor_.at_end() && (std::isalnum(static_cast<unsigned char>(cursor_.peek())) || cursor_.peek() == '_')) {
+        t.text += cursor_.peek();
         advance();
       }
       return t;
     }
     if (std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.') {
       std::string s;
-      while (pos_ < text_.size() && (std::isdigit(static_cast<unsigned char>(text_[pos_])) ||
-                                     text_[pos_] == '.' || ((text_[pos_] == '-' || text_[pos_] == '+') && s.empty()))) {
-        s += text_[pos_];
+      while (!cursor_.at_end() && (std::isdigit(static_cast<unsigned char>(cursor_.peek())) ||
+                                     cursor_.peek() == '.' || ((cursor_.peek() == '-' || cursor_.peek() == '+') && s.empty()))) {
+        s += cursor_.peek();
         advance();
       }
       const char* b = s.data() + (s[0] == '+' ? 1 : 0);
@@ -78,26 +80,15 @@ class Lexer {
   }
 
  private:
-  void advance() {
-    if (text_[pos_] == '\n') {
-      ++line_;
-      column_ = 1;
-    } else {
-      ++column_;
-    }
-    ++pos_;
-  }
+  void advance() { cursor_.advance(); }
   void skip() {
-    while (pos_ < text_.size()) {
-      if (std::isspace(static_cast<unsigned char>(text_[pos_]))) advance();
-      else if (text_[pos_] == '#') { while (pos_ < text_.size() && text_[pos_] != '\n') advance(); }
+    while (!cursor_.at_end()) {
+      if (std::isspace(static_cast<unsigned char>(cursor_.peek()))) advance();
+      else if (cursor_.peek() == '#') { while (!cursor_.at_end() && cursor_.peek() != '\n') advance(); }
       else break;
     }
   }
-  const std::string& text_;
-  std::string path_;
-  std::size_t pos_ = 0;
-  int line_ = 1, column_ = 1;
+  TextCursor cursor_;
 };
 
 class Parser {
