@@ -30,27 +30,42 @@ T wrapped_bilinear(const std::vector<T>& values, int width, int height, double u
   return (at(ix, iy) * (1 - tx) + at(ix + 1, iy) * tx) * (1 - ty) +
          (at(ix, iy + 1) * (1 - tx) + at(ix + 1, iy + 1) * tx) * ty;
 }
-}  // namespace
-
-HeightMap::HeightMap(const std::string& path) {
+OIIO::ImageBuf read_float_image(const std::string& path) {
   OIIO::ImageBuf image(path);
   if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
     throw InputError({path, 0, 0}, "cannot read the image: " + image.geterror());
   }
+  return image;
+}
+
+// Every pixel of `image` through `texel(px, channels, x, y)`, row by row; sets width and height.
+template <typename T, typename Texel>
+std::vector<T> load_texels(const OIIO::ImageBuf& image, const std::string& path, int& width,
+                           int& height, Texel texel) {
   const OIIO::ImageSpec& spec = image.spec();
-  width_ = spec.width;
-  height_ = spec.height;
-  if (width_ < 1 || height_ < 1) throw InputError({path, 0, 0}, "the image is empty");
-  values_.resize(static_cast<std::size_t>(width_) * height_);
+  width = spec.width;
+  height = spec.height;
+  if (width < 1 || height < 1) throw InputError({path, 0, 0}, "the image is empty");
+  std::vector<T> values(static_cast<std::size_t>(width) * height);
   std::vector<float> px(static_cast<std::size_t>(spec.nchannels));
-  for (int y = 0; y < height_; ++y) {
-    for (int x = 0; x < width_; ++x) {
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
       image.getpixel(x, y, px.data(), spec.nchannels);
-      const float v = spec.nchannels >= 3 ? 0.2126f * px[0] + 0.7152f * px[1] + 0.0722f * px[2] : px[0];
-      if (!std::isfinite(v)) throw InputError({path, 0, 0}, "the image has a pixel that is not finite");
-      values_[static_cast<std::size_t>(y) * width_ + x] = v;
+      values[static_cast<std::size_t>(y) * width + x] = texel(px.data(), spec.nchannels, x, y);
     }
   }
+  return values;
+}
+
+}  // namespace
+
+HeightMap::HeightMap(const std::string& path) {
+  values_ = load_texels<float>(read_float_image(path), path, width_, height_,
+                               [&](const float* px, int channels, int, int) {
+    const float v = channels >= 3 ? 0.2126f * px[0] + 0.7152f * px[1] + 0.0722f * px[2] : px[0];
+    if (!std::isfinite(v)) throw InputError({path, 0, 0}, "the image has a pixel that is not finite");
+    return v;
+  });
 }
 
 HeightMap::HeightMap(std::vector<float> values, int width, int height)
@@ -61,10 +76,7 @@ float HeightMap::sample(double u, double v) const {
 }
 
 ColorMap::ColorMap(const std::string& path, const std::string& ocio_config) {
-  OIIO::ImageBuf image(path);
-  if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
-    throw InputError({path, 0, 0}, "cannot read the image: " + image.geterror());
-  }
+  const OIIO::ImageBuf image = read_float_image(path);
   // OIIO names the file's encoding ("sRGB" for PNG/JPEG, "Linear" for EXR).
   const std::string declared = image.spec().get_string_attribute("oiio:ColorSpace", "Linear");
   const bool srgb = declared.find("sRGB") != std::string::npos || declared.find("srgb") != std::string::npos;
@@ -78,25 +90,17 @@ ColorMap::ColorMap(const std::string& path, const std::string& ocio_config) {
   } else {
     linear = image;
   }
-  const OIIO::ImageSpec& spec = linear.spec();
-  width_ = spec.width;
-  height_ = spec.height;
-  if (width_ < 1 || height_ < 1) throw InputError({path, 0, 0}, "the image is empty");
-  values_.resize(static_cast<std::size_t>(width_) * height_);
-  std::vector<float> px(static_cast<std::size_t>(spec.nchannels));
-  for (int y = 0; y < height_; ++y) {
-    for (int x = 0; x < width_; ++x) {
-      linear.getpixel(x, y, px.data(), spec.nchannels);
-      const glm::vec3 c = spec.nchannels >= 3 ? glm::vec3(px[0], px[1], px[2]) : glm::vec3(px[0]);
-      for (int k = 0; k < 3; ++k) {
-        if (!std::isfinite(c[k]) || c[k] < 0.0f || c[k] > 1.0f + 1e-4f) {
-          throw InputError({path, 0, 0}, "albedo texels must be in [0, 1]; pixel (" +
-                                             std::to_string(x) + ", " + std::to_string(y) + ") is not");
-        }
+  values_ = load_texels<glm::vec3>(linear, path, width_, height_,
+                                   [&](const float* px, int channels, int x, int y) {
+    const glm::vec3 c = channels >= 3 ? glm::vec3(px[0], px[1], px[2]) : glm::vec3(px[0]);
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(c[k]) || c[k] < 0.0f || c[k] > 1.0f + 1e-4f) {
+        throw InputError({path, 0, 0}, "albedo texels must be in [0, 1]; pixel (" +
+                                           std::to_string(x) + ", " + std::to_string(y) + ") is not");
       }
-      values_[static_cast<std::size_t>(y) * width_ + x] = glm::min(c, glm::vec3(1.0f));
     }
-  }
+    return glm::min(c, glm::vec3(1.0f));
+  });
 }
 
 glm::vec3 ColorMap::sample(double u, double v) const {
