@@ -37,12 +37,7 @@ double worst_radius_curvature(const CurveSet& c, std::size_t i) {
   for (int k = 0; k <= 32; ++k) {
     const float u = static_cast<float>(0.5 * (1.0 - std::cos(kPi * k / 32.0)));
     const glm::vec4 p = c.position(i, u);
-    const glm::dvec3 d1(c.derivative(i, u));
-    // Second derivative of the Hermite basis, evaluated directly.
-    const glm::vec4 p0 = c.points[2 * i], p1 = c.points[2 * i + 1];
-    const glm::vec4 m0 = c.tangents[2 * i], m1 = c.tangents[2 * i + 1];
-    const glm::dvec3 d2(glm::vec3((12 * u - 6) * p0 + (6 * u - 4) * m0 + (-12 * u + 6) * p1 +
-                                  (6 * u - 2) * m1));
+    const glm::dvec3 d1(c.derivative(i, u)), d2(c.second_derivative(i, u));
     const double speed = glm::length(d1);
     if (speed < 1e-12) continue;
     const double curvature = glm::length(glm::cross(d1, d2)) / (speed * speed * speed);
@@ -361,6 +356,11 @@ glm::vec4 CurveSet::derivative(std::size_t i, float u) const {
   const float u2 = u * u;
   return (6 * u2 - 6 * u) * points[2 * i] + (3 * u2 - 4 * u + 1) * tangents[2 * i] +
          (-6 * u2 + 6 * u) * points[2 * i + 1] + (3 * u2 - 2 * u) * tangents[2 * i + 1];
+}
+
+glm::vec4 CurveSet::second_derivative(std::size_t i, float u) const {
+  return (12 * u - 6) * points[2 * i] + (6 * u - 4) * tangents[2 * i] +
+         (-12 * u + 6) * points[2 * i + 1] + (6 * u - 2) * tangents[2 * i + 1];
 }
 
 TreeGeometry build_tree_geometry(const Skeleton& sk, const GeometryOptions& o) {

@@ -36,6 +36,7 @@ struct CurveSet {
   std::size_t size() const { return segments.size(); }
   glm::vec4 position(std::size_t i, float u) const;    // (x, y, z, radius)
   glm::vec4 derivative(std::size_t i, float u) const;  // d/du of (x, y, z, radius)
+  glm::vec4 second_derivative(std::size_t i, float u) const;  // d²/du² of (x, y, z, radius)
 };
 
 // One displaced surface of a trunk limb: width vertices around (the last column repeats the
