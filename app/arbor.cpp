@@ -224,10 +224,7 @@ int run_compare(const CompareArgs& args) {
   const trace::CompareMetrics m = trace::compare_images(a, b);
   trace::ZTest z;
   if (args.reference_test) z = trace::reference_z_test(a, b);
-  if (!args.heatmap.empty()) trace::write_heatmap(a, b, args.heatmap);
-  if (!args.side_by_side.empty()) {
-    trace::write_side_by_side(a, b, args.display, args.view, args.side_by_side);
-  }
+  trace::write_compare_pictures(a, b, {args.heatmap, args.side_by_side, args.display, args.view});
   if (args.json) {
     std::printf("{\"rmse\": %s, \"mean_abs\": %s, \"rel_mse\": %s, \"max_abs\": %s, "
                 "\"max_at\": [%d, %d], \"psnr\": %s",

@@ -106,6 +106,13 @@ OIIO::ImageBuf heatmap_buffer(const CompareImage& a, const CompareImage& b) {
   return buf;
 }
 
+// The variance of rounding v to a half float: 11 significant bits leave a uniform error one
+// ulp wide (ulp²/12); below the smallest normal half the ulp stays that of 2^-14.
+double half_rounding_variance(double v) {
+  const double ulp = std::ldexp(1.0, std::ilogb(std::max(std::fabs(v), 6.1e-5)) - 10);
+  return ulp * ulp / 12.0;
+}
+
 }  // namespace
 
 CompareImage read_compare_image(const std::string& path) {
@@ -218,13 +225,8 @@ ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alph
       const std::size_t i = 3 * p + c;
       const double d = static_cast<double>(a.rgb[i]) - b.rgb[i];
       double var = b.variance[i] + (t.a_has_variance ? a.variance[i] : 0.0);
-      // Half floats keep 11 significant bits: rounding adds a uniform error of one ulp's width.
-      auto quantisation = [](double v) {
-        const double ulp = std::ldexp(1.0, std::ilogb(std::max(std::fabs(v), 6.1e-5)) - 10);
-        return ulp * ulp / 12.0;
-      };
-      if (b.half_beauty) var += quantisation(b.rgb[i]);
-      if (a.half_beauty) var += quantisation(a.rgb[i]);
+      if (b.half_beauty) var += half_rounding_variance(b.rgb[i]);
+      if (a.half_beauty) var += half_rounding_variance(a.rgb[i]);
       ok = var > 0 ? std::fabs(d) <= t.z_critical * std::sqrt(var) : d == 0.0;
     }
     if (!ok) ++t.failed;
@@ -234,45 +236,48 @@ ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alph
   return t;
 }
 
-void write_heatmap(const CompareImage& a, const CompareImage& b, const std::string& path) {
+void write_compare_pictures(const CompareImage& a, const CompareImage& b,
+                            const ComparePictures& pictures) {
   require_same_size(a, b);
-  write_imagebuf_atomic(heatmap_buffer(a, b), path, OIIO::TypeDesc::UINT8);
-}
-
-void write_side_by_side(const CompareImage& a, const CompareImage& b, const std::string& display,
-                        const std::string& view, const std::string& path) {
-  require_same_size(a, b);
-  OIIO::ColorConfig config(ocio_config_path());
-  auto shown = [&](const CompareImage& im) {
-    OIIO::ImageBuf out;
-    // Images not written by arbor are taken to be in the config's scene_linear role.
-    const std::string from = im.colorspace.empty() ? "scene_linear" : im.colorspace;
+  if (pictures.heatmap.empty() && pictures.side_by_side.empty()) return;
+  const OIIO::ImageBuf heat = heatmap_buffer(a, b);
+  OIIO::ImageBuf row;
+  if (!pictures.side_by_side.empty()) {
+    OIIO::ColorConfig config(ocio_config_path());
     const std::vector<std::string> names = config.getColorSpaceNames();
-    if (!im.colorspace.empty() && std::find(names.begin(), names.end(), from) == names.end()) {
-      throw InputError({im.path, 0, 0}, "its colour space \"" + from + "\" is not in " +
-                                            ocio_config_path());
-    }
-    if (!OIIO::ImageBufAlgo::ociodisplay(out, rgb_buffer(im, im.rgb), display, view, from, "",
-                                         false, "", "", &config)) {
-      throw InputError({im.path, 0, 0}, "cannot show it through display \"" + display +
-                                            "\", view \"" + view + "\": " + out.geterror());
-    }
-    return out;
-  };
-  const OIIO::ImageBuf sa = shown(a), sb = shown(b), heat = heatmap_buffer(a, b);
-  const int gap = 4;
-  OIIO::ImageBuf row(OIIO::ImageSpec(3 * a.width + 2 * gap, heat.spec().height, 3,
-                                     OIIO::TypeDesc::FLOAT));
-  OIIO::ImageBufAlgo::zero(row);
-  const float white[3] = {1.0f, 1.0f, 1.0f};
-  bool ok = OIIO::ImageBufAlgo::paste(row, 0, 0, 0, 0, sa) &&
-            OIIO::ImageBufAlgo::paste(row, a.width + gap, 0, 0, 0, sb) &&
-            OIIO::ImageBufAlgo::paste(row, 2 * (a.width + gap), 0, 0, 0, heat);
-  if (!ok) throw RuntimeFailure("cannot compose " + path + ": " + row.geterror());
-  OIIO::ImageBufAlgo::render_text(row, 4, a.height + 22, "A", 12, kFont, white);
-  OIIO::ImageBufAlgo::render_text(row, a.width + gap + 4, a.height + 22, "B", 12, kFont, white);
-  (void)row.geterror();
-  write_imagebuf_atomic(row, path, OIIO::TypeDesc::UINT8);
+    auto shown = [&](const CompareImage& im) {
+      OIIO::ImageBuf out;
+      // Images not written by arbor are taken to be in the config's scene_linear role.
+      const std::string from = im.colorspace.empty() ? "scene_linear" : im.colorspace;
+      if (!im.colorspace.empty() && std::find(names.begin(), names.end(), from) == names.end()) {
+        throw InputError({im.path, 0, 0}, "its colour space \"" + from + "\" is not in " +
+                                              ocio_config_path());
+      }
+      if (!OIIO::ImageBufAlgo::ociodisplay(out, rgb_buffer(im, im.rgb), pictures.display,
+                                           pictures.view, from, "", false, "", "", &config)) {
+        throw InputError({im.path, 0, 0}, "cannot show it through display \"" + pictures.display +
+                                              "\", view \"" + pictures.view + "\": " + out.geterror());
+      }
+      return out;
+    };
+    const OIIO::ImageBuf sa = shown(a), sb = shown(b);
+    const int gap = 4;
+    row.reset(OIIO::ImageSpec(3 * a.width + 2 * gap, heat.spec().height, 3, OIIO::TypeDesc::FLOAT));
+    OIIO::ImageBufAlgo::zero(row);
+    const float white[3] = {1.0f, 1.0f, 1.0f};
+    const bool ok = OIIO::ImageBufAlgo::paste(row, 0, 0, 0, 0, sa) &&
+                    OIIO::ImageBufAlgo::paste(row, a.width + gap, 0, 0, 0, sb) &&
+                    OIIO::ImageBufAlgo::paste(row, 2 * (a.width + gap), 0, 0, 0, heat);
+    if (!ok) throw RuntimeFailure("cannot compose " + pictures.side_by_side + ": " + row.geterror());
+    OIIO::ImageBufAlgo::render_text(row, 4, a.height + 22, "A", 12, kFont, white);
+    OIIO::ImageBufAlgo::render_text(row, a.width + gap + 4, a.height + 22, "B", 12, kFont, white);
+    (void)row.geterror();
+  }
+  // Both pictures are made before either is written: a bad view leaves neither behind.
+  if (!pictures.heatmap.empty()) write_imagebuf_atomic(heat, pictures.heatmap, OIIO::TypeDesc::UINT8);
+  if (!pictures.side_by_side.empty()) {
+    write_imagebuf_atomic(row, pictures.side_by_side, OIIO::TypeDesc::UINT8);
+  }
 }
 
 }  // namespace arbor::trace

@@ -48,14 +48,19 @@ struct ZTest {
 ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alpha = 0.01,
                        double required = 0.995);
 
-// A false-colour image of the per-pixel error (mean over RGB of |a-b|), 0 .. the largest error,
-// with a labelled scale bar below it. Written atomically as an 8-bit PNG (or any format by
-// extension).
-void write_heatmap(const CompareImage& a, const CompareImage& b, const std::string& path);
+struct ComparePictures {
+  // A false-colour image of the per-pixel error (mean over RGB of |a-b|), 0 .. the largest
+  // error, with a labelled scale bar below it.
+  std::string heatmap;
+  // A, B (through the OCIO display/view from each file's colour space) and the heatmap in a row.
+  std::string side_by_side;
+  std::string display = "sRGB", view = "ACES 1.0 SDR-video";
+};
 
-// A, B (through the OCIO display/view from each file's colour space) and the heatmap in one row.
-void write_side_by_side(const CompareImage& a, const CompareImage& b, const std::string& display,
-                        const std::string& view, const std::string& path);
+// Writes the pictures whose paths are set, atomically (8-bit; format by extension). Both are
+// made before either is written, so an unknown display or view leaves neither behind.
+void write_compare_pictures(const CompareImage& a, const CompareImage& b,
+                            const ComparePictures& pictures);
 
 // The two-sided standard-normal critical value: P(|Z| > z) = p.
 double normal_two_sided_critical(double p);

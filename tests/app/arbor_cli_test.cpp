@@ -192,6 +192,16 @@ TEST(ArborCli, CompareMetricsJsonAndImages) {
   ASSERT_TRUE(s.read()) << s.geterror();
   EXPECT_GT(s.spec().width, 3 * 40);
 
+  // An unknown view is refused before either picture is written.
+  std::remove(heat.c_str());
+  std::remove(side.c_str());
+  const CliRun bad = arbor("compare " + a + " " + b + " --heatmap " + heat + " --side-by-side " + side +
+                           " --view 'No Such View'");
+  EXPECT_EQ(bad.code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("No Such View"), std::string::npos) << bad.err;
+  EXPECT_FALSE(exists(heat));
+  EXPECT_FALSE(exists(side));
+
   // Identical images: PSNR has no finite value and JSON spells it null.
   const CliRun same = arbor("compare " + b + " " + b + " --json");
   EXPECT_EQ(same.code, 0);
