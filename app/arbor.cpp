@@ -1,5 +1,6 @@
 // The arbor command line: parses arguments, calls the libraries, maps errors to exit codes
 // (0 success, 1 the work failed, 2 bad input or usage).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -124,23 +125,41 @@ void check_writable(const std::string& path) {
   std::remove((dir + "/.arbor-write-test").c_str());
 }
 
+// The weights for the EXR's arbor:treemaker_weights: one set when every tree shares it.
+std::string treemaker_weights_text(const arbor::trace::World& world) {
+  std::string text;
+  for (std::size_t i = 0; i < world.instance_count(); ++i) {
+    const arbor::gen::TmLight& w = world.look(static_cast<int>(i)).treemaker;
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "ambient=%.9g lambert=%.9g height=%.9g radius=%.9g angle=%.9g",
+                  w.ambient, w.lambert, w.height, w.radius, w.angle);
+    if (i == 0) text = buf;
+    else if (text != buf) return "per tree";
+  }
+  return text;
+}
+
 int run_render(const RenderArgs& a) {
   using namespace arbor;
   trace::SceneDesc scene = trace::load_scene(a.scene);
   trace::RenderSettings& r = scene.render;
-  if (a.spp > 0) r.spp = a.spp;
+  if (!a.integrator.empty()) r.integrator = a.integrator;
+  // --spp sets the sample count of the integrator in use (the scene keeps one for each).
+  const bool treemaker = r.integrator == "treemaker";
+  if (a.spp > 0) (treemaker ? r.treemaker_spp : r.spp) = a.spp;
   if (a.width > 0) r.width = a.width;
   if (a.height > 0) r.height = a.height;
   if (a.seed >= 0) r.seed = static_cast<std::uint64_t>(a.seed);
   r.threads = a.threads;
-  if (!a.integrator.empty()) r.integrator = a.integrator;
   if (a.time_set) {
     for (trace::TreeDesc& t : scene.trees) t.time = a.time;
   }
   if (!a.exr.empty()) scene.output.exr = a.exr;
   if (!a.png.empty()) scene.output.png = a.png;
-  if (r.integrator == "treemaker") {
-    throw RuntimeFailure("the treemaker integrator is not available in this build yet; use --integrator path");
+  if (!treemaker &&
+      std::find(scene.output.aovs.begin(), scene.output.aovs.end(), "treemaker") != scene.output.aovs.end()) {
+    throw InputError({a.scene, 0, 0}, "output.aovs lists \"treemaker\", which only the treemaker "
+                                      "integrator writes (render it with --integrator treemaker)");
   }
   if (scene.output.exr.empty() && scene.output.png.empty()) {
     throw InputError({a.scene, 0, 0}, "nothing to write: give -o OUT.exr, --png OUT.png or an [output] table");
@@ -162,16 +181,20 @@ int run_render(const RenderArgs& a) {
   const trace::Sky sky(scene.sky, scene.sun, trace::xyz_to_scene_linear());
   Progress progress("render", 1);
   trace::RenderStats stats;
-  const trace::Image image = trace::render_path(scene, world, sky, color.to_output(), &progress, stats);
+  const trace::Image image =
+      treemaker ? trace::render_treemaker(scene, world, sky, color.to_output(), &progress, stats)
+                : trace::render_path(scene, world, sky, color.to_output(), &progress, stats);
   progress.finish();
-  trace::ExrMetadata meta{scene.path, r.seed, r.spp, r.integrator, stats};
+  const int spp = treemaker ? r.treemaker_spp : r.spp;
+  trace::ExrMetadata meta{scene.path, r.seed, spp, r.integrator, stats, {}};
+  if (treemaker) meta.treemaker_weights = treemaker_weights_text(world);
   if (!scene.output.exr.empty()) trace::write_exr(image, scene.output, meta, scene.output.exr);
   if (!scene.output.png.empty()) trace::write_png(image, scene.output, color, scene.output.png);
   const double seconds = std::max(stats.seconds, 1e-9);
   std::fprintf(stderr,
                "arbor: rendered %dx%d at %d spp in %.2f s (%.3g samples/s, %.3g rays/s; %zu trees "
                "from %zu prototypes, built in %.2f s)\n",
-               r.width, r.height, r.spp, stats.seconds, double(stats.samples) / seconds,
+               r.width, r.height, spp, stats.seconds, double(stats.samples) / seconds,
                double(stats.rays) / seconds, world.stats().instances, world.stats().prototypes,
                world.stats().build_seconds);
   if (stats.nonfinite > 0) {
@@ -297,14 +320,15 @@ int main(int argc, char** argv) {
                      "grow even a tree estimated at over 10 million stems or 100 million leaves");
 
   RenderArgs render;
-  CLI::App* render_cmd = app.add_subcommand("render", "Render a scene file (path tracer) to EXR/PNG");
+  CLI::App* render_cmd = app.add_subcommand("render", "Render a scene file to EXR/PNG (path tracer, or TREE-MAKER's shading)");
   render_cmd->add_option("SCENE", render.scene, "scene file (.toml)")->required();
   render_cmd->add_option("-o,--output", render.exr, "EXR to write (overrides [output] exr)");
   render_cmd->add_option("--png", render.png, "PNG to write through the display view");
-  render_cmd->add_option("--spp", render.spp, "samples per pixel")->check(CLI::Range(1, 1 << 20));
+  render_cmd->add_option("--spp", render.spp, "samples per pixel of the integrator in use "
+                         "(overrides render.spp, or render.treemaker_spp for treemaker)")->check(CLI::Range(1, 1 << 20));
   render_cmd->add_option("--seed", render.seed, "random seed")->check(CLI::NonNegativeNumber);
   render_cmd->add_option("--threads", render.threads, "threads (0: all cores)")->check(CLI::Range(0, 1024));
-  render_cmd->add_option("--integrator", render.integrator, "path (treemaker: not yet)")
+  render_cmd->add_option("--integrator", render.integrator, "path (exact) or treemaker (TREE-MAKER's approximate shading)")
       ->check(CLI::IsMember({"path", "treemaker"}));
   render_cmd->add_option("--width", render.width, "image width")->check(CLI::Range(1, 16384));
   render_cmd->add_option("--height", render.height, "image height")->check(CLI::Range(1, 16384));

@@ -4,11 +4,13 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "tracer/integrator_path.h"
+#include "tracer/integrator_treemaker.h"
 #include "tracer/scene_desc.h"
 
 namespace arbor {
@@ -24,6 +26,10 @@ struct Image {
   std::vector<glm::vec3> albedo;    // first hit, output colour space
   std::vector<glm::vec3> normal;    // first hit, world space
   std::vector<float> depth;         // distance to the first hit along the camera ray
+  // Integrator-specific AOVs (the treemaker integrator's), pixel means: extra_names.size()
+  // floats per pixel; colour triples are in the output colour space, like the beauty.
+  std::vector<std::string> extra_names;
+  std::vector<float> extra;
 };
 
 struct RenderStats {
@@ -39,6 +45,11 @@ using ColorTransform = std::function<void(float rgb[3])>;
 // sample index, seed), and each pixel is accumulated in sample order by one task.
 Image render_path(const SceneDesc& scene, const World& world, const Sky& sky,
                   const ColorTransform& to_output, Progress* progress, RenderStats& stats);
+
+// Renders with the treemaker integrator at scene.render.treemaker_spp samples per pixel (they
+// only anti-alias: its shade has no noise). Fills extra_names/extra with the "treemaker" AOVs.
+Image render_treemaker(const SceneDesc& scene, const World& world, const Sky& sky,
+                       const ColorTransform& to_output, Progress* progress, RenderStats& stats);
 
 // Tent filter of radius 1 pixel: maps u in [0,1) to an offset in (-1, 1) distributed ∝ 1 - |x|.
 float sample_tent(float u);

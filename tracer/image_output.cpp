@@ -123,6 +123,12 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta,
   // Depth and variance keep full precision: reference tests divide by the variance.
   if (depth) { names.emplace_back("Z"); formats.push_back(OIIO::TypeDesc::FLOAT); }
   if (variance) for (const char* c : {"variance.R", "variance.G", "variance.B"}) { names.emplace_back(c); formats.push_back(OIIO::TypeDesc::FLOAT); }
+  const bool treemaker = wants("treemaker");
+  if (treemaker && img.extra_names.empty()) {
+    throw InputError({}, "output.aovs \"treemaker\" needs the treemaker integrator (--integrator treemaker)");
+  }
+  // The factors and contributions stay float: compare --fit-treemaker solves with them.
+  if (treemaker) for (const std::string& c : img.extra_names) { names.push_back(c); formats.push_back(OIIO::TypeDesc::FLOAT); }
 
   const int nch = static_cast<int>(names.size());
   OIIO::ImageSpec spec(img.width, img.height, nch, formats[0]);
@@ -138,6 +144,7 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta,
   spec.attribute("arbor:render_seconds", static_cast<float>(meta.stats.seconds));
   spec.attribute("arbor:nonfinite_samples", std::to_string(meta.stats.nonfinite));
   spec.attribute("arbor:variance", "variance of the pixel mean (sample variance / spp)");
+  if (!meta.treemaker_weights.empty()) spec.attribute("arbor:treemaker_weights", meta.treemaker_weights);
   spec.attribute("compression", "zip");
   // The EXR standard's own statement of the colour space, for the spaces arbor's config defines.
   const struct { const char* name; float c[8]; } primaries[] = {
@@ -159,6 +166,10 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta,
     if (normal) put(img.normal[p]);
     if (depth) data[k++] = img.depth[p];
     if (variance) put(img.variance[p]);
+    if (treemaker) {
+      const std::size_t e = img.extra_names.size();
+      for (std::size_t i = 0; i < e; ++i) data[k++] = img.extra[p * e + i];
+    }
   }
   const std::string tmp = temporary_for(path);
   auto out = OIIO::ImageOutput::create(tmp);

@@ -35,10 +35,15 @@ struct ExrMetadata {
   int spp = 0;
   std::string integrator;
   RenderStats stats;
+  // The treemaker integrator's weights as "ambient=… lambert=… height=… radius=… angle=…" when
+  // every tree shares them, "per tree" when they differ; empty for the path integrator.
+  std::string treemaker_weights;
 };
 
 // Writes the EXR atomically (a temporary beside it, renamed when complete). Channels: R G B,
-// then the requested AOVs: albedo.{R,G,B}, N.{X,Y,Z}, Z, variance.{R,G,B}.
+// then the requested AOVs: albedo.{R,G,B}, N.{X,Y,Z}, Z, variance.{R,G,B}, and for "treemaker"
+// the image's extra channels (float). Throws InputError when "treemaker" is asked of an image
+// that has none (rendered by the path integrator).
 void write_exr(const Image& image, const OutputDesc& output, const ExrMetadata& meta,
                const std::string& path);
 

@@ -83,6 +83,28 @@ glm::vec3 bumped_normal(const SurfaceHit& s, const TreeLook& look) {
   return glm::normalize(bumped);
 }
 
+// What multiplies a leaf's reflectance and transmittance: its albedo map and primitive colour.
+glm::vec3 leaf_tint(const TreeLook& look, const SurfaceHit& s) {
+  const glm::vec3 tex = look.leaf_albedo_map ? look.leaf_albedo_map->sample(s.uv.x, s.uv.y) : glm::vec3(1.0f);
+  return tex * s.color;
+}
+
+// The reflectance of the leaf side the ray hit.
+glm::vec3 leaf_side(const TreeLook& look, const SurfaceHit& s) {
+  return s.material == gen::kMaterialLeafBack ? look.leaf_back : look.leaf_front;
+}
+
+glm::vec3 bark_albedo(const TreeLook& look, const SurfaceHit& s) {
+  glm::vec3 albedo = look.bark_albedo * s.color;
+  if (look.bark_albedo_map) {
+    // Tiled like the bump map: whole repeats round the limb, every bump_tile metres along it.
+    constexpr double kTwoPi = 6.283185307179586;
+    const double repeats = std::max(1.0, std::round(kTwoPi * s.bark.radius / look.bump_tile));
+    albedo *= look.bark_albedo_map->sample(s.bark.azimuth / kTwoPi * repeats, s.bark.along / look.bump_tile);
+  }
+  return albedo;
+}
+
 Shading shade(const World& world, const WorldHit& hit) {
   Shading sh;
   const SurfaceHit& s = hit.surface;
@@ -102,19 +124,11 @@ Shading shade(const World& world, const WorldHit& hit) {
     const TreeLook& look = world.look(hit.instance);
     if (s.kind == SurfaceKind::Leaf) {
       sh.leaf = true;
-      const glm::vec3 r = s.material == gen::kMaterialLeafBack ? look.leaf_back : look.leaf_front;
-      const glm::vec3 tex = look.leaf_albedo_map ? look.leaf_albedo_map->sample(s.uv.x, s.uv.y) : glm::vec3(1.0f);
-      sh.leaf_bsdf.reflectance = glm::dvec3(r * tex * s.color);
-      sh.leaf_bsdf.transmittance = glm::dvec3(look.leaf_transmittance * tex * s.color);
+      const glm::vec3 tint = leaf_tint(look, s);
+      sh.leaf_bsdf.reflectance = glm::dvec3(leaf_side(look, s) * tint);
+      sh.leaf_bsdf.transmittance = glm::dvec3(look.leaf_transmittance * tint);
     } else {
-      glm::vec3 albedo = look.bark_albedo * s.color;
-      if (look.bark_albedo_map) {
-        // Tiled like the bump map: whole repeats round the limb, every bump_tile metres along it.
-        constexpr double kTwoPi = 6.283185307179586;
-        const double repeats = std::max(1.0, std::round(kTwoPi * s.bark.radius / look.bump_tile));
-        albedo *= look.bark_albedo_map->sample(s.bark.azimuth / kTwoPi * repeats, s.bark.along / look.bump_tile);
-      }
-      sh.lambert.albedo = glm::dvec3(albedo);
+      sh.lambert.albedo = glm::dvec3(bark_albedo(look, s));
       sh.lambert.sigma = look.bark_roughness;
       sh.normal = bumped_normal(s, look);
     }
@@ -125,6 +139,18 @@ Shading shade(const World& world, const WorldHit& hit) {
 }
 
 }  // namespace
+
+glm::vec3 surface_albedo(const World& world, const WorldHit& hit) {
+  if (hit.ground) return world.ground_albedo();
+  if (hit.mesh) {
+    const MeshLook& m = *hit.mesh;
+    if (m.kind != MeshLook::Kind::Leaf) return m.albedo;
+    return hit.mesh_front ? m.leaf_front : m.leaf_back;
+  }
+  const TreeLook& look = world.look(hit.instance);
+  const SurfaceHit& s = hit.surface;
+  return s.kind == SurfaceKind::Leaf ? leaf_side(look, s) * leaf_tint(look, s) : bark_albedo(look, s);
+}
 
 Ray spawn_ray(const glm::vec3& p, const glm::vec3& ng, const glm::vec3& dir) {
   Ray r;

@@ -35,6 +35,11 @@ class PathIntegrator {
   int max_depth_;
 };
 
+// The diffuse colour at a hit, scene-linear, as the path integrator shades it: the bark albedo
+// with its map and the primitive's colour, the reflectance of the leaf side that was hit (with
+// its map and colour), a mesh material's or the ground's albedo. The albedo AOV is this.
+glm::vec3 surface_albedo(const World& world, const WorldHit& hit);
+
 // How far a new ray starts from a surface along its geometric normal (metres): 2e-5 + 4e-6 × the
 // largest coordinate — above Embree's float rounding of hit points (including its iterative
 // round-curve intersection) at that distance from the origin, and far below twig radii (≥ 1 mm).

@@ -23,6 +23,7 @@ struct RenderSettings {
   std::uint64_t seed = 1;
   std::string integrator = "path";  // "path" | "treemaker"
   int max_depth = 12;
+  int treemaker_spp = 4;            // samples per pixel of the treemaker integrator (anti-aliasing)
   int threads = 0;                  // 0: all cores (command line only)
 };
 
@@ -71,6 +72,12 @@ struct LeafOverride {
   std::string albedo_map;  // image over the leaf's uv multiplying R, back R and T; empty: none
 };
 
+// Overrides of the five TREE-MAKER shading weights (§III); unset ones keep the template's
+// `light {}` values, or arbor's defaults for trees of other models.
+struct TreemakerOverride {
+  std::optional<double> ambient, lambert, height, radius, angle;
+};
+
 struct Placement {
   Vec3d position{0.0, 0.0, 0.0};
   double rotation = 0.0;  // degrees about z
@@ -85,6 +92,7 @@ struct TreeDesc {
   double time = 0.0;
   BarkOverride bark;
   LeafOverride leaf;
+  TreemakerOverride treemaker;
 };
 
 struct ForestDesc {
@@ -96,6 +104,7 @@ struct ForestDesc {
   std::uint64_t seed = 1;
   BarkOverride bark;
   LeafOverride leaf;
+  TreemakerOverride treemaker;
 };
 
 struct MeshMaterialDesc {
@@ -119,7 +128,7 @@ struct OutputDesc {
   std::string colorspace = "ACEScg";
   std::string display = "sRGB";
   std::string view = "ACES 1.0 SDR-video";
-  std::vector<std::string> aovs;  // of "albedo", "normal", "depth", "variance"
+  std::vector<std::string> aovs;  // of "albedo", "normal", "depth", "variance", "treemaker"
   std::string pixel_type = "half";
 };
 

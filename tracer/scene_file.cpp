@@ -136,6 +136,7 @@ class SceneReader {
       else if (k == "seed") r.seed = static_cast<std::uint64_t>(integer(n, "render.seed", 0, INT64_MAX));
       else if (k == "integrator") r.integrator = choice(n, "render.integrator", {"path", "treemaker"});
       else if (k == "max_depth") r.max_depth = static_cast<int>(integer(n, "render.max_depth", 1, 1024));
+      else if (k == "treemaker_spp") r.treemaker_spp = static_cast<int>(integer(n, "render.treemaker_spp", 1, 1 << 20));
       else unknown(key, "render");
     }
   }
@@ -215,6 +216,20 @@ class SceneReader {
     }
   }
 
+  void treemaker(const toml::table& t, TreemakerOverride& w, const std::string& owner) const {
+    for (auto&& [key, n] : t) {
+      const std::string k(key.str());
+      const std::string name = owner + ".treemaker." + k;
+      // The template language's own range for these weights (treemaker-format.md).
+      if (k == "ambient") w.ambient = number(n, name, 0.0, 10.0);
+      else if (k == "lambert") w.lambert = number(n, name, 0.0, 10.0);
+      else if (k == "height") w.height = number(n, name, 0.0, 10.0);
+      else if (k == "radius") w.radius = number(n, name, 0.0, 10.0);
+      else if (k == "angle") w.angle = number(n, name, 0.0, 10.0);
+      else unknown(key, owner + ".treemaker");
+    }
+  }
+
   void placement(const toml::node& n, const std::string& k, Placement& p, const std::string& owner) const {
     if (k == "position") p.position = triple(n, owner + ".position", -1e7, 1e7);
     else if (k == "rotation") p.rotation = number(n, owner + ".rotation", -360.0, 360.0);
@@ -232,6 +247,7 @@ class SceneReader {
       else if (k == "time") d.time = number(n, "tree.time", -1e6, 1e6);
       else if (k == "bark") bark(table(n, "tree.bark"), d.bark, "tree");
       else if (k == "leaf") leaf(table(n, "tree.leaf"), d.leaf, "tree");
+      else if (k == "treemaker") treemaker(table(n, "tree.treemaker"), d.treemaker, "tree");
       else unknown(key, "[tree]");
     }
     if (d.species.empty()) throw InputError(d.where, "[[tree]] needs a species (a species file)");
@@ -262,6 +278,7 @@ class SceneReader {
         }
       } else if (k == "bark") bark(table(n, "forest.bark"), d.bark, "forest");
       else if (k == "leaf") leaf(table(n, "forest.leaf"), d.leaf, "forest");
+      else if (k == "treemaker") treemaker(table(n, "forest.treemaker"), d.treemaker, "forest");
       else unknown(key, "[forest]");
     }
     if (d.species.empty()) throw InputError(d.where, "[[forest]] needs a species (a species file)");
@@ -322,7 +339,7 @@ class SceneReader {
         const toml::array* a = n.as_array();
         if (!a) fail(n, "output.aovs must be an array of strings");
         for (const toml::node& e : *a) {
-          o.aovs.push_back(choice(e, "output.aovs", {"albedo", "normal", "depth", "variance"}));
+          o.aovs.push_back(choice(e, "output.aovs", {"albedo", "normal", "depth", "variance", "treemaker"}));
         }
       } else unknown(key, "output");
     }

@@ -171,6 +171,18 @@ Sky::Sky(const SkyDesc& sky, const SunDesc& sun, const ColorConversion& xyz_to_l
     }
   }
   distribution_ = Distribution2D(w, width_, height_);
+  // Each texel covers (2π / width) (π / height) sin θ of solid angle.
+  glm::dvec3 e(0.0);
+  const double texel = 2.0 * kPi * kPi / (static_cast<double>(width_) * height_);
+  for (int j = 0; j < height_; ++j) {
+    const double theta = kPi * (j + 0.5) / height_;
+    const double cos_theta = std::cos(theta);
+    if (cos_theta <= 0.0) continue;
+    glm::dvec3 row(0.0);
+    for (int i = 0; i < width_; ++i) row += glm::dvec3(map_[static_cast<size_t>(j) * width_ + i]);
+    e += row * (cos_theta * std::sin(theta) * texel);
+  }
+  irradiance_up_ = glm::vec3(e);
   present_ = !distribution_.empty();
 }
 

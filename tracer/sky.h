@@ -51,6 +51,9 @@ class Sky {
   LightSample sample(glm::vec2 u) const;
   float pdf(const glm::vec3& direction) const;
   bool empty() const { return !present_; }
+  // Irradiance of the sky (without the sun) on an upward-facing horizontal plane, unoccluded:
+  // ∫ L(ω) max(0, cos θ) dω over the map. A constant sky of radiance L gives πL.
+  glm::vec3 irradiance_up() const { return irradiance_up_; }
 
   // The sun: a disk of half-angle `sun_half_angle` around `sun_direction`.
   bool has_sun() const { return sun_present_; }
@@ -69,6 +72,7 @@ class Sky {
   std::vector<glm::vec3> map_;
   Distribution2D distribution_;
   bool present_ = false;
+  glm::vec3 irradiance_up_{0.0f};
   float rotation_ = 0.0f;  // radians about z
   bool sun_present_ = false;
   glm::vec3 sun_direction_{0.0f, 0.0f, 1.0f}, sun_radiance_{0.0f};

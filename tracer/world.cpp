@@ -24,6 +24,33 @@ namespace arbor::trace {
 namespace {
 constexpr float kGroundHalfSize = 1.0e4f;  // metres: the ground quad reaches past any horizon
 glm::vec3 to_vec3(const Rgb& c) { return glm::vec3(c[0], c[1], c[2]); }
+
+// TREE-MAKER's h0 and r0 (§III) from the skeleton's points, measured from the root stem's first
+// point. A tree whose points all lie on one vertical line (r0 = 0), or at one height (h0 = 0),
+// takes that measure from its geometry's bounds instead, so h/h0 and r/r0 stay finite.
+TreeExtent tree_extent(const gen::Skeleton& sk, const gen::TreeGeometry& g) {
+  TreeExtent e;
+  for (const gen::Stem& stem : sk.stems) {
+    if (stem.parent < 0 && stem.point_count > 0) {
+      e.base = sk.points[stem.first_point].position;
+      break;
+    }
+  }
+  float h0 = 0.0f, r0 = 0.0f;
+  for (const gen::SkeletonPoint& p : sk.points) {
+    h0 = std::max(h0, p.position.z - e.base.z);
+    r0 = std::max(r0, glm::length(glm::vec2(p.position - e.base)));
+  }
+  if (h0 <= 1e-6f) h0 = std::max(g.bounds_max.z - e.base.z, 1e-3f);
+  if (r0 <= 1e-6f) {
+    const glm::vec2 far = glm::max(glm::abs(glm::vec2(g.bounds_min - e.base)),
+                                   glm::abs(glm::vec2(g.bounds_max - e.base)));
+    r0 = std::max(glm::length(far), 1e-3f);
+  }
+  e.height = h0;
+  e.radius = r0;
+  return e;
+}
 }  // namespace
 
 const gen::Species& World::species(const std::string& path, const SourceLocation& where) {
@@ -55,6 +82,7 @@ int World::prototype_for(const std::string& path, std::uint64_t seed, double tim
   p.geometry = std::make_unique<gen::TreeGeometry>(
       gen::build_tree_geometry(skeleton, gen::geometry_options_for(sp.leaf)));
   p.embree = std::make_unique<TreePrototype>(device_, *p.geometry);
+  p.extent = tree_extent(skeleton, *p.geometry);
   stats_.curve_segments += p.geometry->stats.curve_segments;
   stats_.triangles += p.geometry->stats.leaf_triangles + p.geometry->stats.grid_triangles;
   stats_.geometry_bytes += p.geometry->stats.bytes;
@@ -73,8 +101,17 @@ const mat::ColorMap* World::albedo_map(const std::string& path) {
 }
 
 TreeLook World::look_for(const gen::Species& sp, const BarkOverride& bark,
-                         const LeafOverride& leaf, const SourceLocation& where) {
+                         const LeafOverride& leaf, const TreemakerOverride& tm,
+                         const SourceLocation& where) {
   TreeLook look;
+  // A template's own light {} weights, else arbor's defaults (treemaker-format.md), then the
+  // scene's [tree.treemaker] / [forest.treemaker].
+  if (sp.model == gen::Model::TreeMaker && sp.treemaker.has_light) look.treemaker = sp.treemaker.light;
+  look.treemaker.ambient = tm.ambient.value_or(look.treemaker.ambient);
+  look.treemaker.lambert = tm.lambert.value_or(look.treemaker.lambert);
+  look.treemaker.height = tm.height.value_or(look.treemaker.height);
+  look.treemaker.radius = tm.radius.value_or(look.treemaker.radius);
+  look.treemaker.angle = tm.angle.value_or(look.treemaker.angle);
   look.bark_albedo = to_vec3(bark.albedo.value_or(sp.bark.albedo));
   look.bump_height = static_cast<float>(bark.bump_height.value_or(sp.bark.bump_height));
   look.bark_roughness =
@@ -115,6 +152,11 @@ void World::add_instance(int prototype, const Placement& pl, const TreeLook& loo
   inst.to_object = glm::inverse(m);
   inst.normal_to_world = glm::inverseTranspose(glm::mat3(m));
   inst.look = look;
+  // Rotation about z and uniform scale: heights and horizontal distances scale by `scale`.
+  const TreeExtent& pe = prototypes_[static_cast<size_t>(prototype)].extent;
+  inst.extent.base = glm::vec3(m * glm::vec4(pe.base, 1.0f));
+  inst.extent.height = pe.height * static_cast<float>(pl.scale);
+  inst.extent.radius = pe.radius * static_cast<float>(pl.scale);
   RTCGeometry g = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_INSTANCE);
   rtcSetGeometryInstancedScene(g, prototypes_[static_cast<size_t>(prototype)].embree->scene());
   rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &m[0][0]);
@@ -220,11 +262,11 @@ World::World(const SceneDesc& scene, const EmbreeDevice& device, Progress* progr
   if (progress) progress->set_total(total);
   for (const TreeDesc& t : scene.trees) {
     const int p = prototype_for(t.species, t.seed, t.time, t.where);
-    add_instance(p, t.placement, look_for(species(t.species, t.where), t.bark, t.leaf, t.where));
+    add_instance(p, t.placement, look_for(species(t.species, t.where), t.bark, t.leaf, t.treemaker, t.where));
     if (progress) progress->update(++done);
   }
   for (const ForestDesc& f : scene.forests) {
-    const TreeLook look = look_for(species(f.species, f.where), f.bark, f.leaf, f.where);
+    const TreeLook look = look_for(species(f.species, f.where), f.bark, f.leaf, f.treemaker, f.where);
     std::vector<int> variants;
     for (int v = 0; v < f.variants; ++v) {
       variants.push_back(prototype_for(f.species, derive_key(f.seed, static_cast<std::uint64_t>(v)), 0.0, f.where));

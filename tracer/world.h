@@ -32,6 +32,16 @@ struct TreeLook {
   const mat::ColorMap* bark_albedo_map = nullptr;  // multiplies bark_albedo
   const mat::ColorMap* leaf_albedo_map = nullptr;  // over leaf uv, multiplies R and T
   glm::vec3 leaf_front{0.1f}, leaf_back{0.1f}, leaf_transmittance{0.1f};
+  gen::TmLight treemaker;  // the TREE-MAKER shading weights (§III) of this tree
+};
+
+// A placed tree's extent as TREE-MAKER's shading measures it (§III), in world space: the first
+// particle's position (the base of the trunk), the height h0 of the highest skeleton point above
+// it and the radius r0, the largest horizontal distance of any skeleton point from it.
+struct TreeExtent {
+  glm::vec3 base{0.0f};
+  float height = 1.0f;
+  float radius = 1.0f;
 };
 
 // A material of an external mesh, by kind.
@@ -69,6 +79,8 @@ class World {
   bool occluded(const Ray& ray) const;
 
   const TreeLook& look(int instance) const { return instances_[static_cast<size_t>(instance)].look; }
+  const TreeExtent& extent(int instance) const { return instances_[static_cast<size_t>(instance)].extent; }
+  std::size_t instance_count() const { return instances_.size(); }
   const glm::vec3& ground_albedo() const { return ground_albedo_; }
   const WorldStats& stats() const { return stats_; }
   RTCSceneTy* embree_scene() const { return scene_.get(); }  // for benchmarks of raw Embree throughput
@@ -77,12 +89,14 @@ class World {
   struct Prototype {
     std::unique_ptr<gen::TreeGeometry> geometry;
     std::unique_ptr<TreePrototype> embree;
+    TreeExtent extent;  // in the prototype's own space
   };
   struct Instance {
     int prototype = 0;
     glm::mat4 to_world{1.0f}, to_object{1.0f};
     glm::mat3 normal_to_world{1.0f};
     TreeLook look;
+    TreeExtent extent;  // world space
   };
   int prototype_for(const std::string& species_path, std::uint64_t seed, double time,
                     const SourceLocation& where);
@@ -90,7 +104,8 @@ class World {
   void add_instance(int prototype, const Placement& placement, const TreeLook& look);
   void add_mesh(const MeshDesc& mesh);
   TreeLook look_for(const gen::Species& species, const BarkOverride& bark,
-                    const LeafOverride& leaf, const SourceLocation& where);
+                    const LeafOverride& leaf, const TreemakerOverride& treemaker,
+                    const SourceLocation& where);
 
   const EmbreeDevice& device_;
   SceneHandle scene_;

@@ -1,6 +1,7 @@
 // End-to-end tests of the arbor command line: exit codes, diagnostics, outputs.
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -71,7 +72,8 @@ TEST(ArborCli, VersionAndHelp) {
     EXPECT_NE(c.out.find(opt), std::string::npos) << opt << " in " << c.out;
   }
   const CliRun r = arbor("render --help");
-  EXPECT_NE(r.out.find("treemaker: not yet"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("treemaker (TREE-MAKER's approximate shading)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("render.treemaker_spp"), std::string::npos) << r.out;
 }
 
 TEST(ArborCli, GrowPrintsTheContractStatistics) {
@@ -231,14 +233,62 @@ TEST(ArborCli, CompareReferenceTestExitCodes) {
   EXPECT_NE(small.err.find("same size"), std::string::npos) << small.err;
 }
 
-TEST(ArborCli, UnbuiltCommandsSaySo) {
-  const CliRun fit = arbor("compare a.exr b.exr --fit-treemaker");
-  EXPECT_EQ(fit.code, 1);
-  EXPECT_NE(fit.err.find("does not write yet"), std::string::npos) << fit.err;
-  const CliRun tm = arbor("render " + std::string(ARBOR_SOURCE_DIR) +
-                          "/scenes/default.toml --integrator treemaker -o x.exr");
-  EXPECT_EQ(tm.code, 1);
-  EXPECT_NE(tm.err.find("not available in this build yet"), std::string::npos);
+// The treemaker integrator's EXR: its AOV channels add up to the beauty with the weights the
+// EXR names, pixels are identical at one and two threads, and the path integrator refuses the AOV.
+TEST(ArborCli, TreemakerRenderWritesTermsThatAddUpToTheBeauty) {
+  const std::string dir = ::testing::TempDir();
+  const std::string scene = write_temp(
+      "tm.toml",
+      "[render]\nwidth = 40\nheight = 30\nspp = 4\ntreemaker_spp = 3\nintegrator = \"treemaker\"\n"
+      "[camera]\nposition = [10.0, -14.0, 3.0]\nlook_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" +
+      std::string(ARBOR_SOURCE_DIR) + "/generator/species/black_tupelo.toml\"\n"
+      "[tree.treemaker]\nambient = 0.2\nlambert = 0.5\nheight = 0.3\nradius = 0.1\nangle = 0.25\n"
+      "[output]\naovs = [\"treemaker\"]\npixel_type = \"float\"\n");
+  const CliRun one = arbor("render " + scene + " --threads 1 -o " + dir + "tm1.exr");
+  ASSERT_EQ(one.code, 0) << one.err;
+  EXPECT_NE(one.err.find("at 3 spp"), std::string::npos) << one.err;
+  ASSERT_EQ(arbor("render " + scene + " --threads 2 -o " + dir + "tm2.exr").code, 0);
+  OIIO::ImageBuf a(dir + "tm1.exr"), b(dir + "tm2.exr");
+  ASSERT_TRUE(a.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+  ASSERT_TRUE(b.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+  const OIIO::ImageSpec& spec = a.spec();
+  ASSERT_EQ(spec.nchannels, 3 + 5 + 18);
+  EXPECT_EQ(spec.get_string_attribute("arbor:integrator"), "treemaker");
+  EXPECT_EQ(spec.get_int_attribute("arbor:spp"), 3);
+  EXPECT_EQ(spec.get_string_attribute("arbor:treemaker_weights"),
+            "ambient=0.2 lambert=0.5 height=0.3 radius=0.1 angle=0.25");
+  // EXR stores channels by name (OIIO reads them back in its own order): look them up.
+  auto channel = [&](const std::string& name) {
+    const int c = spec.channelindex(name);
+    EXPECT_GE(c, 0) << name;
+    return std::max(c, 0);
+  };
+  const char* terms[5] = {"ambient", "lambert", "height", "radius", "angle"};
+  std::vector<float> pa(40 * 30 * 26), pb(pa.size());
+  a.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, pa.data());
+  b.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, pb.data());
+  EXPECT_EQ(std::memcmp(pa.data(), pb.data(), pa.size() * sizeof(float)), 0);
+  const float w[5] = {0.2f, 0.5f, 0.3f, 0.1f, 0.25f};
+  const int coverage = channel("term.ambient");
+  int tree_pixels = 0;
+  for (std::size_t p = 0; p < 40 * 30; ++p) {
+    const float* px = &pa[p * 26];
+    if (px[coverage] > 0.0f) ++tree_pixels;
+    EXPECT_GE(px[coverage], 0.0f);
+    EXPECT_LE(px[coverage], 1.0f);  // the ambient factor is the tree's coverage of the pixel
+    for (int c = 0; c < 3; ++c) {
+      const std::string rgb(1, "RGB"[c]);
+      float sum = px[channel("tm_rest." + rgb)];
+      for (int i = 0; i < 5; ++i) sum += w[i] * px[channel(std::string("tm_") + terms[i] + "." + rgb)];
+      EXPECT_NEAR(px[c], sum, 1e-5f + 1e-5f * px[c]) << "pixel " << p << " channel " << c;
+    }
+  }
+  EXPECT_GT(tree_pixels, 40);
+
+  const CliRun path = arbor("render " + scene + " --integrator path -o " + dir + "tm_path.exr");
+  EXPECT_EQ(path.code, 2);
+  EXPECT_NE(path.err.find("only the treemaker integrator writes"), std::string::npos) << path.err;
+  EXPECT_FALSE(exists(dir + "tm_path.exr"));
 }
 
 TEST(ArborCli, RenderedExrPixelsAreIdenticalAtOneAndTwoThreads) {
