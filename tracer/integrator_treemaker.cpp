@@ -44,9 +44,7 @@ TreemakerIntegrator::TreemakerIntegrator(const World& world, const Sky& sky)
     : world_(world), sky_(sky) {
   if (sky.has_sun()) {
     to_light_ = sky.sun_direction();
-    // The disk's irradiance E = L π sin²α (sky.cpp).
-    const float cos_a = sky.sun_cos_half_angle();
-    sun_irradiance_ = sky.sun_radiance().x * static_cast<float>(kPi) * (1.0f - cos_a * cos_a);
+    sun_irradiance_ = sky.sun_irradiance();
   }
   sky_irradiance_ = sky.irradiance_up();
   max_intensity_ = (glm::vec3(sun_irradiance_) + sky_irradiance_) / static_cast<float>(kPi);

@@ -112,6 +112,7 @@ Sky::Sky(const SkyDesc& sky, const SunDesc& sun, const ColorConversion& xyz_to_l
     const double alpha = 0.5 * sun.angular_diameter * kPi / 180.0;
     sun_cos_ = static_cast<float>(std::cos(alpha));
     sun_radiance_ = glm::vec3(static_cast<float>(sun.irradiance / (kPi * std::sin(alpha) * std::sin(alpha))));
+    sun_irradiance_ = static_cast<float>(sun.irradiance);
     sun_present_ = true;
   }
   if (sky.model == "none") return;

@@ -59,6 +59,7 @@ class Sky {
   bool has_sun() const { return sun_present_; }
   glm::vec3 sun_direction() const { return sun_direction_; }
   glm::vec3 sun_radiance() const { return sun_radiance_; }
+  float sun_irradiance() const { return sun_irradiance_; }  // on a plane facing it; 0 without a sun
   float sun_cos_half_angle() const { return sun_cos_; }
   LightSample sample_sun(glm::vec2 u) const;
   float sun_pdf() const;  // uniform over the disk's cone
@@ -76,6 +77,7 @@ class Sky {
   float rotation_ = 0.0f;  // radians about z
   bool sun_present_ = false;
   glm::vec3 sun_direction_{0.0f, 0.0f, 1.0f}, sun_radiance_{0.0f};
+  float sun_irradiance_ = 0.0f;
   float sun_cos_ = 1.0f;
 };
 

@@ -106,6 +106,38 @@ TEST(SceneFile, FocusDistanceDefaultsToTheLookAtPoint) {
   EXPECT_DOUBLE_EQ(s.camera.focus_distance, 5.0);
 }
 
+TEST(SceneFile, ReadsTheTreemakerKeys) {
+  const SceneDesc s = parse_scene(R"([render]
+integrator = "treemaker"
+treemaker_spp = 2
+[[tree]]
+species = "a.tmpl"
+[tree.treemaker]
+ambient = 0.2
+angle = 0.0
+[[forest]]
+species = "b.toml"
+[forest.treemaker]
+lambert = 1.5
+[output]
+aovs = ["treemaker", "albedo"]
+)", "dir/s.toml");
+  EXPECT_EQ(s.render.integrator, "treemaker");
+  EXPECT_EQ(s.render.treemaker_spp, 2);
+  EXPECT_EQ(s.render.spp, 64);  // the path integrator's count is separate
+  EXPECT_DOUBLE_EQ(*s.trees[0].treemaker.ambient, 0.2);
+  EXPECT_DOUBLE_EQ(*s.trees[0].treemaker.angle, 0.0);
+  EXPECT_FALSE(s.trees[0].treemaker.lambert.has_value());  // unset weights keep the template's
+  EXPECT_DOUBLE_EQ(*s.forests[0].treemaker.lambert, 1.5);
+  EXPECT_EQ(s.output.aovs[0], "treemaker");
+  expect_error("[[tree]]\nspecies = \"a.toml\"\n[tree.treemaker]\nshadow = 1\n", 4, 1,
+               "unknown key 'shadow' in [tree.treemaker]");
+  expect_error("[[tree]]\nspecies = \"a.toml\"\n[tree.treemaker]\nheight = -0.1\n", 4, 10,
+               "tree.treemaker.height = -0.100000 is out of range [0.000000, 10.000000]");
+  expect_error("[[forest]]\nspecies = \"a.toml\"\n[forest.treemaker]\nradius = nan\n", 4, 10, "finite");
+  expect_error("[render]\ntreemaker_spp = 0\n", 2, 17, "render.treemaker_spp");
+}
+
 TEST(SceneFile, UnknownKeysAndTablesAreErrors) {
   expect_error("[camera]\nzoom = 2\n", 2, 1, "unknown key 'zoom' in [camera]");
   expect_error("[lights]\n", 1, 2, "unknown table or key 'lights'");
