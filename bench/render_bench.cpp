@@ -2,6 +2,9 @@
 // - raw_embree_rays: incoherent random rays (origins in the tree's box, uniform directions)
 //   through rtcIntersect1 on the world's Embree scene — the ceiling for the path tracer;
 // - path_tracer: the default scene rendered at 160×120, 16 spp; rays/s and samples/s counters;
+// - frame/path_64spp and frame/treemaker: the default scene's frame (its camera, 160×120) by the
+//   path integrator at 64 spp and by the treemaker integrator at its default treemaker_spp —
+//   bench/run.sh prints their ratio (issue 6's target: treemaker ≥ 50× faster);
 // - world_build: growing, meshing and BVH building for the default scene;
 // - forest_1000: the world of 1,000 Black Tupelos from 8 variants (peak RSS counter; run alone
 //   by bench/run.sh so the peak is its own).
@@ -82,6 +85,27 @@ void path_tracer(benchmark::State& state) {
   state.counters["samples_per_s"] = benchmark::Counter(static_cast<double>(samples), benchmark::Counter::kIsRate);
 }
 
+void frame(benchmark::State& state, bool treemaker) {
+  trace::SceneDesc scene = default_scene();
+  scene.render.width = 160;
+  scene.render.height = 120;
+  scene.render.spp = 64;
+  const trace::EmbreeDevice device("threads=1");
+  const trace::World world(scene, device);
+  const trace::Sky sky(scene.sky, scene.sun, trace::xyz_to_scene_linear());
+  std::uint64_t samples = 0;
+  for (auto _ : state) {
+    trace::RenderStats stats;
+    const trace::Image img =
+        treemaker ? trace::render_treemaker(scene, world, sky, [](float*) {}, nullptr, stats)
+                  : trace::render_path(scene, world, sky, [](float*) {}, nullptr, stats);
+    benchmark::DoNotOptimize(img.beauty.data());
+    samples += stats.samples;
+  }
+  state.counters["spp"] = treemaker ? scene.render.treemaker_spp : scene.render.spp;
+  state.counters["samples_per_s"] = benchmark::Counter(static_cast<double>(samples), benchmark::Counter::kIsRate);
+}
+
 void world_build(benchmark::State& state) {
   const trace::SceneDesc scene = default_scene();
   const trace::EmbreeDevice device("threads=1");
@@ -115,6 +139,8 @@ void forest_1000(benchmark::State& state) {
 
 BENCHMARK(raw_embree_rays)->Unit(benchmark::kMillisecond);
 BENCHMARK(path_tracer)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(frame, path_64spp, false)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(frame, treemaker, true)->Unit(benchmark::kMillisecond);
 BENCHMARK(world_build)->Unit(benchmark::kMillisecond);
 BENCHMARK(forest_1000)->Unit(benchmark::kMillisecond)->Iterations(1);
 

@@ -16,8 +16,15 @@ for species in quaking_aspen black_tupelo ca_black_oak weeping_willow; do
 done
 "$build/bench/geometry_bench" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
   --benchmark_out="$out/geometry_bench.json" --benchmark_out_format=json
-"$build/bench/render_bench" --benchmark_filter='raw_embree_rays|path_tracer|world_build' \
+"$build/bench/render_bench" --benchmark_filter='raw_embree_rays|path_tracer|frame|world_build' \
   --benchmark_out="$out/render_bench.json" --benchmark_out_format=json
+# The approximate integrator's speed-up over the path tracer on the same frame.
+python3 - "$out/render_bench.json" <<'PY'
+import json, sys
+runs = {b["name"]: b["real_time"] for b in json.load(open(sys.argv[1]))["benchmarks"]}
+path, tm = runs["frame/path_64spp/iterations:3"], runs["frame/treemaker"]
+print(f"bench: default-scene frame, path 64 spp / treemaker = {path / tm:.1f}x")
+PY
 "$build/bench/render_bench" --benchmark_filter='forest_1000' \
   --benchmark_out="$out/render_bench_forest.json" --benchmark_out_format=json
 echo "bench: results in $out"
