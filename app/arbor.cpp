@@ -13,6 +13,7 @@
 
 #include "arbor/version.h"
 #include "common/error.h"
+#include "common/json.h"
 #include "common/progress.h"
 #include "generator/export_pbrt.h"
 #include "generator/skeleton_file.h"
@@ -27,6 +28,7 @@
 #include "tracer/image_output.h"
 #include "tracer/scene_desc.h"
 #include "tracer/sky.h"
+#include "tracer/treemaker_fit.h"
 #include "tracer/world.h"
 
 namespace {
@@ -235,11 +237,6 @@ void check_image_output(const std::string& path, const CompareArgs& a, const cha
 
 int run_compare(const CompareArgs& args) {
   using namespace arbor;
-  if (args.fit_treemaker) {
-    std::fprintf(stderr, "arbor compare: --fit-treemaker needs the TREE-MAKER integrator's term AOVs, "
-                         "which this build does not write yet\n");
-    return 1;
-  }
   check_image_output(args.heatmap, args, "--heatmap");
   check_image_output(args.side_by_side, args, "--side-by-side");
   const trace::CompareImage a = trace::read_compare_image(args.a);
@@ -247,7 +244,23 @@ int run_compare(const CompareArgs& args) {
   const trace::CompareMetrics m = trace::compare_images(a, b);
   trace::ZTest z;
   if (args.reference_test) z = trace::reference_z_test(a, b);
+  // --fit-treemaker: whichever image carries the treemaker AOVs is the approximate render, the
+  // other the exact one.
+  trace::TreemakerFit fit;
+  std::string exact_path, approx_path;
+  if (args.fit_treemaker) {
+    const bool a_tm = trace::has_treemaker_aovs(args.a), b_tm = trace::has_treemaker_aovs(args.b);
+    if (a_tm == b_tm) {
+      throw InputError({}, std::string("--fit-treemaker needs one exact render and one treemaker render "
+                                       "with the \"treemaker\" AOVs; ") +
+                               (a_tm ? "both images have them" : "neither image has them"));
+    }
+    exact_path = a_tm ? args.b : args.a;
+    approx_path = a_tm ? args.a : args.b;
+    fit = trace::fit_treemaker(a_tm ? b : a, trace::read_treemaker_aovs(approx_path));
+  }
   trace::write_compare_pictures(a, b, {args.heatmap, args.side_by_side, args.display, args.view});
+  const char* const names[5] = {"ambient", "lambert", "height", "radius", "angle"};
   if (args.json) {
     std::printf("{\"rmse\": %s, \"mean_abs\": %s, \"rel_mse\": %s, \"max_abs\": %s, "
                 "\"max_at\": [%d, %d], \"psnr\": %s",
@@ -259,6 +272,18 @@ int run_compare(const CompareArgs& args) {
                   "\"failed_pixels\": %lld, \"passed\": %s",
                   json_number(z.pass_fraction).c_str(), json_number(z.z_critical).c_str(), z.pixels,
                   z.failed, z.passed ? "true" : "false");
+    }
+    if (args.fit_treemaker) {
+      std::printf(", \"treemaker_fit\": {\"exact\": \"%s\", \"approximate\": \"%s\", \"weights\": {",
+                  json_escape(exact_path).c_str(), json_escape(approx_path).c_str());
+      for (int i = 0; i < 5; ++i) {
+        std::printf("%s\"%s\": %s", i ? ", " : "", names[i], json_number(fit.weights[static_cast<size_t>(i)]).c_str());
+      }
+      std::printf("}, \"pixels\": %lld, \"rmse\": %s, \"rel_mse\": %s, \"render_rmse\": %s, "
+                  "\"render_rel_mse\": %s, \"render_weights\": \"%s\"}",
+                  fit.pixels, json_number(fit.rmse).c_str(), json_number(fit.rel_mse).c_str(),
+                  json_number(fit.render_rmse).c_str(), json_number(fit.render_rel_mse).c_str(),
+                  json_escape(fit.render_weights).c_str());
     }
     std::printf("}\n");
   } else {
@@ -274,6 +299,22 @@ int run_compare(const CompareArgs& args) {
                   "needs %.1f %%: %s\n",
                   100.0 * z.pass_fraction, z.pixels, z.z_critical, 100.0 * z.required,
                   z.passed ? "PASS" : "FAIL");
+    }
+    if (args.fit_treemaker) {
+      std::printf("treemaker fit of %s to the exact %s, over the %lld pixels that show a tree:\n",
+                  approx_path.c_str(), exact_path.c_str(), fit.pixels);
+      std::printf("  fitted weights  ");
+      for (int i = 0; i < 5; ++i) std::printf(" %s=%.4g", names[i], fit.weights[static_cast<size_t>(i)]);
+      std::printf("\n  fitted          rmse %.6g  rel_mse %.6g\n", fit.rmse, fit.rel_mse);
+      std::printf("  as rendered     rmse %.6g  rel_mse %.6g  (%s)\n", fit.render_rmse,
+                  fit.render_rel_mse, fit.render_weights.empty() ? "weights unknown" : fit.render_weights.c_str());
+      for (int i = 0; i < 5; ++i) {
+        if (!fit.determined[static_cast<size_t>(i)]) {
+          std::printf("  note: the %s factor is 0 wherever a tree is seen, so its weight is not determined\n", names[i]);
+        }
+      }
+      std::printf("  as a scene table:\n  [tree.treemaker]\n");
+      for (int i = 0; i < 5; ++i) std::printf("  %s = %.4f\n", names[i], fit.weights[static_cast<size_t>(i)]);
     }
   }
   if (args.reference_test && !z.a_has_variance) {
@@ -352,7 +393,9 @@ int main(int argc, char** argv) {
                         "per-pixel z-test against B's variance (alpha 0.01, Sidak-corrected); "
                         "exit 0 when at least 99.5 % of pixels pass, 1 otherwise");
   compare_cmd->add_flag("--fit-treemaker", cmp.fit_treemaker,
-                        "fit TREE-MAKER weights to A (not available in this build yet)");
+                        "fit the five TREE-MAKER weights by least squares: one image is an exact "
+                        "render, the other a treemaker render of the same view with the \"treemaker\" "
+                        "AOVs; prints the weights and the error left");
 
   try {
     app.parse(argc, argv);

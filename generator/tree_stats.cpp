@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "common/json.h"
 #include "generator/leaf_shapes.h"
 
 namespace arbor::gen {
@@ -63,11 +64,7 @@ void add_geometry_stats(TreeStats& st, const GeometryStats& g, double seconds) {
 
 std::string stats_json(const TreeStats& st, const std::string& species, unsigned long long seed,
                        long long mesh_triangles) {
-  std::string out = "{\"species\": \"";
-  for (char c : species) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) >= 0x20) out += c;
-  }
+  std::string out = "{\"species\": \"" + json_escape(species);
   out += "\", \"seed\": " + std::to_string(seed) + ", \"stems_per_level\": [";
   for (size_t i = 0; i < st.stems_per_level.size(); ++i) {
     out += (i ? ", " : "") + std::to_string(st.stems_per_level[i]);

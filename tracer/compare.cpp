@@ -18,13 +18,6 @@ namespace arbor::trace {
 
 namespace {
 
-int channel_index(const OIIO::ImageSpec& spec, const char* name) {
-  for (int c = 0; c < spec.nchannels; ++c) {
-    if (spec.channelnames[static_cast<std::size_t>(c)] == name) return c;
-  }
-  return -1;
-}
-
 OIIO::ImageBuf rgb_buffer(const CompareImage& im, const std::vector<float>& data) {
   OIIO::ImageBuf buf(OIIO::ImageSpec(im.width, im.height, 3, OIIO::TypeDesc::FLOAT));
   OIIO::ImageBufAlgo::zero(buf);
@@ -116,33 +109,18 @@ double half_rounding_variance(double v) {
 }  // namespace
 
 CompareImage read_compare_image(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) {
-    std::string why = OIIO::geterror();
-    if (why.empty()) why = "cannot be read as an image";
-    throw InputError({path, 0, 0}, "cannot read the image: " + why);
-  }
-  const OIIO::ImageSpec spec = in->spec();
+  const ImageChannels image = read_image_channels(path);
+  const OIIO::ImageSpec& spec = image.spec;
   CompareImage im;
   im.path = path;
   im.width = spec.width;
   im.height = spec.height;
   // arbor's own attribute names the OCIO space exactly; OIIO reports EXRs as plain "Linear".
   im.colorspace = spec.get_string_attribute("arbor:colorspace");
-  const int r = channel_index(spec, "R"), g = channel_index(spec, "G"), bl = channel_index(spec, "B");
+  const int r = image.index("R"), g = image.index("G"), bl = image.index("B");
   if (r < 0 || g < 0 || bl < 0) throw InputError({path, 0, 0}, "has no R, G and B channels");
-  if (spec.width <= 0 || spec.height <= 0 ||
-      static_cast<long long>(spec.width) * spec.height > (1LL << 28)) {
-    throw InputError({path, 0, 0}, "has an unsupported size " + std::to_string(spec.width) + "x" +
-                                       std::to_string(spec.height));
-  }
   im.half_beauty = spec.channelformat(r) == OIIO::TypeDesc::HALF;
-  std::vector<float> all(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data())) {
-    throw InputError({path, 0, 0}, "cannot read the pixels: " + in->geterror());
-  }
-  const int vr = channel_index(spec, "variance.R"), vg = channel_index(spec, "variance.G"),
-            vb = channel_index(spec, "variance.B");
+  const int vr = image.index("variance.R"), vg = image.index("variance.G"), vb = image.index("variance.B");
   const bool has_var = vr >= 0 && vg >= 0 && vb >= 0;
   const std::size_t n = static_cast<std::size_t>(spec.width) * spec.height;
   im.rgb.resize(3 * n);
@@ -150,20 +128,12 @@ CompareImage read_compare_image(const std::string& path) {
   const int rgb_idx[3] = {r, g, bl}, var_idx[3] = {vr, vg, vb};
   for (std::size_t p = 0; p < n; ++p) {
     for (int c = 0; c < 3; ++c) {
-      const float v = all[p * spec.nchannels + rgb_idx[c]];
-      if (!std::isfinite(v)) {
-        throw InputError({path, 0, 0}, "pixel (" + std::to_string(p % spec.width) + ", " +
-                                           std::to_string(p / spec.width) +
-                                           ") is not a finite number");
-      }
-      im.rgb[3 * p + c] = v;
+      im.rgb[3 * p + c] = image.finite(p, rgb_idx[c], "");
       if (has_var) {
-        const float s = all[p * spec.nchannels + var_idx[c]];
-        if (!std::isfinite(s) || s < 0) {
-          throw InputError({path, 0, 0}, "the variance of pixel (" +
-                                             std::to_string(p % spec.width) + ", " +
-                                             std::to_string(p / spec.width) +
-                                             ") is negative or not finite");
+        const float s = image.finite(p, var_idx[c], "the variance of ");
+        if (s < 0) {
+          throw InputError({path, 0, 0}, "the variance of pixel (" + std::to_string(p % spec.width) +
+                                             ", " + std::to_string(p / spec.width) + ") is negative");
         }
         im.variance[3 * p + c] = s;
       }

@@ -291,6 +291,50 @@ TEST(ArborCli, TreemakerRenderWritesTermsThatAddUpToTheBeauty) {
   EXPECT_FALSE(exists(dir + "tm_path.exr"));
 }
 
+// A treemaker render with other weights is exactly rest + Σ w × tm_i: the fit gives those
+// weights back with no error left, in either argument order; bad pairs exit 2.
+TEST(ArborCli, FitTreemakerRecoversTheWeightsOfAnotherRender) {
+  const std::string dir = ::testing::TempDir();
+  const std::string head =
+      "[render]\nwidth = 48\nheight = 36\ntreemaker_spp = 2\nintegrator = \"treemaker\"\n"
+      "[camera]\nposition = [10.0, -14.0, 3.0]\nlook_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" +
+      std::string(ARBOR_SOURCE_DIR) + "/generator/species/quaking_aspen.toml\"\n";
+  const std::string with_aovs = write_temp("fit_a.toml", head + "[output]\naovs = [\"treemaker\"]\npixel_type = \"float\"\n");
+  const std::string target = write_temp(
+      "fit_b.toml", head + "[tree.treemaker]\nambient = 0.05\nlambert = 0.3\nheight = 0.0\nradius = 0.25\n"
+                           "angle = 0.15\n[output]\npixel_type = \"float\"\n");
+  ASSERT_EQ(arbor("render " + with_aovs + " -o " + dir + "fit_a.exr").code, 0);
+  ASSERT_EQ(arbor("render " + target + " -o " + dir + "fit_b.exr").code, 0);
+  for (const std::string order : {dir + "fit_b.exr " + dir + "fit_a.exr", dir + "fit_a.exr " + dir + "fit_b.exr"}) {
+    const CliRun r = arbor("compare " + order + " --fit-treemaker --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("\"exact\": \"" + dir + "fit_b.exr\""), std::string::npos) << r.out;
+    auto number_after = [&](const std::string& key) {
+      const auto at = r.out.find("\"" + key + "\": ");
+      EXPECT_NE(at, std::string::npos) << key;
+      return at == std::string::npos ? -1.0 : std::atof(r.out.c_str() + at + key.size() + 4);
+    };
+    EXPECT_NEAR(number_after("ambient"), 0.05, 1e-4);
+    EXPECT_NEAR(number_after("lambert"), 0.3, 1e-4);
+    EXPECT_NEAR(number_after("height"), 0.0, 1e-4);
+    EXPECT_NEAR(number_after("radius"), 0.25, 1e-4);
+    EXPECT_NEAR(number_after("angle"), 0.15, 1e-4);
+    const auto fit = r.out.find("\"treemaker_fit\"");
+    ASSERT_NE(fit, std::string::npos);
+    EXPECT_LT(std::atof(r.out.c_str() + r.out.find("\"rmse\": ", fit) + 8), 1e-5) << r.out;
+    EXPECT_NE(r.out.find("\"render_weights\": \"ambient=0.1 lambert=0.4 height=0.2 radius=0.2 angle=0.1\""),
+              std::string::npos) << r.out;
+  }
+  const CliRun text = arbor("compare " + dir + "fit_b.exr " + dir + "fit_a.exr --fit-treemaker");
+  EXPECT_NE(text.out.find("[tree.treemaker]"), std::string::npos) << text.out;
+  const CliRun neither = arbor("compare " + dir + "fit_b.exr " + dir + "fit_b.exr --fit-treemaker");
+  EXPECT_EQ(neither.code, 2);
+  EXPECT_NE(neither.err.find("neither image has them"), std::string::npos) << neither.err;
+  const CliRun both = arbor("compare " + dir + "fit_a.exr " + dir + "fit_a.exr --fit-treemaker");
+  EXPECT_EQ(both.code, 2);
+  EXPECT_NE(both.err.find("both images have them"), std::string::npos) << both.err;
+}
+
 TEST(ArborCli, RenderedExrPixelsAreIdenticalAtOneAndTwoThreads) {
   const std::string dir = ::testing::TempDir();
   const std::string scene = write_temp(
