@@ -13,6 +13,7 @@
 
 #include "common/progress.h"
 #include "tracer/camera.h"
+#include "tracer/integrator_treemaker.h"
 
 namespace arbor::trace {
 

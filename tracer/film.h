@@ -10,7 +10,6 @@
 #include <glm/vec3.hpp>
 
 #include "tracer/integrator_path.h"
-#include "tracer/integrator_treemaker.h"
 #include "tracer/scene_desc.h"
 
 namespace arbor {
