@@ -26,6 +26,7 @@
 #include "tracer/embree_device.h"
 #include "tracer/film.h"
 #include "tracer/image_output.h"
+#include "tracer/integrator_treemaker.h"
 #include "tracer/scene_desc.h"
 #include "tracer/sky.h"
 #include "tracer/treemaker_fit.h"
@@ -260,7 +261,7 @@ int run_compare(const CompareArgs& args) {
     fit = trace::fit_treemaker(a_tm ? b : a, trace::read_treemaker_aovs(approx_path));
   }
   trace::write_compare_pictures(a, b, {args.heatmap, args.side_by_side, args.display, args.view});
-  const char* const names[5] = {"ambient", "lambert", "height", "radius", "angle"};
+  const auto& names = trace::kTreemakerTermNames;
   if (args.json) {
     std::printf("{\"rmse\": %s, \"mean_abs\": %s, \"rel_mse\": %s, \"max_abs\": %s, "
                 "\"max_at\": [%d, %d], \"psnr\": %s",
