@@ -161,8 +161,9 @@ int run_render(const RenderArgs& a) {
   if (!a.png.empty()) scene.output.png = a.png;
   if (!treemaker &&
       std::find(scene.output.aovs.begin(), scene.output.aovs.end(), "treemaker") != scene.output.aovs.end()) {
-    throw InputError({a.scene, 0, 0}, "output.aovs lists \"treemaker\", which only the treemaker "
-                                      "integrator writes (render it with --integrator treemaker)");
+    throw InputError(scene.output.treemaker_aov_where,
+                     "output.aovs lists \"treemaker\", which only the treemaker integrator writes "
+                     "(render it with --integrator treemaker)");
   }
   if (scene.output.exr.empty() && scene.output.png.empty()) {
     throw InputError({a.scene, 0, 0}, "nothing to write: give -o OUT.exr, --png OUT.png or an [output] table");

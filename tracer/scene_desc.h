@@ -129,6 +129,7 @@ struct OutputDesc {
   std::string display = "sRGB";
   std::string view = "ACES 1.0 SDR-video";
   std::vector<std::string> aovs;  // of "albedo", "normal", "depth", "variance", "treemaker"
+  SourceLocation treemaker_aov_where;  // where "treemaker" is listed (only that integrator has it)
   std::string pixel_type = "half";
 };
 

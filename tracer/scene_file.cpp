@@ -340,6 +340,7 @@ class SceneReader {
         if (!a) fail(n, "output.aovs must be an array of strings");
         for (const toml::node& e : *a) {
           o.aovs.push_back(choice(e, "output.aovs", {"albedo", "normal", "depth", "variance", "treemaker"}));
+          if (o.aovs.back() == "treemaker") o.treemaker_aov_where = at(e.source());
         }
       } else unknown(key, "output");
     }
