@@ -259,7 +259,13 @@ int run_compare(const CompareArgs& args) {
     }
     exact_path = a_tm ? args.b : args.a;
     approx_path = a_tm ? args.a : args.b;
-    fit = trace::fit_treemaker(a_tm ? b : a, trace::read_treemaker_aovs(approx_path));
+    const trace::CompareImage& exact = a_tm ? b : a;
+    if (exact.colorspace.empty()) {
+      std::fprintf(stderr, "arbor compare: note: %s does not say its colour space (no arbor:colorspace); "
+                           "the fit takes it to be scene-linear in the treemaker render's space\n",
+                   exact_path.c_str());
+    }
+    fit = trace::fit_treemaker(exact, trace::read_treemaker_aovs(approx_path));
   }
   trace::write_compare_pictures(a, b, {args.heatmap, args.side_by_side, args.display, args.view});
   const auto& names = trace::kTreemakerTermNames;
