@@ -1,6 +1,7 @@
 // The render loop over tiles.
 #include "tracer/film.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -141,9 +142,19 @@ Image render_treemaker(const SceneDesc& scene, const World& world, const Sky& sk
                        const ColorTransform& to_output, Progress* progress, RenderStats& stats) {
   const TreemakerIntegrator integrator(world, sky);
   const float exposure = std::exp2(static_cast<float>(scene.camera.exposure));
-  const std::vector<std::string> names = treemaker_channel_names();
+  // The AOVs cost 23 floats a pixel: kept only when the output asks for them.
+  const auto& aovs = scene.output.aovs;
+  const bool keep = std::find(aovs.begin(), aovs.end(), "treemaker") != aovs.end();
+  const std::vector<std::string> names = keep ? treemaker_channel_names() : std::vector<std::string>();
   auto trace = [&](const Ray& ray, const PixelSampler&, std::uint32_t, float* extra) {
     const TreemakerSample t = integrator.trace(ray);
+    PathSample s;
+    s.radiance = t.radiance;
+    s.albedo = t.albedo;
+    s.normal = t.normal;
+    s.depth = t.depth;
+    s.rays = t.rays;
+    if (!keep) return s;
     // The factors as they are; the colours exposed and in the output space like the beauty, so
     // that beauty = tm_rest + Σ weight_i × tm_i holds for the written pixels too.
     std::size_t k = 0;
@@ -155,12 +166,6 @@ Image render_treemaker(const SceneDesc& scene, const World& world, const Sky& sk
     };
     for (const glm::vec3& c : t.contribution) put(c);
     put(t.rest);
-    PathSample s;
-    s.radiance = t.radiance;
-    s.albedo = t.albedo;
-    s.normal = t.normal;
-    s.depth = t.depth;
-    s.rays = t.rays;
     return s;
   };
   Image img = render_frame(scene, scene.render.treemaker_spp, static_cast<int>(names.size()), trace,

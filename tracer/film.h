@@ -46,7 +46,8 @@ Image render_path(const SceneDesc& scene, const World& world, const Sky& sky,
                   const ColorTransform& to_output, Progress* progress, RenderStats& stats);
 
 // Renders with the treemaker integrator at scene.render.treemaker_spp samples per pixel (they
-// only anti-alias: its shade has no noise). Fills extra_names/extra with the "treemaker" AOVs.
+// only anti-alias: its shade has no noise). Fills extra_names/extra with the "treemaker" AOVs
+// when scene.output.aovs asks for them.
 Image render_treemaker(const SceneDesc& scene, const World& world, const Sky& sky,
                        const ColorTransform& to_output, Progress* progress, RenderStats& stats);
 

@@ -141,6 +141,7 @@ TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
   s.render.width = 64;
   s.render.height = 64;
   s.render.treemaker_spp = 1;
+  s.output.aovs = {"treemaker"};
   s.camera.position = {0.0, 0.0, 60.0};  // straight down onto the tree and its shadow
   s.camera.look_at = {0.0, 0.0, 0.0};
   s.camera.up = {0.0, 1.0, 0.0};
@@ -201,11 +202,12 @@ TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
   EXPECT_LT(shadow_x / shadow_pixels, s.render.width / 2.0 - 3.0);
 }
 
-TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreads) {
+TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
   SceneDesc s;
   s.render.width = 48;
   s.render.height = 32;
   s.render.treemaker_spp = 3;
+  s.output.aovs = {"treemaker"};
   s.camera.position = {9.0, -12.0, 4.0};
   s.camera.look_at = {0.0, 0.0, 6.0};
   TreeDesc t = tree_of(std::string(ARBOR_SOURCE_DIR) + "/generator/species/quaking_aspen.toml");
@@ -220,10 +222,21 @@ TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreads) {
     images[threads - 1] = render_treemaker(s, world, sky, kIdentity, nullptr, stats);
   }
   ASSERT_EQ(images[0].extra.size(), images[1].extra.size());
+  ASSERT_EQ(images[0].extra.size(), 48u * 32u * 23u);
   EXPECT_EQ(std::memcmp(images[0].beauty.data(), images[1].beauty.data(),
                         images[0].beauty.size() * sizeof(glm::vec3)), 0);
   EXPECT_EQ(std::memcmp(images[0].extra.data(), images[1].extra.data(),
                         images[0].extra.size() * sizeof(float)), 0);
+  // Without the AOV nothing extra is kept, and the beauty is the same.
+  s.output.aovs.clear();
+  const EmbreeDevice device("threads=2");
+  const World world(s, device);
+  const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 128);
+  RenderStats stats;
+  const Image plain = render_treemaker(s, world, sky, kIdentity, nullptr, stats);
+  EXPECT_TRUE(plain.extra.empty());
+  EXPECT_TRUE(plain.extra_names.empty());
+  EXPECT_EQ(std::memcmp(plain.beauty.data(), images[1].beauty.data(), plain.beauty.size() * sizeof(glm::vec3)), 0);
 }
 
 }  // namespace arbor::trace
