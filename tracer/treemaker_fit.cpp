@@ -58,6 +58,87 @@ bool solve_subset(const double g[kFactors][kFactors], const double b[kFactors], 
   return true;
 }
 
+// XᵀX, Xᵀy and yᵀy over the rows (pixel, channel) of the pixels that show a tree, with
+// y = exact − rest and X the contributions; `pixels` counts those pixels.
+struct NormalEquations {
+  double g[kFactors][kFactors] = {};
+  double b[kFactors] = {};
+  double yy = 0.0;
+};
+
+NormalEquations normal_equations(const CompareImage& exact, const TreemakerAovs& tm, long long& pixels) {
+  NormalEquations ne;
+  const std::size_t n = static_cast<std::size_t>(tm.width) * tm.height;
+  for (std::size_t p = 0; p < n; ++p) {
+    if (tm.coverage[p] <= 0.0f) continue;
+    ++pixels;
+    for (int c = 0; c < 3; ++c) {
+      const double y = double(exact.rgb[3 * p + c]) - tm.rest[3 * p + c];
+      const float* x = &tm.contribution[p * kFactors * 3 + static_cast<std::size_t>(c)];
+      for (int i = 0; i < kFactors; ++i) {
+        ne.b[i] += double(x[3 * i]) * y;
+        for (int j = 0; j <= i; ++j) ne.g[i][j] += double(x[3 * i]) * x[3 * j];
+      }
+      ne.yy += y * y;
+    }
+  }
+  for (int i = 0; i < kFactors; ++i) {
+    for (int j = i + 1; j < kFactors; ++j) ne.g[i][j] = ne.g[j][i];
+  }
+  return ne;
+}
+
+// The non-negative optimum is the unconstrained least-squares solution on its own support: try
+// all 31 supports, keep the feasible one with the smallest residual (all zero if none beats it).
+std::array<double, kFactors> non_negative_solution(const NormalEquations& ne) {
+  std::array<double, kFactors> best_w{};
+  double best = ne.yy;  // the empty support
+  for (unsigned subset = 1; subset < (1u << kFactors); ++subset) {
+    std::array<double, kFactors> w;
+    if (!solve_subset(ne.g, ne.b, subset, w)) continue;
+    bool feasible = true;
+    for (double v : w) feasible = feasible && v >= 0.0;
+    if (!feasible) continue;
+    // At a least-squares solution the residual is yᵀy − wᵀb.
+    double wb = 0.0;
+    for (int i = 0; i < kFactors; ++i) wb += w[static_cast<std::size_t>(i)] * ne.b[i];
+    if (ne.yy - wb < best) {
+      best = ne.yy - wb;
+      best_w = w;
+    }
+  }
+  return best_w;
+}
+
+// The fitted image and the errors of it and of the render as rendered, from the pixels
+// themselves (no cancellation as in yᵀy − wᵀb), over the pixels that show a tree.
+void measure_errors(const CompareImage& exact, const TreemakerAovs& tm, TreemakerFit& fit) {
+  const std::size_t n = static_cast<std::size_t>(tm.width) * tm.height;
+  fit.fitted.resize(3 * n);
+  double se = 0.0, rel = 0.0, se_render = 0.0, rel_render = 0.0;
+  for (std::size_t p = 0; p < n; ++p) {
+    for (int c = 0; c < 3; ++c) {
+      double v = tm.rest[3 * p + c];
+      for (int i = 0; i < kFactors; ++i) {
+        v += fit.weights[static_cast<std::size_t>(i)] * tm.contribution[(p * kFactors + i) * 3 + c];
+      }
+      fit.fitted[3 * p + c] = static_cast<float>(v);
+      if (tm.coverage[p] <= 0.0f) continue;
+      const double ref = exact.rgb[3 * p + c];
+      const double d = v - ref, d_render = double(tm.beauty[3 * p + c]) - ref;
+      se += d * d;
+      rel += d * d / (ref * ref + 0.01);
+      se_render += d_render * d_render;
+      rel_render += d_render * d_render / (ref * ref + 0.01);
+    }
+  }
+  const double rows = 3.0 * static_cast<double>(fit.pixels);
+  fit.rmse = std::sqrt(se / rows);
+  fit.rel_mse = rel / rows;
+  fit.render_rmse = std::sqrt(se_render / rows);
+  fit.render_rel_mse = rel_render / rows;
+}
+
 }  // namespace
 
 bool has_treemaker_aovs(const std::string& path) {
@@ -124,72 +205,14 @@ TreemakerFit fit_treemaker(const CompareImage& exact, const TreemakerAovs& tm) {
     throw InputError({tm.path, 0, 0}, "is in " + tm.colorspace + " but " + exact.path + " is in " +
                                           exact.colorspace + "; render both to the same colour space");
   }
-  const std::size_t n = static_cast<std::size_t>(tm.width) * tm.height;
-  // Normal equations of the rows (pixel, channel) with a tree in the pixel.
-  double g[kFactors][kFactors] = {}, b[kFactors] = {}, yy = 0.0;
   TreemakerFit fit;
-  for (std::size_t p = 0; p < n; ++p) {
-    if (tm.coverage[p] <= 0.0f) continue;
-    ++fit.pixels;
-    for (int c = 0; c < 3; ++c) {
-      const double y = double(exact.rgb[3 * p + c]) - tm.rest[3 * p + c];
-      const float* x = &tm.contribution[p * kFactors * 3 + static_cast<std::size_t>(c)];
-      for (int i = 0; i < kFactors; ++i) {
-        b[i] += double(x[3 * i]) * y;
-        for (int j = 0; j <= i; ++j) g[i][j] += double(x[3 * i]) * x[3 * j];
-      }
-      yy += y * y;
-    }
-  }
+  const NormalEquations ne = normal_equations(exact, tm, fit.pixels);
   if (fit.pixels == 0) {
     throw InputError({tm.path, 0, 0}, "shows no tree (term.ambient is 0 everywhere): nothing to fit");
   }
-  for (int i = 0; i < kFactors; ++i) {
-    for (int j = i + 1; j < kFactors; ++j) g[i][j] = g[j][i];
-    fit.determined[static_cast<std::size_t>(i)] = g[i][i] > 0.0;
-  }
-  // The non-negative optimum is the unconstrained least-squares solution on its own support:
-  // try all 31 supports, keep the feasible one with the smallest residual.
-  double best = yy;  // the empty support: all weights 0
-  fit.weights.fill(0.0);
-  for (unsigned subset = 1; subset < (1u << kFactors); ++subset) {
-    std::array<double, kFactors> w;
-    if (!solve_subset(g, b, subset, w)) continue;
-    bool feasible = true;
-    for (double v : w) feasible = feasible && v >= 0.0;
-    if (!feasible) continue;
-    // At a least-squares solution the residual is yᵀy − wᵀb.
-    double wb = 0.0;
-    for (int i = 0; i < kFactors; ++i) wb += w[static_cast<std::size_t>(i)] * b[i];
-    if (yy - wb < best) {
-      best = yy - wb;
-      fit.weights = w;
-    }
-  }
-  // The errors from the pixels themselves (no cancellation in yᵀy − wᵀb).
-  fit.fitted.resize(3 * n);
-  double se = 0.0, rel = 0.0, se_render = 0.0, rel_render = 0.0;
-  for (std::size_t p = 0; p < n; ++p) {
-    for (int c = 0; c < 3; ++c) {
-      double v = tm.rest[3 * p + c];
-      for (int i = 0; i < kFactors; ++i) {
-        v += fit.weights[static_cast<std::size_t>(i)] * tm.contribution[(p * kFactors + i) * 3 + c];
-      }
-      fit.fitted[3 * p + c] = static_cast<float>(v);
-      if (tm.coverage[p] <= 0.0f) continue;
-      const double ref = exact.rgb[3 * p + c];
-      const double d = v - ref, d_render = double(tm.beauty[3 * p + c]) - ref;
-      se += d * d;
-      rel += d * d / (ref * ref + 0.01);
-      se_render += d_render * d_render;
-      rel_render += d_render * d_render / (ref * ref + 0.01);
-    }
-  }
-  const double rows = 3.0 * static_cast<double>(fit.pixels);
-  fit.rmse = std::sqrt(se / rows);
-  fit.rel_mse = rel / rows;
-  fit.render_rmse = std::sqrt(se_render / rows);
-  fit.render_rel_mse = rel_render / rows;
+  for (int i = 0; i < kFactors; ++i) fit.determined[static_cast<std::size_t>(i)] = ne.g[i][i] > 0.0;
+  fit.weights = non_negative_solution(ne);
+  measure_errors(exact, tm, fit);
   fit.render_weights = tm.weights;
   return fit;
 }
