@@ -65,46 +65,34 @@ void raw_embree_rays(benchmark::State& state) {
   state.counters["rays_per_s"] = benchmark::Counter(static_cast<double>(traced), benchmark::Counter::kIsRate);
 }
 
-void path_tracer(benchmark::State& state) {
+// Renders the default scene's view at 160×120 with `spp` path samples (the treemaker integrator
+// at its own treemaker_spp) for every iteration; rays/s, samples/s and spp counters.
+void render_frames(benchmark::State& state, int spp, bool treemaker) {
   trace::SceneDesc scene = default_scene();
   scene.render.width = 160;
   scene.render.height = 120;
-  scene.render.spp = 16;
+  scene.render.spp = spp;
   const trace::EmbreeDevice device("threads=1");
   const trace::World world(scene, device);
   const trace::Sky sky(scene.sky, scene.sun, trace::xyz_to_scene_linear());
   std::uint64_t rays = 0, samples = 0;
   for (auto _ : state) {
     trace::RenderStats stats;
-    const trace::Image img = trace::render_path(scene, world, sky, [](float*) {}, nullptr, stats);
-    benchmark::DoNotOptimize(img.beauty.data());
-    rays += stats.rays;
-    samples += stats.samples;
-  }
-  state.counters["rays_per_s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
-  state.counters["samples_per_s"] = benchmark::Counter(static_cast<double>(samples), benchmark::Counter::kIsRate);
-}
-
-void frame(benchmark::State& state, bool treemaker) {
-  trace::SceneDesc scene = default_scene();
-  scene.render.width = 160;
-  scene.render.height = 120;
-  scene.render.spp = 64;
-  const trace::EmbreeDevice device("threads=1");
-  const trace::World world(scene, device);
-  const trace::Sky sky(scene.sky, scene.sun, trace::xyz_to_scene_linear());
-  std::uint64_t samples = 0;
-  for (auto _ : state) {
-    trace::RenderStats stats;
     const trace::Image img =
         treemaker ? trace::render_treemaker(scene, world, sky, [](float*) {}, nullptr, stats)
                   : trace::render_path(scene, world, sky, [](float*) {}, nullptr, stats);
     benchmark::DoNotOptimize(img.beauty.data());
+    rays += stats.rays;
     samples += stats.samples;
   }
   state.counters["spp"] = treemaker ? scene.render.treemaker_spp : scene.render.spp;
+  state.counters["rays_per_s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
   state.counters["samples_per_s"] = benchmark::Counter(static_cast<double>(samples), benchmark::Counter::kIsRate);
 }
+
+void path_tracer(benchmark::State& state) { render_frames(state, 16, false); }
+
+void frame(benchmark::State& state, bool treemaker) { render_frames(state, 64, treemaker); }
 
 void world_build(benchmark::State& state) {
   const trace::SceneDesc scene = default_scene();
