@@ -148,13 +148,7 @@ Image render_treemaker(const SceneDesc& scene, const World& world, const Sky& sk
   const std::vector<std::string> names = keep ? treemaker_channel_names() : std::vector<std::string>();
   auto trace = [&](const Ray& ray, const PixelSampler&, std::uint32_t, float* extra) {
     const TreemakerSample t = integrator.trace(ray);
-    PathSample s;
-    s.radiance = t.radiance;
-    s.albedo = t.albedo;
-    s.normal = t.normal;
-    s.depth = t.depth;
-    s.rays = t.rays;
-    if (!keep) return s;
+    if (!keep) return t.shade;
     // The factors as they are; the colours exposed and in the output space like the beauty, so
     // that beauty = tm_rest + Σ weight_i × tm_i holds for the written pixels too.
     std::size_t k = 0;
@@ -166,7 +160,7 @@ Image render_treemaker(const SceneDesc& scene, const World& world, const Sky& sk
     };
     for (const glm::vec3& c : t.contribution) put(c);
     put(t.rest);
-    return s;
+    return t.shade;
   };
   Image img = render_frame(scene, scene.render.treemaker_spp, static_cast<int>(names.size()), trace,
                            to_output, progress, stats);

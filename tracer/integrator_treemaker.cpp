@@ -67,20 +67,21 @@ glm::vec3 TreemakerIntegrator::diffuse_radiance(const WorldHit& hit, std::uint32
 
 TreemakerSample TreemakerIntegrator::trace(const Ray& ray) const {
   TreemakerSample out;
+  PathSample& shade = out.shade;
   WorldHit hit;
-  ++out.rays;
+  ++shade.rays;
   if (!world_.intersect(ray, hit)) {
-    out.radiance = sky_.radiance(ray.direction);
-    if (sky_.in_sun(ray.direction)) out.radiance += sky_.sun_radiance();
-    out.rest = out.radiance;
+    shade.radiance = sky_.radiance(ray.direction);
+    if (sky_.in_sun(ray.direction)) shade.radiance += sky_.sun_radiance();
+    out.rest = shade.radiance;
     return out;
   }
   const SurfaceHit& s = hit.surface;
-  out.albedo = surface_albedo(world_, hit);
-  out.normal = s.shading_normal;
-  out.depth = s.t;
+  shade.albedo = surface_albedo(world_, hit);
+  shade.normal = s.shading_normal;
+  shade.depth = s.t;
   if (hit.instance < 0) {
-    out.radiance = out.rest = diffuse_radiance(hit, out.rays);
+    shade.radiance = out.rest = diffuse_radiance(hit, shade.rays);
     return out;
   }
   const bool line = s.kind != SurfaceKind::Leaf;  // limbs, trunk grids and line elements
@@ -88,10 +89,10 @@ TreemakerSample TreemakerIntegrator::trace(const Ray& ray) const {
                               line ? s.tangent : s.geometric_normal, line, to_light_);
   const gen::TmLight& w = world_.look(hit.instance).treemaker;
   const double weights[5] = {w.ambient, w.lambert, w.height, w.radius, w.angle};
-  const glm::vec3 unit = out.albedo * max_intensity_;
+  const glm::vec3 unit = shade.albedo * max_intensity_;
   for (int i = 0; i < 5; ++i) {
     out.contribution[static_cast<size_t>(i)] = unit * out.terms[static_cast<size_t>(i)];
-    out.radiance += out.contribution[static_cast<size_t>(i)] * static_cast<float>(weights[i]);
+    shade.radiance += out.contribution[static_cast<size_t>(i)] * static_cast<float>(weights[i]);
   }
   return out;
 }

@@ -11,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "generator/treemaker_template.h"
+#include "tracer/integrator_path.h"
 #include "tracer/sampler.h"
 #include "tracer/sky.h"
 #include "tracer/world.h"
@@ -43,14 +44,10 @@ float treemaker_shade(const gen::TmLight& weights, const TreemakerTerms& terms);
 
 // One camera sample of the treemaker integrator. Radiance and colours are scene-linear.
 struct TreemakerSample {
-  glm::vec3 radiance{0.0f};
-  glm::vec3 albedo{0.0f};
-  glm::vec3 normal{0.0f};
-  float depth = 0.0f;
-  std::uint32_t rays = 0;
+  PathSample shade;  // radiance, the first hit's albedo, normal and depth, rays traced
   // AOVs: the factors (0 where no tree is seen); each factor's contribution at weight 1
   // (element colour × MAX_INTENSITY × factor); and the rest of the radiance (sky, ground, meshes).
-  // radiance = rest + Σ weight_i × contribution_i.
+  // shade.radiance = rest + Σ weight_i × contribution_i.
   TreemakerTerms terms{};
   std::array<glm::vec3, 5> contribution{};
   glm::vec3 rest{0.0f};
