@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include "arbor/version.h"
+#include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/json.h"
 #include "common/progress.h"
@@ -49,6 +50,22 @@ bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+// InputError when writing `out` would replace one of `inputs` or an earlier output (the same
+// file after symlinks, not merely the same spelling).
+void refuse_overwriting(const std::string& what, const std::string& out,
+                        const std::vector<std::string>& inputs, const std::vector<std::string>& outputs = {}) {
+  for (const std::string& in : inputs) {
+    if (arbor::same_file(out, in)) {
+      throw arbor::InputError({}, what + " " + out + " would overwrite the input " + in);
+    }
+  }
+  for (const std::string& other : outputs) {
+    if (arbor::same_file(out, other)) {
+      throw arbor::InputError({}, what + " " + out + " is also written as " + other);
+    }
+  }
+}
+
 int run_grow(const GrowArgs& a) {
   using namespace arbor;
   if (!std::isfinite(a.time)) throw InputError({}, "--time must be a finite number of seconds");
@@ -58,6 +75,10 @@ int run_grow(const GrowArgs& a) {
   if (!a.out.empty() && !ends_with(a.out, ".obj") && !ends_with(a.out, ".ply") &&
       !ends_with(a.out, ".pbrt") && !ends_with(a.out, ".skel")) {
     throw InputError({}, "-o " + a.out + ": the output must be .obj, .ply, .pbrt or .skel");
+  }
+  if (!a.out.empty()) {
+    refuse_overwriting("-o", a.out, {a.species});
+    check_output_folder(a.out);
   }
   gen::Species species = gen::load_species(a.species);
   for (const std::string& w : species.warnings) std::fprintf(stderr, "%s\n", w.c_str());
@@ -118,16 +139,6 @@ struct RenderArgs {
   bool time_set = false;
 };
 
-// Fails early (before rendering) when an output's folder does not exist.
-void check_writable(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "." : path.substr(0, slash);
-  std::FILE* probe = std::fopen((dir + "/.arbor-write-test").c_str(), "w");
-  if (!probe) throw arbor::RuntimeFailure("cannot write " + path + ": its folder does not exist or is not writable");
-  std::fclose(probe);
-  std::remove((dir + "/.arbor-write-test").c_str());
-}
-
 // The weights for the EXR's arbor:treemaker_weights: one set when every tree shares it.
 std::string treemaker_weights_text(const arbor::trace::World& world) {
   std::string text;
@@ -174,8 +185,13 @@ int run_render(const RenderArgs& a) {
   if (!scene.output.png.empty() && !ends_with(scene.output.png, ".png")) {
     throw InputError({}, "the PNG output must end in .png: " + scene.output.png);
   }
+  const std::vector<std::string> inputs = trace::scene_inputs(scene);
+  if (!scene.output.exr.empty()) refuse_overwriting("the EXR output", scene.output.exr, inputs);
+  if (!scene.output.png.empty()) {
+    refuse_overwriting("the PNG output", scene.output.png, inputs, {scene.output.exr});
+  }
   for (const std::string& out : {scene.output.exr, scene.output.png}) {
-    if (!out.empty()) check_writable(out);
+    if (!out.empty()) check_output_folder(out);
   }
   const trace::ColorPipeline color(scene.output);
   const trace::EmbreeDevice device(r.threads > 0 ? "threads=" + std::to_string(r.threads) : "");
@@ -228,19 +244,19 @@ std::string json_number(double v) {
 
 void check_image_output(const std::string& path, const CompareArgs& a, const char* option) {
   if (path.empty()) return;
-  if (path == a.a || path == a.b) {
-    throw arbor::InputError({}, std::string(option) + " " + path + " would overwrite an input image");
-  }
+  refuse_overwriting(option, path, {a.a, a.b});
   if (!OIIO::ImageOutput::create(path)) {
     throw arbor::InputError({}, std::string(option) + " " + path +
                                     ": no image format for this extension (use .png, .exr, .tif or .jpg)");
   }
+  arbor::check_output_folder(path);
 }
 
 int run_compare(const CompareArgs& args) {
   using namespace arbor;
   check_image_output(args.heatmap, args, "--heatmap");
   check_image_output(args.side_by_side, args, "--side-by-side");
+  if (!args.heatmap.empty()) refuse_overwriting("--heatmap", args.heatmap, {}, {args.side_by_side});
   const trace::CompareImage a = trace::read_compare_image(args.a);
   const trace::CompareImage b = trace::read_compare_image(args.b);
   const trace::CompareMetrics m = trace::compare_images(a, b);
@@ -405,6 +421,7 @@ int main(int argc, char** argv) {
                         "render, the other a treemaker render of the same view with the \"treemaker\" "
                         "AOVs; prints the weights and the error left");
 
+  arbor::remove_temporaries_on_signal();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

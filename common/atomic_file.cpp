@@ -1,20 +1,150 @@
-// Atomic file output: nothing half-written is ever left at the target path.
+// Atomic file output: nothing half-written is ever left at the target path, nor beside it.
 #include "common/atomic_file.h"
 
+#include <atomic>
 #include <cerrno>
+#include <climits>
+#include <csignal>
+#include <cstdlib>
 #include <cstring>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "common/error.h"
 
 namespace arbor {
 
-AtomicFile::AtomicFile(std::string path, bool binary) : path_(std::move(path)) {
-  temp_ = path_ + ".tmp-" + std::to_string(::getpid());
+namespace {
+
+// Temporaries open right now, for the signal handler: fixed storage, so removing them needs
+// nothing but unlink(), which is async-signal-safe.
+constexpr int kSlots = 32;
+char g_temp_paths[kSlots][PATH_MAX];
+std::atomic<bool> g_temp_used[kSlots];
+
+int register_temporary(const std::string& path) {
+  if (path.size() >= PATH_MAX) return -1;
+  for (int i = 0; i < kSlots; ++i) {
+    bool expected = false;
+    if (g_temp_used[i].compare_exchange_strong(expected, true)) {
+      // Marked used before the path is complete: the handler may see a partial path, which
+      // names no file of ours; write the terminator last.
+      std::memcpy(g_temp_paths[i], path.c_str(), path.size());
+      g_temp_paths[i][path.size()] = '\0';
+      return i;
+    }
+  }
+  return -1;
+}
+
+void release_temporary(int slot) {
+  if (slot >= 0) g_temp_used[slot].store(false);
+}
+
+extern "C" void remove_temporaries_and_die(int sig) {
+  for (int i = 0; i < kSlots; ++i) {
+    if (g_temp_used[i].load()) ::unlink(g_temp_paths[i]);
+  }
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+std::string folder_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+// A hidden temporary beside `target` that keeps its extension (image writers choose the format
+// by it): dir/.NAME.tmp-PID.EXT
+std::string temporary_for(const std::string& target) {
+  const auto slash = target.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "" : target.substr(0, slash + 1);
+  const std::string name = slash == std::string::npos ? target : target.substr(slash + 1);
+  const auto dot = name.find_last_of('.');
+  const std::string ext = dot == std::string::npos || dot == 0 ? "" : name.substr(dot);
+  return dir + "." + name + ".tmp-" + std::to_string(::getpid()) + ext;
+}
+
+[[noreturn]] void fail(const std::string& path, int err) {
+  throw RuntimeFailure("cannot write " + path + ": " + std::strerror(err));
+}
+
+}  // namespace
+
+std::string resolve_output_path(const std::string& path) {
+  std::string at = path;
+  for (int hops = 0; hops < 40; ++hops) {
+    struct stat st;
+    if (::lstat(at.c_str(), &st) != 0 || !S_ISLNK(st.st_mode)) return at;
+    char buf[PATH_MAX];
+    const ssize_t n = ::readlink(at.c_str(), buf, sizeof buf - 1);
+    if (n < 0) return at;
+    buf[n] = '\0';
+    const std::string link(buf);
+    at = link.front() == '/' ? link : folder_of(at) + "/" + link;
+  }
+  throw RuntimeFailure("cannot write " + path + ": too many levels of symbolic links");
+}
+
+namespace {
+
+// The absolute name a path that may not exist yet would have: its folder's real path and its
+// own name, after symlinks.
+std::string canonical_name(const std::string& path) {
+  const std::string target = resolve_output_path(path);
+  const auto slash = target.find_last_of('/');
+  const std::string name = slash == std::string::npos ? target : target.substr(slash + 1);
+  char buf[PATH_MAX];
+  if (!::realpath(folder_of(target).c_str(), buf)) return target;
+  return std::string(buf) + "/" + name;
+}
+
+}  // namespace
+
+bool same_file(const std::string& a, const std::string& b) {
+  if (a.empty() || b.empty()) return false;
+  struct stat sa, sb;
+  if (::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0) {
+    return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+  }
+  return canonical_name(a) == canonical_name(b);
+}
+
+void check_output_folder(const std::string& path) {
+  const std::string dir = folder_of(resolve_output_path(path));
+  struct stat st;
+  if (::stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
+    throw RuntimeFailure("cannot write " + path + ": its folder " + dir + " does not exist");
+  }
+  if (::access(dir.c_str(), W_OK) != 0) {
+    throw RuntimeFailure("cannot write " + path + ": its folder " + dir + " is not writable");
+  }
+}
+
+void remove_temporaries_on_signal() {
+  struct sigaction sa;
+  std::memset(&sa, 0, sizeof sa);
+  sa.sa_handler = remove_temporaries_and_die;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+AtomicFile::AtomicFile(std::string path, bool binary)
+    : path_(std::move(path)), target_(resolve_output_path(path_)) {
+  temp_ = temporary_for(target_);
+  slot_ = register_temporary(temp_);
   file_ = std::fopen(temp_.c_str(), binary ? "wb" : "w");
   if (!file_) {
-    throw RuntimeFailure("cannot write " + path_ + ": " + std::strerror(errno));
+    const int err = errno;
+    release_temporary(slot_);
+    fail(path_, err);
   }
+  // Replacing a file keeps its permissions.
+  struct stat st;
+  if (::stat(target_.c_str(), &st) == 0) ::fchmod(::fileno(file_), st.st_mode & 07777);
 }
 
 AtomicFile::~AtomicFile() {
@@ -22,22 +152,28 @@ AtomicFile::~AtomicFile() {
     std::fclose(file_);
     std::remove(temp_.c_str());
   }
+  release_temporary(slot_);
+}
+
+void AtomicFile::write(const void* data, size_t size) {
+  if (error_ == 0 && size > 0 && std::fwrite(data, 1, size, file_) != size) error_ = errno ? errno : EIO;
 }
 
 void AtomicFile::commit() {
-  const bool write_failed = std::ferror(file_) != 0;
-  const bool close_failed = std::fclose(file_) != 0;
+  int err = error_;
+  if (err == 0 && (std::fflush(file_) != 0 || std::ferror(file_) != 0)) err = errno ? errno : EIO;
+  if (err == 0 && ::fsync(::fileno(file_)) != 0) err = errno;
+  if (std::fclose(file_) != 0 && err == 0) err = errno;
   file_ = nullptr;
-  if (write_failed || close_failed) {
-    const int err = errno;
+  if (err == 0 && std::rename(temp_.c_str(), target_.c_str()) != 0) err = errno;
+  if (err != 0) {
     std::remove(temp_.c_str());
-    throw RuntimeFailure("cannot write " + path_ + ": " + std::strerror(err));
+    release_temporary(slot_);
+    slot_ = -1;
+    fail(path_, err);
   }
-  if (std::rename(temp_.c_str(), path_.c_str()) != 0) {
-    const int err = errno;
-    std::remove(temp_.c_str());
-    throw RuntimeFailure("cannot write " + path_ + ": " + std::strerror(err));
-  }
+  release_temporary(slot_);
+  slot_ = -1;
 }
 
 }  // namespace arbor

@@ -1,4 +1,6 @@
 // Writes a file atomically: to a temporary beside the target, renamed over it only on commit.
+// Symlinks are written through (the link's final target is replaced, the link stays); a
+// temporary still open when SIGINT or SIGTERM arrives is removed before the process dies.
 #pragma once
 
 #include <cstdio>
@@ -14,17 +16,35 @@ class AtomicFile {
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
 
-  std::FILE* get() { return file_; }
-  // Writes raw bytes; errors are detected at commit.
-  void write(const void* data, size_t size) { std::fwrite(data, 1, size, file_); }
+  // Writes raw bytes; an error is kept and reported by commit.
+  void write(const void* data, size_t size);
   void write(const std::string& s) { write(s.data(), s.size()); }
-  // Flushes, closes and renames over the target; throws RuntimeFailure on any I/O error.
+  // Flushes, syncs to disk, closes and renames over the target; throws RuntimeFailure on any
+  // I/O error (a full disk, a file-size limit), leaving the old file as it was.
   void commit();
 
  private:
-  std::string path_;
+  std::string path_;    // as the user named it (for messages)
+  std::string target_;  // where it lands: the final target of a symlink chain
   std::string temp_;
+  int slot_ = -1;       // in the table of temporaries removed on a signal
+  int error_ = 0;       // the first write's errno
   std::FILE* file_ = nullptr;
 };
+
+// Where writing `path` lands: `path` itself, or the final target of the symlink chain it names
+// (relative link targets resolved against the link's folder). Throws RuntimeFailure on a loop.
+std::string resolve_output_path(const std::string& path);
+
+// True when both paths name the same file: the same device and inode when both exist, else the
+// same absolute name after symlinks (a file yet to be written).
+bool same_file(const std::string& a, const std::string& b);
+
+// RuntimeFailure unless the folder `path` would be written in exists and is writable.
+void check_output_folder(const std::string& path);
+
+// Installs SIGINT and SIGTERM handlers that remove every temporary an AtomicFile holds, then
+// end the process by the same signal (exit status 128 + signal). Call once from main.
+void remove_temporaries_on_signal();
 
 }  // namespace arbor

@@ -3,13 +3,19 @@
 // image for the comparison tools.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
 #include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imageio.h>
 
 namespace arbor::trace {
 
+// Encodes an image (the format by the extension of `path`) and writes it atomically through
+// AtomicFile: write_pixels writes the pixels to the opened output and says whether it could.
+void write_image_atomic(const std::string& path, const OIIO::ImageSpec& spec,
+                        const std::function<bool(OIIO::ImageOutput&)>& write_pixels);
 void write_imagebuf_atomic(const OIIO::ImageBuf& buf, const std::string& path, OIIO::TypeDesc type);
 
 // Every channel of an image's first subimage as floats, interleaved.

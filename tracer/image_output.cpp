@@ -3,15 +3,16 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <unistd.h>
 
 #include <OpenColorIO/OpenColorIO.h>
 #include <OpenImageIO/color.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "arbor/version.h"
+#include "common/atomic_file.h"
 #include "common/error.h"
 #include "tracer/image_file.h"
 
@@ -20,23 +21,6 @@ namespace OCIO = OCIO_NAMESPACE;
 namespace arbor::trace {
 
 namespace {
-
-// A temporary beside `path` with the same extension (image writers choose the format by it).
-std::string temporary_for(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
-  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-  const auto dot = name.find_last_of('.');
-  const std::string ext = dot == std::string::npos ? "" : name.substr(dot);
-  return dir + "." + name + ".tmp-" + std::to_string(::getpid()) + ext;
-}
-
-void commit(const std::string& tmp, const std::string& path) {
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw RuntimeFailure("cannot write " + path + ": the finished file could not be moved into place");
-  }
-}
 
 std::string list_of(const std::vector<std::string>& names) {
   std::string out;
@@ -171,15 +155,9 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta,
       for (std::size_t i = 0; i < e; ++i) data[k++] = img.extra[p * e + i];
     }
   }
-  const std::string tmp = temporary_for(path);
-  auto out = OIIO::ImageOutput::create(tmp);
-  if (!out || !out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, data.data()) ||
-      !out->close()) {
-    const std::string why = out ? out->geterror() : OIIO::geterror();
-    std::remove(tmp.c_str());
-    throw RuntimeFailure("cannot write " + path + ": " + why);
-  }
-  commit(tmp, path);
+  write_image_atomic(path, spec, [&](OIIO::ImageOutput& out) {
+    return out.write_image(OIIO::TypeDesc::FLOAT, data.data());
+  });
 }
 
 void write_png(const Image& img, const OutputDesc& o, const ColorPipeline& color,
@@ -201,13 +179,29 @@ void write_png(const Image& img, const OutputDesc& o, const ColorPipeline& color
   write_imagebuf_atomic(shown, path, OIIO::TypeDesc::UINT8);
 }
 
-void write_imagebuf_atomic(const OIIO::ImageBuf& buf, const std::string& path, OIIO::TypeDesc type) {
-  const std::string tmp = temporary_for(path);
-  if (!buf.write(tmp, type)) {
-    std::remove(tmp.c_str());
-    throw RuntimeFailure("cannot write " + path + ": " + buf.geterror());
+void write_image_atomic(const std::string& path, const OIIO::ImageSpec& spec,
+                        const std::function<bool(OIIO::ImageOutput&)>& write_pixels) {
+  // OIIO's writers do not all report a failed write (a PNG on a full disk "succeeds"), so the
+  // file is encoded in memory and written by AtomicFile, which checks every byte reaches disk.
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput memory(bytes);
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw RuntimeFailure("cannot write " + path + ": " + OIIO::geterror());
+  OIIO::ImageSpec with_proxy = spec;
+  void* proxy = &memory;
+  with_proxy.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  if (!out->open(path, with_proxy) || !write_pixels(*out) || !out->close()) {
+    throw RuntimeFailure("cannot write " + path + ": " + out->geterror());
   }
-  commit(tmp, path);
+  AtomicFile file(path, true);
+  file.write(bytes.data(), bytes.size());
+  file.commit();
+}
+
+void write_imagebuf_atomic(const OIIO::ImageBuf& buf, const std::string& path, OIIO::TypeDesc type) {
+  OIIO::ImageSpec spec = buf.spec();
+  spec.set_format(type);
+  write_image_atomic(path, spec, [&](OIIO::ImageOutput& out) { return buf.write(&out); });
 }
 
 }  // namespace arbor::trace

@@ -151,4 +151,7 @@ struct SceneDesc {
 SceneDesc load_scene(const std::string& path);
 SceneDesc parse_scene(const std::string& text, const std::string& path);
 
+// Every file the scene reads: the scene itself, species, textures, the environment map, meshes.
+std::vector<std::string> scene_inputs(const SceneDesc& scene);
+
 }  // namespace arbor::trace

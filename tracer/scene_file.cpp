@@ -360,4 +360,27 @@ SceneDesc load_scene(const std::string& path) {
   return parse_scene(gen::read_text_file(path), path);
 }
 
+std::vector<std::string> scene_inputs(const SceneDesc& s) {
+  std::vector<std::string> in{s.path};
+  auto add = [&](const std::string& p) {
+    if (!p.empty()) in.push_back(p);
+  };
+  auto looks = [&](const BarkOverride& b, const LeafOverride& l) {
+    add(b.bump_map);
+    add(b.albedo_map);
+    add(l.albedo_map);
+  };
+  for (const TreeDesc& t : s.trees) {
+    add(t.species);
+    looks(t.bark, t.leaf);
+  }
+  for (const ForestDesc& f : s.forests) {
+    add(f.species);
+    looks(f.bark, f.leaf);
+  }
+  for (const MeshDesc& m : s.meshes) add(m.path);
+  if (s.sky.model == "envmap") add(s.sky.path);
+  return in;
+}
+
 }  // namespace arbor::trace

@@ -14,47 +14,8 @@
 #include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 
-namespace {
+#include "app/cli.h"
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-CliRun arbor(const std::string& args) {
-  // ctest runs tests as parallel processes: name the capture files after the test.
-  const std::string stem = ::testing::TempDir() + "cli_" +
-                           ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  const std::string out = stem + ".out", err = stem + ".err";
-  const std::string cmd = std::string(ARBOR_BINARY) + " " + args + " >" + out + " 2>" + err;
-  const int status = std::system(cmd.c_str());
-  CliRun r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
-
-std::string species(const char* name) {
-  return std::string(ARBOR_SOURCE_DIR) + "/generator/species/" + name;
-}
-
-std::string write_temp(const char* name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
-  std::ofstream(path) << text;
-  return path;
-}
-
-bool exists(const std::string& path) { return std::ifstream(path).good(); }
-
-}  // namespace
 
 TEST(ArborCli, VersionAndHelp) {
   const CliRun v = arbor("--version");
@@ -153,19 +114,6 @@ TEST(ArborCli, FailedWriteExitsOneAndLeavesNoFile) {
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("cannot write /no/such/dir/tree.obj"), std::string::npos) << r.err;
   EXPECT_FALSE(exists("/no/such/dir/tree.obj"));
-}
-
-// Writes a w x h EXR of constant RGB, optionally with variance channels.
-std::string write_exr(const char* name, int w, int h, float value, float variance) {
-  const std::string path = ::testing::TempDir() + name;
-  const int nch = variance >= 0 ? 6 : 3;
-  OIIO::ImageSpec spec(w, h, nch, OIIO::TypeDesc::FLOAT);
-  if (nch == 6) spec.channelnames = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
-  OIIO::ImageBuf buf(spec);
-  const float px[6] = {value, value, value, variance, variance, variance};
-  for (int y = 0; y < h; ++y) for (int x = 0; x < w; ++x) buf.setpixel(x, y, px);
-  EXPECT_TRUE(buf.write(path));
-  return path;
 }
 
 TEST(ArborCli, CompareMetricsJsonAndImages) {

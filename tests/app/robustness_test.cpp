@@ -1,0 +1,120 @@
+// The command line against hostile input and hostile conditions: outputs are never lost or
+// half-written, inputs are never overwritten, bad values are refused with their position.
+#include <dirent.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "app/cli.h"
+
+namespace {
+
+std::string fresh_folder(const std::string& name) {
+  const std::string dir = ::testing::TempDir() + "robust_" + name;
+  std::system(("rm -rf '" + dir + "' && mkdir -p '" + dir + "'").c_str());
+  return dir;
+}
+
+std::vector<std::string> files_in(const std::string& dir) {
+  std::vector<std::string> names;
+  if (DIR* d = opendir(dir.c_str())) {
+    while (dirent* e = readdir(d)) {
+      const std::string n = e->d_name;
+      if (n != "." && n != "..") names.push_back(n);
+    }
+    closedir(d);
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// A 160x120 image of smooth noise: its PNG heatmap is tens of kilobytes.
+std::string noisy_exr(const std::string& path, int seed) {
+  OIIO::ImageBuf buf(OIIO::ImageSpec(160, 120, 3, OIIO::TypeDesc::FLOAT));
+  unsigned state = 12345u + static_cast<unsigned>(seed);
+  for (int y = 0; y < 120; ++y) {
+    for (int x = 0; x < 160; ++x) {
+      state = state * 1664525u + 1013904223u;
+      const float v = static_cast<float>(state >> 8) / 16777216.0f;
+      const float px[3] = {v, 0.5f * v, 0.25f};
+      buf.setpixel(x, y, px);
+    }
+  }
+  EXPECT_TRUE(buf.write(path));
+  return path;
+}
+
+}  // namespace
+
+// A full disk (here a file-size limit, which fails writes the same way) must not replace the
+// old picture with a truncated one, and must say so with exit code 1.
+TEST(Robustness, FailedPngWriteKeepsTheOldFile) {
+  const std::string dir = fresh_folder("png_limit");
+  const std::string a = noisy_exr(dir + "/a.exr", 1), b = noisy_exr(dir + "/b.exr", 2);
+  const std::string heat = dir + "/heat.png";
+  write_temp("robust_png_limit/heat.png", "the old picture");
+  const CliRun r = arbor_with("trap '' XFSZ; ulimit -f 8;", "compare " + a + " " + b + " --heatmap " + heat);
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("cannot write " + heat), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(heat), "the old picture");
+  EXPECT_EQ(files_in(dir), (std::vector<std::string>{"a.exr", "b.exr", "heat.png"}));
+  // Without the limit the same command writes it.
+  const CliRun ok = arbor("compare " + a + " " + b + " --heatmap " + heat);
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  EXPECT_GT(slurp(heat).size(), 8u * 1024u);
+}
+
+TEST(Robustness, OutputsNeverOverwriteInputsHoweverSpelled) {
+  const std::string dir = fresh_folder("overwrite");
+  const std::string a = noisy_exr(dir + "/a.exr", 1), b = noisy_exr(dir + "/b.exr", 2);
+  ASSERT_EQ(symlink("a.exr", (dir + "/link.exr").c_str()), 0);
+  const std::string before = slurp(a);
+  for (const std::string& out : {dir + "/./a.exr", dir + "/../robust_overwrite/a.exr", dir + "/link.exr"}) {
+    const CliRun r = arbor("compare " + a + " " + b + " --heatmap " + out);
+    EXPECT_EQ(r.code, 2) << out;
+    EXPECT_NE(r.err.find("would overwrite the input"), std::string::npos) << r.err;
+    const CliRun s = arbor("compare " + a + " " + b + " --side-by-side " + out);
+    EXPECT_EQ(s.code, 2) << out;
+  }
+  EXPECT_EQ(slurp(a), before);
+  // Both pictures to one file is refused too.
+  const CliRun both = arbor("compare " + a + " " + b + " --heatmap " + dir + "/x.png --side-by-side " +
+                            dir + "/./x.png");
+  EXPECT_EQ(both.code, 2) << both.err;
+  // A render whose output is one of the scene's inputs (here its environment map).
+  const std::string scene = write_temp(
+      "robust_overwrite/env.toml",
+      "[render]\nwidth = 8\nheight = 8\nspp = 1\n[sky]\nmodel = \"envmap\"\npath = \"a.exr\"\n");
+  const CliRun r = arbor("render " + scene + " -o " + dir + "/link.exr");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("would overwrite the input"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(a), before);
+  // grow -o onto its own species file.
+  const std::string sp = dir + "/tree.skel";
+  ASSERT_EQ(std::system(("cp " + std::string(ARBOR_SOURCE_DIR) + "/generator/species/*.skel " + sp).c_str()), 0);
+  const std::string skel = slurp(sp);
+  const CliRun g = arbor("grow " + sp + " -o " + dir + "/./tree.skel");
+  EXPECT_EQ(g.code, 2) << g.err;
+  EXPECT_EQ(slurp(sp), skel);
+}
+
+// Outputs write through a symlink to its target; the link stays a link.
+TEST(Robustness, OutputsWriteThroughSymlinks) {
+  const std::string dir = fresh_folder("symlink");
+  const std::string a = noisy_exr(dir + "/a.exr", 1), b = noisy_exr(dir + "/b.exr", 2);
+  ASSERT_EQ(mkdir((dir + "/real").c_str(), 0755), 0);
+  write_temp("robust_symlink/real/heat.png", "old");
+  ASSERT_EQ(symlink("real/heat.png", (dir + "/heat.png").c_str()), 0);
+  const CliRun r = arbor("compare " + a + " " + b + " --heatmap " + dir + "/heat.png");
+  ASSERT_EQ(r.code, 0) << r.err;
+  struct stat st;
+  ASSERT_EQ(lstat((dir + "/heat.png").c_str(), &st), 0);
+  EXPECT_TRUE(S_ISLNK(st.st_mode));
+  OIIO::ImageBuf shown(dir + "/real/heat.png");
+  EXPECT_TRUE(shown.read()) << shown.geterror();
+  EXPECT_EQ(files_in(dir + "/real"), std::vector<std::string>{"heat.png"});
+}
