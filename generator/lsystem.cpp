@@ -2,6 +2,7 @@
 #include "generator/lsystem.h"
 
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -88,7 +89,13 @@ class Parser {
         digits.find('.') != digits.rfind('.')) {
       throw InputError(where, "expected a number such as 2 or 0.5");
     }
-    return std::stod(digits);
+    double v = 0.0;
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
+    if (ec != std::errc() || end != digits.data() + digits.size() || !std::isfinite(v)) {
+      throw InputError(where, "the number " + (digits.size() > 24 ? digits.substr(0, 24) + "..." : digits) +
+                                  " is too large");
+    }
+    return v;
   }
   double parenthesized() {
     expect('(', "'('");
@@ -181,9 +188,16 @@ class Parser {
           if (c == 's' && a.number <= 0.0) throw InputError(a.where, "s(n) needs n > 0");
           break;
         case '[':
+          // Parsing, interpreting and estimating recurse per bracket: a bound on the nesting
+          // keeps the stack bounded (64 iterations of rules nested this deep still fit).
+          if (++branch_depth_ > kMaxBranchDepth) {
+            throw InputError(a.where, "branches are nested more than " + std::to_string(kMaxBranchDepth) +
+                                          " deep in one rule");
+          }
           a.kind = LAction::Branch;
           a.branch = actions(true);
           expect(']', "']'");
+          --branch_depth_;
           break;
         default:
           if (c >= 'A' && c <= 'Z') {
@@ -206,8 +220,10 @@ class Parser {
     }
   }
 
+  static constexpr int kMaxBranchDepth = 100;
   TextCursor cursor_;
   std::string path_;
+  int branch_depth_ = 0;
 };
 
 // Actions interpreted (of any kind) by one interpretation of a rule at `depth`: what bounds the

@@ -238,7 +238,7 @@ class Reader {
     Skeleton sk;
     sk.trunk = trunk_;
     std::vector<int> reached;
-    start_stem(sk, -1, -1, roots[0], -1, reached);
+    build_stems(sk, roots[0], reached);
     std::sort(reached.begin(), reached.end());
     for (int i : order_) {
       if (!std::binary_search(reached.begin(), reached.end(), i)) {
@@ -305,12 +305,41 @@ class Reader {
     for (auto& [point, stem] : stem_of_point_) stem = new_index[static_cast<size_t>(stem)];
   }
 
-  // Builds the stem that starts at `first` (a branch point of `parent`, or a branch record) and
-  // every stem that grows from it, parents before children.
-  void start_stem(Skeleton& sk, int parent, int parent_point, int first, int second_hint,
-                  std::vector<int>& reached) {
+  // Where a stem starts: at `first` (a point of `parent`, index `parent_point` along it, or a
+  // branch record when parent_point is -1), continuing to `second_hint` when given.
+  struct StemStart {
+    int parent, parent_point, first, second_hint;
+  };
+
+  // Builds every stem, parents before children, in depth-first order (each stem's children in
+  // file order). Iterative with an explicit stack, so a skeleton nested thousands of levels
+  // deep cannot overflow the call stack; linear in the number of points and records.
+  void build_stems(Skeleton& sk, int root, std::vector<int>& reached) {
+    // Branch records by the segment they start on, in file order.
+    std::map<std::pair<int, int>, std::vector<int>> on_segment;
+    for (int c : order_) {
+      const PointRecord& pc = points_[c];
+      if (pc.branch) on_segment[{pc.branch_a, pc.branch_b}].push_back(c);
+    }
+    std::vector<StemStart> pending{{-1, -1, root, -1}};
+    std::vector<StemStart> children;
+    while (!pending.empty()) {
+      const StemStart next = pending.back();
+      pending.pop_back();
+      children.clear();
+      add_stem(sk, next, on_segment, reached, children);
+      pending.insert(pending.end(), children.rbegin(), children.rend());
+    }
+  }
+
+  // Builds one stem and lists, in order, the stems that start on it.
+  void add_stem(Skeleton& sk, const StemStart& from,
+                const std::map<std::pair<int, int>, std::vector<int>>& on_segment,
+                std::vector<int>& reached, std::vector<StemStart>& children) {
+    const int parent = from.parent, parent_point = from.parent_point, first = from.first;
     std::vector<int> chain{first};
-    int at = second_hint >= 0 ? second_hint : (points_[first].outgoing.empty() ? -1 : points_[first].outgoing[0]);
+    int at = from.second_hint >= 0 ? from.second_hint
+                                   : (points_[first].outgoing.empty() ? -1 : points_[first].outgoing[0]);
     while (at >= 0) {
       // A point that a `stem` record names starts a stem of its own (e.g. a parent that ends
       // where its branches begin); otherwise the first outgoing limb continues this stem.
@@ -320,6 +349,16 @@ class Reader {
     }
     if (chain.size() < 2) {
       throw InputError({path_, points_[first].line, 1}, "point " + std::to_string(first) + " starts a limb that goes nowhere");
+    }
+    for (std::size_t k = 1; k < chain.size(); ++k) {
+      const PointRecord& a = points_[chain[k - 1]];
+      const PointRecord& b = points_[chain[k]];
+      if (a.position == b.position) {
+        // A limb segment of length 0 has no direction: splines and frames through it are NaN.
+        throw InputError({path_, b.incoming_line > 0 ? b.incoming_line : b.line, 1},
+                         "points " + std::to_string(chain[k - 1]) + " and " + std::to_string(chain[k]) +
+                             " are at the same position, so the limb between them has no direction");
+      }
     }
     Stem st;
     st.parent = parent;
@@ -347,40 +386,44 @@ class Reader {
       st.color = r.color;
     }
     if (parent >= 0) {
-      const Stem& p = sk.stems[static_cast<size_t>(parent)];
       if (rec != stems_.end() && rec->second.offset >= 0.0f) {
         st.parent_offset = rec->second.offset;
       } else if (parent_point >= 0) {
-        float arc = p.z_start * p.length;
-        for (int k = 1; k <= parent_point; ++k) arc += glm::length(sk.points[p.first_point + k].position - sk.points[p.first_point + k - 1].position);
-        st.parent_offset = arc;
+        st.parent_offset = arc_to_point_[static_cast<size_t>(parent)][static_cast<size_t>(parent_point)];
       }
     }
     const auto index = static_cast<int>(sk.stems.size());
     sk.stems.push_back(st);
+    // Arc length from the base of the whole stem to each of its points, summed point by point.
+    std::vector<float> arc(chain.size());
+    arc[0] = st.z_start * st.length;
+    for (std::size_t k = 1; k < chain.size(); ++k) {
+      arc[k] = arc[k - 1] + glm::length(sk.points[st.first_point + k].position -
+                                        sk.points[st.first_point + k - 1].position);
+    }
+    arc_to_point_.push_back(std::move(arc));
     stem_lines_.push_back(points_[chain[1]].incoming_line);
     for (std::size_t k = 1; k < chain.size(); ++k) stem_of_point_[chain[k]] = index;
     if (parent < 0) stem_of_point_[first] = index;
     reached.insert(reached.end(), chain.begin(), chain.end());
-    // Children: other outgoing connections at each point of this stem, and branch records on
+    // Children: other outgoing connections at each point of this stem, then branch records on
     // its segments, in file order.
     for (std::size_t k = 0; k < chain.size(); ++k) {
       // A first point shared with the parent: its other limbs are the parent's children.
       if (k == 0 && parent_point >= 0) continue;
       for (int o : points_[chain[k]].outgoing) {
         if (k + 1 < chain.size() && o == chain[k + 1]) continue;  // the continuation
-        start_stem(sk, index, static_cast<int>(k), chain[k], o, reached);
+        children.push_back({index, static_cast<int>(k), chain[k], o});
       }
     }
-    for (int c : order_) {
-      const PointRecord& pc = points_[c];
-      if (!pc.branch) continue;
-      for (std::size_t k = 0; k + 1 < chain.size(); ++k) {
-        if (pc.branch_a == chain[k] && pc.branch_b == chain[k + 1]) {
-          start_stem(sk, index, -1, c, -1, reached);
-        }
-      }
+    std::vector<std::pair<int, int>> branches;  // (line, point)
+    for (std::size_t k = 0; k + 1 < chain.size(); ++k) {
+      const auto it = on_segment.find({chain[k], chain[k + 1]});
+      if (it == on_segment.end()) continue;
+      for (int c : it->second) branches.emplace_back(points_[c].line, c);
     }
+    std::sort(branches.begin(), branches.end());
+    for (const auto& [line, c] : branches) children.push_back({index, -1, c, -1});
   }
 
   const std::string& text_;
@@ -396,6 +439,7 @@ class Reader {
   std::vector<std::pair<int, LeafLine>> free_lines_;
   std::map<int, int> stem_of_point_;
   std::vector<int> stem_lines_;  // per stem (depth-first index): line of its first connection
+  std::vector<std::vector<float>> arc_to_point_;  // per stem: arc length to each of its points
   TrunkDisplacement trunk_;
   float default_radius_ = 0.0f;
 };

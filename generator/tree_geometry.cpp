@@ -183,8 +183,15 @@ void add_trunk_grid(const Skeleton& sk, const Limb& limb, std::int32_t limb_inde
       glm::dvec3 normal = glm::cross(around, along);
       const glm::dvec3 radial = at(i, j) - spline.position(ts[i]);
       if (glm::dot(normal, radial) < 0.0) normal = -normal;
-      gs.normals.emplace_back(glm::length(normal) > 1e-20 ? glm::normalize(normal)
-                                                          : glm::normalize(radial));
+      if (glm::length(normal) > 1e-20) {
+        gs.normals.emplace_back(glm::normalize(normal));
+      } else {
+        // A ring of radius 0 (the tip of a trunk tapered to a point) has no surface direction
+        // of its own: it takes the frame's outward direction of its column.
+        const double angle = 2.0 * kPi * static_cast<double>(j) / static_cast<double>(sides);
+        gs.normals.emplace_back(frames[i].normal * std::cos(angle) +
+                                glm::cross(frames[i].tangent, frames[i].normal) * std::sin(angle));
+      }
     }
   }
   gs.grids.push_back(grid);

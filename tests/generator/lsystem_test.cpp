@@ -182,3 +182,29 @@ TEST(LSystem, ShippedExamplesGrowValidTrees) {
 }
 
 }  // namespace arbor::gen
+
+namespace arbor::gen {
+
+// 50,000 nested brackets once overflowed the stack: the nesting is bounded with a positioned
+// error, and the deepest nesting allowed still grows at the most iterations allowed.
+TEST(LSystem, DeepNestingIsRefusedAndTheDeepestAllowedGrows) {
+  const std::string deep = "A: f" + std::string(50000, '[') + "f" + std::string(50000, ']') + ";\n";
+  expect_error(deep, 1, 105, "nested more than 100 deep");
+  const std::string limit = "iterations = 64;\nA: f" + std::string(100, '[') + "f A" +
+                            std::string(100, ']') + ";\n";
+  const Skeleton sk = grow(limit);
+  EXPECT_EQ(validate(sk), "");
+  EXPECT_EQ(sk.stems.size(), 66u);  // the trunk and one branch per depth 0..64
+  expect_error("A: f" + std::string(101, '[') + "f" + std::string(101, ']') + ";\n", 1, 105,
+               "nested more than 100");
+}
+
+TEST(LSystem, NumbersTooLargeForADoubleAreInputErrors) {
+  expect_error("step = " + std::string(400, '9') + ";\nA: f;\n", 1, 8, "too large");
+  expect_error("A: f(" + std::string(400, '1') + ");\n", 1, 6, "too large");
+  // Long but representable numbers are read exactly as short ones.
+  const LSystem s = parse_lsystem("angle = 30." + std::string(300, '0') + ";\nA: f;\n", "t.lsys");
+  EXPECT_EQ(s.angle, 30.0);
+}
+
+}  // namespace arbor::gen

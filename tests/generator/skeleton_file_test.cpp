@@ -107,3 +107,53 @@ TEST(SkeletonFile, RoundTripsAnyModelExactly) {
 }
 
 }  // namespace arbor::gen
+
+namespace arbor::gen {
+
+// A chain of limbs nested 20,000 deep once overflowed the stack (a recursion per stem).
+TEST(SkeletonFile, DeeplyNestedBranchesAreReadWithoutRecursion) {
+  const int depth = 20000;
+  std::string text = "radius 0.001\npoint 0 0 0 0\n";
+  // Point 2k+1 continues the stem, point 2k+2 starts a new one from it.
+  for (int k = 0; k < depth; ++k) {
+    const int at = k == 0 ? 0 : 2 * k - 1;
+    text += "point " + std::to_string(2 * k + 1) + " 0 0 " + std::to_string(k + 1) + "\n";
+    text += "point " + std::to_string(2 * k + 2) + " 1 0 " + std::to_string(k + 1) + "\n";
+    text += "connect " + std::to_string(at) + " " + std::to_string(2 * k + 1) + "\n";
+    text += "connect " + std::to_string(at) + " " + std::to_string(2 * k + 2) + "\n";
+  }
+  const Skeleton sk = parse_skeleton_file(text, "t.skel");
+  EXPECT_EQ(validate(sk), "");
+  EXPECT_EQ(sk.stems.size(), static_cast<std::size_t>(depth) + 1);
+}
+
+// 100,000 limbs from one point once took over a minute (quadratic); linear now, so this runs in
+// well under a second.
+TEST(SkeletonFile, ManyChildrenOfOnePointAreRead) {
+  const int children = 100000;
+  std::string text = "radius 0.01\npoint 0 0 0 0\npoint 1 0 0 10\nconnect 0 1\n";
+  for (int k = 0; k < children; ++k) {
+    const int id = k + 2;
+    text += "point " + std::to_string(id) + " " + std::to_string(1 + k % 7) + " " +
+            std::to_string(k / 7) + " 5 0.001\nconnect 1 " + std::to_string(id) + "\n";
+  }
+  // Branch records on the trunk's segment take the same path.
+  for (int k = 0; k < 1000; ++k) {
+    const std::string c = std::to_string(children + 2 + 2 * k), d = std::to_string(children + 3 + 2 * k);
+    text += "point " + c + " 0 0 5 0.001\npoint " + d + " 2 2 " + std::to_string(k) + " 0.001\n";
+    text += "branch " + c + " on 0 1 0.5\nconnect " + c + " " + d + "\n";
+  }
+  const Skeleton sk = parse_skeleton_file(text, "t.skel");
+  EXPECT_EQ(validate(sk), "");
+  // The trunk continues into point 1's first limb; every other limb and branch is a stem.
+  EXPECT_EQ(sk.stems.size(), static_cast<std::size_t>(children) + 1000);
+}
+
+// Two coincident points on a limb once gave NaN positions; the limb has no direction there.
+TEST(SkeletonFile, CoincidentPointsOnALimbAreRefused) {
+  expect_error("point 0 0 0 0\npoint 1 0 0 1\npoint 2 0 0 1\nconnect 0 1\nconnect 1 2\n", 5, 1,
+               "points 1 and 2 are at the same position");
+  expect_error("point 0 0 0 0\npoint 1 0 0 0\nconnect 0 1\n", 3, 1, "same position");
+}
+
+}  // namespace arbor::gen
