@@ -340,24 +340,31 @@ class Grower {
   Skeleton sk_;
 };
 
-double branches_from(const TreeMakerTemplate& t, int level, int remaining, std::map<std::pair<int, int>, double>& memo) {
-  const auto key = std::make_pair(level, remaining);
-  const auto it = memo.find(key);
-  if (it != memo.end()) return it->second;
-  const TmBranchRule* rule = t.rule_for(level + 1);
-  const double per_iteration = rule ? std::floor(rule->number.hi) : 0.0;
-  double total = 1.0;
-  for (int r = remaining - 1; r >= 1 && per_iteration > 0.0; --r) {
-    total += per_iteration * branches_from(t, std::min(level + 1, 1000), r, memo);
-  }
-  return memo[key] = total;
-}
-
 }  // namespace
 
 double treemaker_estimate(const TreeMakerTemplate& t) {
-  std::map<std::pair<int, int>, double> memo;
-  return branches_from(t, 0, t.iterations + 1, memo) * static_cast<double>(t.particles.size());
+  // The most branches one particle can grow: f(l, n), for a branch of level l with n iterations
+  // left, is itself plus, each later iteration, as many level-(l+1) branches as its rule allows
+  // at most, each growing for the iterations left after it: f(l, n) = 1 + p(l+1) Σ_{r<n} f(l+1, r).
+  // Levels stop at 1000 (the template's largest). Tabulated by n with running sums over r:
+  // O(iterations × levels), about a million steps at the limits, not the recursion's billion.
+  constexpr int kLevels = 1000;
+  std::vector<double> per_iteration(kLevels + 2, 0.0);
+  for (int l = 0; l <= kLevels + 1; ++l) {
+    const TmBranchRule* rule = t.rule_for(l);
+    per_iteration[static_cast<size_t>(l)] = rule ? std::floor(rule->number.hi) : 0.0;
+  }
+  const int n_max = t.iterations + 1;
+  std::vector<double> sum(kLevels + 1, 0.0);  // Σ_{r ≤ n-1} f(l, r), for every level l
+  std::vector<double> f(kLevels + 1, 0.0);
+  for (int n = 1; n <= n_max; ++n) {
+    for (int l = 0; l <= kLevels; ++l) {
+      const double p = per_iteration[static_cast<size_t>(l + 1)];
+      f[static_cast<size_t>(l)] = 1.0 + (p > 0.0 ? p * sum[static_cast<size_t>(std::min(l + 1, kLevels))] : 0.0);
+    }
+    for (int l = 0; l <= kLevels; ++l) sum[static_cast<size_t>(l)] += f[static_cast<size_t>(l)];
+  }
+  return f[0] * static_cast<double>(t.particles.size());
 }
 
 Skeleton grow_treemaker(const TreeMakerTemplate& t, const TreeMakerOptions& o) {

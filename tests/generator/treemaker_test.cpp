@@ -257,3 +257,38 @@ TEST(TreeMakerGrowth, AbsurdTemplatesAreRefusedWithTheEstimate) {
 }
 
 }  // namespace arbor::gen
+
+namespace arbor::gen {
+
+// The estimate is the most branches the rules allow: with up to 3 new branches per branch and
+// iteration, f(n) = 1 + 3 Σ_{r<n} f(r) = 4^(n-1) for n iterations left, times the particles.
+TEST(TreeMakerGrowth, TheSizeEstimateCountsTheMostBranchesTheRulesAllow) {
+  for (int i : {1, 2, 3, 6}) {
+    const std::string text = "iterations { i= " + std::to_string(i) + " }\n" + kColor +
+        "branch { level= 1 number= 2 to 3.5 (p=1 angle= 30 to 40 dir= 0 to 360 factor= 1 to 1) }\n" +
+        kParticle + kParticle + kLeaf;
+    EXPECT_DOUBLE_EQ(treemaker_estimate(parse_treemaker_template(text, "t.tmpl")), 2.0 * std::pow(4.0, i)) << i;
+  }
+  // A second rule from level 3 on, allowing none.
+  const std::string two = "iterations { i= 3 }\n" + kColor +
+      "branch { level= 1 number= 3 to 3 (p=1 angle= 30 to 40 dir= 0 to 360 factor= 1 to 1) }\n"
+      "branch { level= 3 number= 0 to 0.5 (p=1 angle= 30 to 40 dir= 0 to 360 factor= 1 to 1) }\n" +
+      kParticle + kLeaf;
+  // Level 0 (the particle) with 4 iterations left: 1 + 3 [f1(1) + f1(2) + f1(3)], where level-1
+  // branches spawn level-2 ones by the first rule (3 each) and level-2 branches spawn level-3
+  // ones by the second (0 each): f2 = 1, f1(n) = 1 + 3 (n - 1), so 1 + 3 (1 + 4 + 7) = 37.
+  EXPECT_DOUBLE_EQ(treemaker_estimate(parse_treemaker_template(two, "t.tmpl")), 37.0);
+}
+
+// i= 1000 (the largest allowed) with deep rules once spent a minute estimating before refusing.
+TEST(TreeMakerGrowth, TheLargestTemplateIsRefusedAtOnce) {
+  std::string text = "iterations { i= 1000 }\n" + kColor;
+  for (int level = 1; level <= 1000; level += 37) {
+    text += "branch { level= " + std::to_string(level) +
+            " number= 1 to 2 (p=1 angle= 30 to 40 dir= 0 to 360 factor= 1 to 1) }\n";
+  }
+  text += kParticle + kLeaf;
+  EXPECT_THROW(grow_template(text), RuntimeFailure);
+}
+
+}  // namespace arbor::gen
