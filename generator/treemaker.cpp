@@ -371,10 +371,17 @@ Skeleton grow_treemaker(const TreeMakerTemplate& t, const TreeMakerOptions& o) {
   const double estimate = treemaker_estimate(t);
   if (!o.force && estimate > o.max_stems) {
     char buf[200];
-    std::snprintf(buf, sizeof buf,
-                  "the template could grow about %.3g branches (limit %.3g); use --force to grow "
-                  "it anyway",
-                  estimate, o.max_stems);
+    if (std::isfinite(estimate)) {
+      std::snprintf(buf, sizeof buf,
+                    "the template could grow about %.3g branches (limit %.3g); use --force to grow "
+                    "it anyway",
+                    estimate, o.max_stems);
+    } else {
+      std::snprintf(buf, sizeof buf,
+                    "the template could grow more than 1e308 branches (limit %.3g); use --force to "
+                    "grow it anyway",
+                    o.max_stems);
+    }
     throw RuntimeFailure(buf);
   }
   return Grower(t, o).run();
