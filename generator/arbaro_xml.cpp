@@ -2,6 +2,7 @@
 // Per-level names carry the level digit 0–3 as a prefix ("1DownAngle"). Unknown names and bad
 // values are errors with their line; Arbaro's own extensions are reported and ignored.
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -62,16 +63,41 @@ Species parse_arbaro_xml(std::string_view text, const std::string& path) {
     return SourceLocation{path, line, column};
   };
   pugi::xml_document doc;
-  const pugi::xml_parse_result parsed = doc.load_buffer(text.data(), text.size());
+  // As a fragment, so that pugixml keeps text outside the root element (it drops it otherwise).
+  const pugi::xml_parse_result parsed =
+      doc.load_buffer(text.data(), text.size(), pugi::parse_default | pugi::parse_fragment);
   if (!parsed) throw InputError(where(parsed.offset), std::string("malformed XML: ") + parsed.description());
 
+  // Text is not part of the format anywhere (pugixml keeps only text that is not white space):
+  // text before or after the root, or between the elements, is refused where it starts.
+  auto refuse_text = [&](const pugi::xml_node& parent, const char* where_text) {
+    for (const pugi::xml_node& node : parent.children()) {
+      if (node.type() == pugi::node_pcdata || node.type() == pugi::node_cdata) {
+        // The node starts with the white space before the text: point at the text itself.
+        auto at = static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, node.offset_debug()));
+        while (at < text.size() && std::isspace(static_cast<unsigned char>(text[at]))) ++at;
+        throw InputError(where(static_cast<std::ptrdiff_t>(at)), std::string("unexpected text ") + where_text);
+      }
+    }
+  };
+  refuse_text(doc, "outside the <arbaro> element");
+  int roots = 0;
+  for (const pugi::xml_node& node : doc.children()) {
+    if (node.type() == pugi::node_element && ++roots > 1) {
+      throw InputError(where(node.offset_debug()), "a second root element <" + std::string(node.name()) +
+                                                       ">: the file holds one <arbaro> element");
+    }
+  }
   const pugi::xml_node root = doc.document_element();
+  if (!root) throw InputError({path, 1, 1}, "no <arbaro> element: this is not an Arbaro parameter file");
   if (std::string_view(root.name()) != "arbaro") {
     throw InputError(where(root.offset_debug()), "expected an <arbaro> root element, found <" +
                                                       std::string(root.name()) + ">");
   }
   const pugi::xml_node species_node = root.child("species");
   if (!species_node) throw InputError(where(root.offset_debug()), "no <species> element");
+  refuse_text(root, "in <arbaro>");
+  refuse_text(species_node, "in <species>");
 
   Species sp;
   sp.path = path;

@@ -181,3 +181,20 @@ TEST(ArbaroXml, ErrorsCarryTheirLine) {
 }
 
 }  // namespace arbor::gen
+
+namespace arbor::gen {
+
+// Text before the root element was once accepted; text is not part of the format anywhere.
+TEST(ArbaroXml, TextOutsideTheElementsIsRefused) {
+  const std::string body = "<arbaro><species name='x'>\n<param name='Shape' value='3'/>\n</species></arbaro>\n";
+  expect_xml_error("garbage\n" + body, 1, "unexpected text outside the <arbaro> element");
+  expect_xml_error(body + "\ntrailing words\n", 5, "unexpected text outside");
+  expect_xml_error("<arbaro>stray<species name='x'>\n</species></arbaro>\n", 1, "unexpected text in <arbaro>");
+  expect_xml_error("<arbaro><species name='x'>\n<param name='Shape' value='3'/>\nwords\n</species></arbaro>\n",
+                   3, "unexpected text in <species>");
+  expect_xml_error(body + "<arbaro/>\n", 4, "a second root element");
+  // Declarations, comments and white space stay allowed.
+  EXPECT_NO_THROW(parse_arbaro_xml("<?xml version='1.0'?>\n<!-- a tree -->\n" + body + "  \n", "t.xml"));
+}
+
+}  // namespace arbor::gen
