@@ -1,6 +1,8 @@
 // The arbor command line: parses arguments, calls the libraries, maps errors to exit codes
 // (0 success, 1 the work failed, 2 bad input or usage).
 #include <algorithm>
+#include <charconv>
+#include <optional>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -35,6 +37,39 @@
 
 namespace {
 
+// CLI11 check of a seed: a whole number from 0 to 2^64-1 (a larger one was once clamped
+// silently, so different seeds gave the same tree).
+CLI::Validator seed_check() {
+  return CLI::Validator(
+      [](std::string& v) {
+        std::uint64_t parsed = 0;
+        const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), parsed);
+        if (v.empty() || ec != std::errc() || end != v.data() + v.size()) {
+          return "the seed must be a whole number from 0 to 2^64-1 (18446744073709551615), not '" + v + "'";
+        }
+        return std::string();
+      },
+      "UINT64");
+}
+
+// CLI11 check of a real number: finite and in [lo, hi], as strictly as the scene keys are
+// checked (CLI11's Range lets NaN through).
+CLI::Validator finite_in(double lo, double hi) {
+  char range[64];
+  std::snprintf(range, sizeof range, "[%g, %g]", lo, hi);
+  return CLI::Validator(
+      [lo, hi, text = std::string(range)](std::string& v) {
+        double parsed = 0.0;
+        const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), parsed);
+        if (v.empty() || ec != std::errc() || end != v.data() + v.size() || !std::isfinite(parsed)) {
+          return "'" + v + "' is not a finite number";
+        }
+        if (parsed < lo || parsed > hi) return v + " is out of range " + text;
+        return std::string();
+      },
+      std::string("FLOAT in ") + range);
+}
+
 struct GrowArgs {
   std::string species;
   unsigned long long seed = 1;
@@ -68,10 +103,6 @@ void refuse_overwriting(const std::string& what, const std::string& out,
 
 int run_grow(const GrowArgs& a) {
   using namespace arbor;
-  if (!std::isfinite(a.time)) throw InputError({}, "--time must be a finite number of seconds");
-  if (!(a.quality > 0.0 && a.quality <= 100.0)) {
-    throw InputError({}, "--quality must be in (0, 100]");
-  }
   if (!a.out.empty() && !ends_with(a.out, ".obj") && !ends_with(a.out, ".ply") &&
       !ends_with(a.out, ".pbrt") && !ends_with(a.out, ".skel")) {
     throw InputError({}, "-o " + a.out + ": the output must be .obj, .ply, .pbrt or .skel");
@@ -134,9 +165,8 @@ struct RenderArgs {
   std::string scene;
   std::string exr, png, integrator;
   int spp = 0, threads = 0, width = 0, height = 0;
-  long long seed = -1;
-  double time = 0.0;
-  bool time_set = false;
+  std::optional<std::uint64_t> seed;
+  std::optional<double> time;
 };
 
 // The weights for the EXR's arbor:treemaker_weights: one set when every tree shares it.
@@ -163,10 +193,10 @@ int run_render(const RenderArgs& a) {
   if (a.spp > 0) (treemaker ? r.treemaker_spp : r.spp) = a.spp;
   if (a.width > 0) r.width = a.width;
   if (a.height > 0) r.height = a.height;
-  if (a.seed >= 0) r.seed = static_cast<std::uint64_t>(a.seed);
+  if (a.seed) r.seed = *a.seed;
   r.threads = a.threads;
-  if (a.time_set) {
-    for (trace::TreeDesc& t : scene.trees) t.time = a.time;
+  if (a.time) {
+    for (trace::TreeDesc& t : scene.trees) t.time = *a.time;
   }
   if (!a.exr.empty()) scene.output.exr = a.exr;
   if (!a.png.empty()) scene.output.png = a.png;
@@ -363,18 +393,14 @@ int main(int argc, char** argv) {
                        "species file: .toml (model = weber-penn or fractal), .xml (Arbaro), .lsys (L-system), .tmpl (TREE-MAKER) or .skel (skeleton)")
       ->required();
   grow_cmd->add_option("--seed", grow.seed, "random seed (same seed, same tree)")
-      ->check(CLI::Validator(
-          [](std::string& v) {
-            return v.find_first_not_of("0123456789") == std::string::npos && !v.empty()
-                       ? std::string()
-                       : "the seed must be a whole number from 0 to 2^64-1, not '" + v + "'";
-          },
-          "UINT64"))
+      ->check(seed_check())
       ->capture_default_str();
   grow_cmd->add_option("--time", grow.time, "seconds of wind sway (needs WindSpeed/WindGust)")
+      ->check(finite_in(-1e6, 1e6))
       ->capture_default_str();
   grow_cmd->add_option("--quality", grow.quality,
                        "leaf quality factor: leaf count x Q, leaf size / sqrt(Q)")
+      ->check(finite_in(1e-6, 100.0))
       ->capture_default_str();
   grow_cmd->add_option("-o,--output", grow.out,
                        "write the tree: .obj or .ply (tessellated mesh, bark and leaf groups), "
@@ -391,14 +417,14 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--png", render.png, "PNG to write through the display view");
   render_cmd->add_option("--spp", render.spp, "samples per pixel of the integrator in use "
                          "(overrides render.spp, or render.treemaker_spp for treemaker)")->check(CLI::Range(1, 1 << 20));
-  render_cmd->add_option("--seed", render.seed, "random seed")->check(CLI::NonNegativeNumber);
+  render_cmd->add_option("--seed", render.seed, "random seed (overrides render.seed)")->check(seed_check());
   render_cmd->add_option("--threads", render.threads, "threads (0: all cores)")->check(CLI::Range(0, 1024));
   render_cmd->add_option("--integrator", render.integrator, "path (exact) or treemaker (TREE-MAKER's approximate shading)")
       ->check(CLI::IsMember({"path", "treemaker"}));
   render_cmd->add_option("--width", render.width, "image width")->check(CLI::Range(1, 16384));
   render_cmd->add_option("--height", render.height, "image height")->check(CLI::Range(1, 16384));
   render_cmd->add_option("--time", render.time, "seconds of wind sway for every [[tree]]")
-      ->each([&render](const std::string&) { render.time_set = true; });
+      ->check(finite_in(-1e6, 1e6));
   CompareArgs cmp;
   CLI::App* compare_cmd = app.add_subcommand(
       "compare", "Compare image A against reference B: error metrics, heatmap, z-test");

@@ -118,3 +118,24 @@ TEST(Robustness, OutputsWriteThroughSymlinks) {
   EXPECT_TRUE(shown.read()) << shown.geterror();
   EXPECT_EQ(files_in(dir + "/real"), std::vector<std::string>{"heat.png"});
 }
+
+// Every number on the command line is checked as strictly as the scene keys.
+TEST(Robustness, CommandLineNumbersAreCheckedStrictly) {
+  const std::string skel = species("young_tree.skel");
+  const std::string scene = std::string(ARBOR_SOURCE_DIR) + "/scenes/default.toml";
+  for (const std::string& args :
+       {"grow " + skel + " --seed 18446744073709551616", "grow " + skel + " --seed 99999999999999999999999",
+        "grow " + skel + " --seed -1", "grow " + skel + " --seed 1e3", "grow " + skel + " --time nan",
+        "grow " + skel + " --time inf", "grow " + skel + " --time 1e308", "grow " + skel + " --quality nan",
+        "grow " + skel + " --quality 0", "render " + scene + " --time nan -o x.exr",
+        "render " + scene + " --time inf -o x.exr", "render " + scene + " --time 1e308 -o x.exr",
+        "render " + scene + " --seed 18446744073709551616 -o x.exr", "render " + scene + " --spp 0 -o x.exr",
+        "render " + scene + " --width -5 -o x.exr", "render " + scene + " --threads nan -o x.exr"}) {
+    const CliRun r = arbor(args);
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+  }
+  // The largest seed is a seed like any other, and it differs from its neighbour.
+  const CliRun top = arbor("grow " + species("lsystem_weed.lsys") + " --seed 18446744073709551615 --stats --json");
+  EXPECT_EQ(top.code, 0) << top.err;
+  EXPECT_NE(top.out.find("\"seed\": 18446744073709551615"), std::string::npos) << top.out;
+}
