@@ -11,13 +11,13 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
-#include <tiny_obj_loader.h>
 
 #include "common/error.h"
 #include "common/progress.h"
 #include "common/rng.h"
 #include "generator/grow.h"
 #include "tracer/image_output.h"
+#include "tracer/obj_mesh.h"
 
 namespace arbor::trace {
 
@@ -169,14 +169,7 @@ void World::add_instance(int prototype, const Placement& pl, const TreeLook& loo
 }
 
 void World::add_mesh(const MeshDesc& d) {
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = true;
-  config.vertex_color = false;
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(d.path, config)) {
-    throw InputError({d.path, 0, 0}, "cannot read the OBJ mesh: " + reader.Error());
-  }
-  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+  const ObjMesh obj = load_obj(d.path);
   Mesh mesh;
   // Placement: the file's up axis to z, then scale, rotation about z, position.
   glm::mat4 m(1.0f);
@@ -184,17 +177,15 @@ void World::add_mesh(const MeshDesc& d) {
   m = glm::rotate(m, static_cast<float>(d.placement.rotation * 3.14159265358979323846 / 180.0), glm::vec3(0, 0, 1));
   m = glm::scale(m, glm::vec3(static_cast<float>(d.placement.scale)));
   if (d.up == "y") m = glm::rotate(m, 1.5707963f, glm::vec3(1, 0, 0));  // y up → z up
-  for (std::size_t v = 0; v + 2 < attrib.vertices.size(); v += 3) {
-    const glm::vec3 p(attrib.vertices[v], attrib.vertices[v + 1], attrib.vertices[v + 2]);
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-      throw InputError({d.path, 0, 0}, "the OBJ mesh has a vertex that is not finite");
-    }
-    mesh.positions.emplace_back(m * glm::vec4(p, 1.0f));
-  }
+  mesh.positions.reserve(obj.positions.size());
+  for (const glm::vec3& p : obj.positions) mesh.positions.emplace_back(m * glm::vec4(p, 1.0f));
   std::map<std::string, std::uint16_t> look_index;
   auto look_of = [&](const std::string& name) -> std::uint16_t {
     const auto found = look_index.find(name);
     if (found != look_index.end()) return found->second;
+    if (mesh.looks.size() >= 65535) {
+      throw InputError(d.where, "mesh " + d.path + ": more than 65535 materials");
+    }
     MeshLook look;
     const auto it = d.materials.find(name);
     if (it != d.materials.end()) {
@@ -209,35 +200,26 @@ void World::add_mesh(const MeshDesc& d) {
     mesh.looks.push_back(look);
     return look_index[name] = static_cast<std::uint16_t>(mesh.looks.size() - 1);
   };
-  const auto& materials = reader.GetMaterials();
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
-    const tinyobj::mesh_t& sm = shape.mesh;
-    for (std::size_t f = 0; f < sm.num_face_vertices.size(); ++f) {
-      // [mesh.material.NAME] by the face's material name, else by its group; with no table at
-      // all every face is diffuse grey.
-      const int mid = f < sm.material_ids.size() ? sm.material_ids[f] : -1;
-      const std::string mat_name = mid >= 0 ? materials[static_cast<size_t>(mid)].name : "";
-      std::string key;
-      if (!d.materials.empty()) {
-        if (!mat_name.empty() && d.materials.count(mat_name)) key = mat_name;
-        else if (d.materials.count(shape.name)) key = shape.name;
-        else {
-          throw InputError(d.where, "mesh " + d.path + ": faces of group '" + shape.name +
-                                        "' (material '" + mat_name + "') have no [mesh.material.*] "
-                                        "entry; name the group or the material");
-        }
+  // [mesh.material.NAME] by the faces' material name, else by their group; with no table at all
+  // every face is diffuse grey.
+  std::vector<std::uint16_t> look_of_part(obj.parts.size());
+  for (std::size_t i = 0; i < obj.parts.size(); ++i) {
+    const ObjMesh::Part& part = obj.parts[i];
+    std::string key;
+    if (!d.materials.empty()) {
+      if (!part.material.empty() && d.materials.count(part.material)) key = part.material;
+      else if (d.materials.count(part.group)) key = part.group;
+      else {
+        throw InputError(d.where, "mesh " + d.path + ": faces of group '" + part.group + "' (material '" +
+                                      part.material + "', from line " + std::to_string(obj.part_line[i]) +
+                                      ") have no [mesh.material.*] entry; name the group or the material");
       }
-      const std::uint16_t look = look_of(key);
-      for (int k = 0; k < 3; ++k) {
-        const int vi = sm.indices[3 * f + static_cast<size_t>(k)].vertex_index;
-        if (vi < 0 || static_cast<std::size_t>(vi) >= mesh.positions.size()) {
-          throw InputError({d.path, 0, 0}, "the OBJ mesh refers to a vertex that does not exist");
-        }
-        mesh.indices.push_back(static_cast<std::uint32_t>(vi));
-      }
-      mesh.material.push_back(look);
     }
+    look_of_part[i] = look_of(key);
   }
+  mesh.indices = obj.indices;
+  mesh.material.reserve(obj.part.size());
+  for (const std::uint32_t p : obj.part) mesh.material.push_back(look_of_part[p]);
   if (mesh.indices.empty()) throw InputError({d.path, 0, 0}, "the OBJ mesh has no faces");
   RTCGeometry g = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* v = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3), mesh.positions.size());
