@@ -52,7 +52,7 @@ ColorPipeline::ColorPipeline(const OutputDesc& o) : impl_(std::make_unique<Impl>
   if (!c.getColorSpace(o.colorspace.c_str())) {
     std::vector<std::string> names;
     for (int i = 0; i < c.getNumColorSpaces(); ++i) names.emplace_back(c.getColorSpaceNameByIndex(i));
-    throw InputError({}, "output.colorspace \"" + o.colorspace + "\" is not in the OCIO config " +
+    throw InputError(o.colorspace_where, "output.colorspace \"" + o.colorspace + "\" is not in the OCIO config " +
                              config_path_ + "; it has " + list_of(names));
   }
   std::vector<std::string> displays;
@@ -62,7 +62,7 @@ ColorPipeline::ColorPipeline(const OutputDesc& o) : impl_(std::make_unique<Impl>
     display_found = display_found || displays.back() == o.display;
   }
   if (!display_found) {
-    throw InputError({}, "output.display \"" + o.display + "\" is not in the OCIO config; it has " +
+    throw InputError(o.display_where, "output.display \"" + o.display + "\" is not in the OCIO config; it has " +
                              list_of(displays));
   }
   std::vector<std::string> views;
@@ -72,7 +72,7 @@ ColorPipeline::ColorPipeline(const OutputDesc& o) : impl_(std::make_unique<Impl>
     view_found = view_found || views.back() == o.view;
   }
   if (!view_found) {
-    throw InputError({}, "output.view \"" + o.view + "\" is not a view of display \"" + o.display +
+    throw InputError(o.view_where, "output.view \"" + o.view + "\" is not a view of display \"" + o.display +
                              "\"; it has " + list_of(views));
   }
   try {

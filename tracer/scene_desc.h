@@ -35,7 +35,11 @@ struct CameraDesc {
   double aperture_radius = 0.0;   // metres
   double focus_distance = 0.0;    // metres; 0: distance to look_at
   double exposure = 0.0;          // stops
+  SourceLocation look_at_where, up_where;  // the keys' positions, for errors (else the file's)
 };
+
+// Why the camera cannot form an image (look_at at the position, up along the view), or "".
+std::string camera_problem(const CameraDesc& camera);
 
 struct SunDesc {
   bool enabled = true;
@@ -131,6 +135,8 @@ struct OutputDesc {
   std::vector<std::string> aovs;  // of "albedo", "normal", "depth", "variance", "treemaker"
   SourceLocation treemaker_aov_where;  // where "treemaker" is listed (only that integrator has it)
   std::string pixel_type = "half";
+  // The keys' positions, for errors found later (by the OCIO config); the file's when unset.
+  SourceLocation exr_where, png_where, colorspace_where, display_where, view_where;
 };
 
 struct SceneDesc {

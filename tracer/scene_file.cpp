@@ -1,11 +1,14 @@
 // Scene file reader (TOML): every key of the contract, each value range-checked, unknown keys
 // rejected, all with file, line and column.
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include <toml++/toml.h>
 
 #include "generator/species.h"
+#include "tracer/camera.h"
+#include "tracer/image_output.h"
 #include "tracer/scene_desc.h"
 
 namespace arbor::trace {
@@ -30,6 +33,10 @@ class SceneReader {
     }
     SceneDesc s;
     s.path = path_;
+    const SourceLocation file{path_, 0, 0};
+    s.camera.look_at_where = s.camera.up_where = file;
+    s.output.exr_where = s.output.png_where = s.output.colorspace_where = s.output.display_where =
+        s.output.view_where = file;
     for (auto&& [key, node] : root) {
       const std::string k(key.str());
       if (k == "render") render(table(node, k), s.render);
@@ -43,6 +50,12 @@ class SceneReader {
       else if (k == "output") output(table(node, k), s.output);
       else throw InputError(at(key.source()), "unknown table or key '" + k + "'");
     }
+    const std::string camera = camera_problem(s.camera);
+    if (!camera.empty()) {
+      throw InputError(camera.compare(0, 9, "camera.up") == 0 ? s.camera.up_where : s.camera.look_at_where, camera);
+    }
+    // The colour space, display and view must exist in the OCIO config.
+    ColorPipeline check(s.output);
     if (s.camera.focus_distance == 0.0) {
       const double dx = s.camera.look_at[0] - s.camera.position[0];
       const double dy = s.camera.look_at[1] - s.camera.position[1];
@@ -142,11 +155,16 @@ class SceneReader {
   }
 
   void camera(const toml::table& t, CameraDesc& c) const {
+    // A look_at at the position is reported at look_at, else at position, else at the table.
+    c.look_at_where = c.up_where = at(t.source());
+    if (const toml::node* position = t.get("position"); position && !t.get("look_at")) {
+      c.look_at_where = at(position->source());
+    }
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
       if (k == "position") c.position = triple(n, "camera.position", -1e7, 1e7);
-      else if (k == "look_at") c.look_at = triple(n, "camera.look_at", -1e7, 1e7);
-      else if (k == "up") c.up = triple(n, "camera.up", -1e7, 1e7);
+      else if (k == "look_at") { c.look_at = triple(n, "camera.look_at", -1e7, 1e7); c.look_at_where = at(n.source()); }
+      else if (k == "up") { c.up = triple(n, "camera.up", -1e7, 1e7); c.up_where = at(n.source()); }
       else if (k == "fov") c.fov = number(n, "camera.fov", 0.01, 179.0);
       else if (k == "aperture_radius") c.aperture_radius = number(n, "camera.aperture_radius", 0.0, 100.0);
       else if (k == "focus_distance") c.focus_distance = number(n, "camera.focus_distance", 1e-4, 1e7);
@@ -326,14 +344,22 @@ class SceneReader {
     return d;
   }
 
+  void extension(const toml::node& n, const std::string& path, const char* ext, const char* name) const {
+    const std::size_t len = std::strlen(ext);
+    if (path.size() < len || path.compare(path.size() - len, len, ext) != 0) {
+      fail(n, std::string(name) + " must name a " + ext + " file, not \"" + path + "\"");
+    }
+  }
+
   void output(const toml::table& t, OutputDesc& o) const {
+    o.exr_where = o.png_where = o.colorspace_where = o.display_where = o.view_where = at(t.source());
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
-      if (k == "exr") o.exr = file(n, "output.exr");
-      else if (k == "png") o.png = file(n, "output.png");
-      else if (k == "colorspace") o.colorspace = text(n, "output.colorspace");
-      else if (k == "display") o.display = text(n, "output.display");
-      else if (k == "view") o.view = text(n, "output.view");
+      if (k == "exr") { o.exr = file(n, "output.exr"); o.exr_where = at(n.source()); extension(n, o.exr, ".exr", "output.exr"); }
+      else if (k == "png") { o.png = file(n, "output.png"); o.png_where = at(n.source()); extension(n, o.png, ".png", "output.png"); }
+      else if (k == "colorspace") { o.colorspace = text(n, "output.colorspace"); o.colorspace_where = at(n.source()); }
+      else if (k == "display") { o.display = text(n, "output.display"); o.display_where = at(n.source()); }
+      else if (k == "view") { o.view = text(n, "output.view"); o.view_where = at(n.source()); }
       else if (k == "pixel_type") o.pixel_type = choice(n, "output.pixel_type", {"half", "float"});
       else if (k == "aovs") {
         const toml::array* a = n.as_array();

@@ -170,3 +170,24 @@ TEST(SceneFile, StructuralRulesAreChecked) {
 }
 
 }  // namespace arbor::trace
+
+namespace arbor::trace {
+
+// Camera, output-extension and colour errors once named no file or position and surfaced only
+// when rendering started; the loader finds them, at the key.
+TEST(SceneFile, CameraOutputAndColourErrorsAreFoundAtLoadWithTheirKey) {
+  expect_error("[camera]\nposition = [1.0, 2.0, 3.0]\nlook_at = [1.0, 2.0, 3.0]\n", 3, 11,
+               "camera.look_at must differ from camera.position");
+  expect_error("[camera]\nposition = [0.0, 0.0, 6.0]\n", 2, 12, "must differ");  // the default look_at
+  expect_error("[camera]\nposition = [0.0, 0.0, 1.0]\nlook_at = [0.0, 0.0, 5.0]\nup = [0.0, 0.0, 2.0]\n", 4,
+               6, "camera.up must not be parallel");
+  expect_error("[camera]\nup = [0.0, 0.0, 0.0]\n", 2, 6, "camera.up must not be parallel");
+  expect_error("[output]\nexr = \"out/a.png\"\n", 2, 7, "output.exr must name a .exr file");
+  expect_error("[output]\npng = \"out/a.exr\"\n", 2, 7, "output.png must name a .png file");
+  expect_error("[output]\nexr = \"a.exr\"\ncolorspace = \"Rec.2020 please\"\n", 3, 14,
+               "output.colorspace \"Rec.2020 please\" is not in the OCIO config");
+  expect_error("[output]\ndisplay = \"CRT\"\n", 2, 11, "output.display \"CRT\" is not in the OCIO config; it has \"sRGB\"");
+  expect_error("[output]\nview = \"Filmic\"\n", 2, 8, "output.view \"Filmic\" is not a view of display \"sRGB\"");
+}
+
+}  // namespace arbor::trace
