@@ -30,6 +30,7 @@
 #include "tracer/film.h"
 #include "tracer/image_output.h"
 #include "tracer/integrator_treemaker.h"
+#include "tracer/render_budget.h"
 #include "tracer/scene_desc.h"
 #include "tracer/sky.h"
 #include "tracer/treemaker_fit.h"
@@ -167,6 +168,7 @@ struct RenderArgs {
   int spp = 0, threads = 0, width = 0, height = 0;
   std::optional<std::uint64_t> seed;
   std::optional<double> time;
+  bool force = false;
 };
 
 // The weights for the EXR's arbor:treemaker_weights: one set when every tree shares it.
@@ -223,6 +225,7 @@ int run_render(const RenderArgs& a) {
   for (const std::string& out : {scene.output.exr, scene.output.png}) {
     if (!out.empty()) check_output_folder(out);
   }
+  trace::check_render_memory(scene, a.force);
   const trace::ColorPipeline color(scene.output);
   const trace::EmbreeDevice device(r.threads > 0 ? "threads=" + std::to_string(r.threads) : "");
   Progress build_progress("build", 1);
@@ -425,6 +428,9 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--height", render.height, "image height")->check(CLI::Range(1, 16384));
   render_cmd->add_option("--time", render.time, "seconds of wind sway for every [[tree]]")
       ->check(finite_in(-1e6, 1e6));
+  render_cmd->add_flag("--force", render.force,
+                       "render even when the image and trees are estimated to need more memory "
+                       "than this machine (or ulimit) allows");
   CompareArgs cmp;
   CLI::App* compare_cmd = app.add_subcommand(
       "compare", "Compare image A against reference B: error metrics, heatmap, z-test");
