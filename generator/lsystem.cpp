@@ -349,7 +349,22 @@ class Interpreter {
     }
     const double length = t.step * (a.has_number ? a.number : 1.0) * vary();
     t.position += t.heading * length;
-    stems_[static_cast<size_t>(t.stem)].points.push_back({glm::vec3(t.position), static_cast<float>(t.radius)});
+    // A limb segment needs a length and a place: one of length 0 has no direction (its spline
+    // and frame would be NaN), and steps that s(n) multiplies without bound leave any scale.
+    if (!(std::fabs(t.position.x) <= kMaxReach && std::fabs(t.position.y) <= kMaxReach &&
+          std::fabs(t.position.z) <= kMaxReach)) {
+      throw InputError(a.where, "the turtle moves more than 1000 km from the root here (s(n) "
+                                "multiplies the step at every use)");
+    }
+    std::vector<SkeletonPoint>& points = stems_[static_cast<size_t>(t.stem)].points;
+    const glm::vec3 at(t.position);
+    if (!(length >= kMinSegment) || glm::length(at - points.back().position) < static_cast<float>(kMinSegment)) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "this move is %.3g m long; limb segments must be at least 1 micrometre "
+                                     "(the step has shrunk, or f(0))", length);
+      throw InputError(a.where, buf);
+    }
+    points.push_back({at, static_cast<float>(t.radius)});
   }
 
   void start_stem(Turtle& t) {
@@ -453,6 +468,8 @@ class Interpreter {
     bool has_children = false;
   };
 
+  static constexpr double kMaxReach = 1e6;    // metres from the root
+  static constexpr double kMinSegment = 1e-6;  // metres
   const LSystem& sys_;
   const LSystemOptions& o_;
   Rng jitter_, choice_;

@@ -86,6 +86,8 @@ class Reader {
     const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
     if (ec != std::errc() || end != t.data() + t.size()) fail(k, "'" + t + "' is not a number");
     if (!std::isfinite(v)) fail(k, "'" + t + "' is not a finite number");
+    // Positions and sizes in metres: past 1000 km the float arithmetic of splines overflows.
+    if (std::fabs(v) > 1e6) fail(k, "'" + t + "' is out of range [-1e6, 1e6]");
     return v;
   }
   int id(std::size_t k) const {
@@ -353,11 +355,12 @@ class Reader {
     for (std::size_t k = 1; k < chain.size(); ++k) {
       const PointRecord& a = points_[chain[k - 1]];
       const PointRecord& b = points_[chain[k]];
-      if (a.position == b.position) {
+      if (glm::length(a.position - b.position) < 1e-6f) {
         // A limb segment of length 0 has no direction: splines and frames through it are NaN.
         throw InputError({path_, b.incoming_line > 0 ? b.incoming_line : b.line, 1},
                          "points " + std::to_string(chain[k - 1]) + " and " + std::to_string(chain[k]) +
-                             " are at the same position, so the limb between them has no direction");
+                             " are at the same position (closer than 1 micrometre), so the limb "
+                             "between them has no direction");
       }
     }
     Stem st;

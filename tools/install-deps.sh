@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages arbor needs: exactly those missing, nothing when all are present.
+# --fuzz: also what `make fuzz` needs (clang and its libFuzzer and sanitizer runtimes).
 set -euo pipefail
 
 packages=(
@@ -15,11 +16,15 @@ packages=(
   libtomlplusplus-dev    # toml++: species and scene files
   libcli11-dev           # CLI11: the command line
   libpugixml-dev         # pugixml: Arbaro XML species
-  libtinyobjloader-dev   # tinyobjloader: OBJ meshes
+  libtinyobjloader-dev   # tinyobjloader: an independent OBJ reader for the export tests
   libgtest-dev libgmock-dev  # GoogleTest
   libbenchmark-dev       # Google Benchmark
   fonts-dejavu-core      # the font of the scale bar in compare heatmaps
 )
+
+if [ "${1:-}" = "--fuzz" ]; then
+  packages=(clang libclang-rt-14-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

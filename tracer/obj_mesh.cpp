@@ -132,6 +132,12 @@ class ObjReader {
     if (keyword == "v") {
       // x y z, optionally w, or x y z r g b (vertex colours).
       numbers(rest, keyword, 3, 7, v);
+      // Beyond a million kilometres the float positions of the geometry lose all meaning.
+      std::string_view coordinate = rest;
+      for (int k = 0; k < 3; ++k) {
+        const std::string_view t = token(coordinate);
+        if (std::fabs(v[k]) > 1e9) fail(t, "'" + std::string(t) + "' is out of range [-1e9, 1e9]");
+      }
       mesh_.positions.emplace_back(v[0], v[1], v[2]);
     } else if (keyword == "vt") {
       numbers(rest, keyword, 1, 3, v);

@@ -208,3 +208,19 @@ TEST(LSystem, NumbersTooLargeForADoubleAreInputErrors) {
 }
 
 }  // namespace arbor::gen
+
+namespace arbor::gen {
+
+// Found by fuzzing: s(1e23) sent the turtle past float range (NaN and inf geometry), and a
+// move of length 0 made a limb segment with no direction.
+TEST(LSystem, MovesOutOfRangeOrOfNoLengthAreRefusedAtTheAction) {
+  auto expect_grow_error = [](const std::string& text, int line, int column, const std::string& fragment) {
+    testing::expect_input_error([&] { grow(text); }, "t.lsys", line, column, fragment);
+  };
+  expect_grow_error("A: f s(99999999999999999999999) f;\n", 1, 33, "more than 1000 km from the root");
+  expect_grow_error("iterations = 64;\nA: s(3) f A;\n", 2, 9, "more than 1000 km");
+  expect_grow_error("A: f f(0);\n", 1, 6, "limb segments must be at least 1 micrometre");
+  expect_grow_error("iterations = 40;\nA: f s(0.5) A;\n", 2, 4, "at least 1 micrometre");
+}
+
+}  // namespace arbor::gen

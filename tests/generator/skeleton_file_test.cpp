@@ -157,3 +157,15 @@ TEST(SkeletonFile, CoincidentPointsOnALimbAreRefused) {
 }
 
 }  // namespace arbor::gen
+
+namespace arbor::gen {
+
+// Found by fuzzing: a coordinate of 1e23 overflowed the splines' float arithmetic (NaN curves).
+TEST(SkeletonFile, CoordinatesBeyondAThousandKilometresAreRefused) {
+  expect_error("point 0 0 0 0\npoint 1 0 99999999999999999999999 1.5\nconnect 0 1\n", 2, 11,
+               "out of range [-1e6, 1e6]");
+  expect_error("point 0 0 0 0 2e6\n", 1, 15, "out of range");
+  expect_error("point 0 0 0 0\npoint 1 0 0 0.0000001\nconnect 0 1\n", 3, 1, "closer than 1 micrometre");
+}
+
+}  // namespace arbor::gen

@@ -45,6 +45,8 @@ TEST(ObjMesh, BadNumbersAndIndicesAreRefusedWithTheirPosition) {
   expect_error("v 0 nan 0\n", 1, 5, "'nan' is not a finite number");
   expect_error("v 0 0 inf\n", 1, 7, "not a finite number");
   expect_error("v 0 0 1e999\n", 1, 7, "not a number");
+  // Found by fuzzing: 1e308 is a finite double but an infinite float.
+  expect_error("v 1 0.1e309 0\n", 1, 5, "'0.1e309' is out of range [-1e9, 1e9]");
   expect_error("v 0 0\n", 1, 1, "'v' needs 3 numbers");
   expect_error("v 0 0 x\n", 1, 7, "'x' is not a number");
   expect_error("vn 0 0 nan\n", 1, 8, "not a finite number");
