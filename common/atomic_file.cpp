@@ -128,8 +128,12 @@ void remove_temporaries_on_signal() {
   std::memset(&sa, 0, sizeof sa);
   sa.sa_handler = remove_temporaries_and_die;
   sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
+  for (const int sig : {SIGINT, SIGTERM}) {
+    // A signal the parent set to be ignored (nohup, a background job) stays ignored.
+    struct sigaction old;
+    if (sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+    sigaction(sig, &sa, nullptr);
+  }
 }
 
 AtomicFile::AtomicFile(std::string path, bool binary)

@@ -44,7 +44,8 @@ bool same_file(const std::string& a, const std::string& b);
 void check_output_folder(const std::string& path);
 
 // Installs SIGINT and SIGTERM handlers that remove every temporary an AtomicFile holds, then
-// end the process by the same signal (exit status 128 + signal). Call once from main.
+// end the process by the same signal (exit status 128 + signal). A signal inherited as ignored
+// stays ignored. Call once from main.
 void remove_temporaries_on_signal();
 
 }  // namespace arbor

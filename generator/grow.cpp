@@ -1,12 +1,15 @@
 // Model dispatch.
 #include "generator/grow.h"
 
+#include "common/error.h"
 #include "generator/lsystem.h"
 #include "generator/treemaker.h"
 
 namespace arbor::gen {
 
-Skeleton grow_tree(const Species& species, const GrowOptions& options) {
+namespace {
+
+Skeleton grow_model(const Species& species, const GrowOptions& options) {
   switch (species.model) {
     case Model::LSystem: {
       LSystemOptions o;
@@ -36,6 +39,16 @@ Skeleton grow_tree(const Species& species, const GrowOptions& options) {
     default:
       return grow_weber_penn(species.weber_penn, options);
   }
+}
+
+}  // namespace
+
+Skeleton grow_tree(const Species& species, const GrowOptions& options) {
+  Skeleton sk = grow_model(species, options);
+  // Every model must grow a valid skeleton; one that does not is arbor's bug, never written out.
+  const std::string problem = validate(sk);
+  if (!problem.empty()) check_failed(("the grown skeleton is valid: " + problem).c_str(), __FILE__, __LINE__);
+  return sk;
 }
 
 }  // namespace arbor::gen

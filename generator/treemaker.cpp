@@ -257,6 +257,11 @@ class Grower {
       }
       if (b.parent >= 0) {
         const Stem& ps = sk_.stems[static_cast<size_t>(st.parent)];
+        // Re-parented to the point its parent grew from, a limb starts no thicker than the new
+        // parent is there (its old parent's own base width may be larger).
+        pts.front().radius = std::min(pts.front().radius,
+                                      sk_.points[ps.first_point + static_cast<std::uint32_t>(st.parent_point)].radius);
+        st.base_radius = pts.front().radius;
         float arc = 0.0f;
         for (int k = 1; k <= st.parent_point; ++k) {
           arc += glm::length(sk_.points[ps.first_point + k].position - sk_.points[ps.first_point + k - 1].position);

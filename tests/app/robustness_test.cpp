@@ -1,7 +1,9 @@
 // The command line against hostile input and hostile conditions: outputs are never lost or
 // half-written, inputs are never overwritten, bad values are refused with their position.
 #include <dirent.h>
+#include <signal.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <string>
@@ -157,4 +159,29 @@ TEST(Robustness, AbsurdRendersAreRefusedUpFront) {
   EXPECT_EQ(big.code, 2) << big.err;
   EXPECT_NE(big.err.find("16384x16384"), std::string::npos) << big.err;
   EXPECT_FALSE(exists(::testing::TempDir() + "big.exr"));
+}
+
+// SIGTERM or SIGINT ends a render by the signal and leaves neither an output nor a temporary.
+TEST(Robustness, AnInterruptedRenderLeavesNothingBehind) {
+  for (const int sig : {SIGTERM, SIGINT}) {
+    const std::string dir = fresh_folder("interrupt_" + std::to_string(sig));
+    const std::string scene = std::string(ARBOR_SOURCE_DIR) + "/scenes/default.toml";
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      signal(SIGINT, SIG_DFL);
+      if (chdir(dir.c_str()) != 0) _exit(3);
+      if (!freopen("/dev/null", "w", stderr)) _exit(3);
+      execl(ARBOR_BINARY, ARBOR_BINARY, "render", scene.c_str(), "--spp", "4096", "-o", "out.exr", "--png",
+            "out.png", static_cast<char*>(nullptr));
+      _exit(3);
+    }
+    sleep(1);
+    kill(child, sig);
+    int status = 0;
+    waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "exit " << WEXITSTATUS(status);
+    EXPECT_EQ(WTERMSIG(status), sig);  // a shell reports it as 128 + signal: 143, 130
+    EXPECT_TRUE(files_in(dir).empty());
+  }
 }

@@ -292,3 +292,16 @@ TEST(TreeMakerGrowth, TheLargestTemplateIsRefusedAtOnce) {
 }
 
 }  // namespace arbor::gen
+
+namespace arbor::gen {
+
+// Found by fuzzing (tests/fuzz/regressions/): a branch born where its parent began is moved to
+// the grandparent, and once started thicker than the grandparent there (an invalid skeleton).
+TEST(TreeMakerGrowth, ABranchMovedToItsGrandparentStartsNoThickerThanIt) {
+  const std::string path = std::string(ARBOR_SOURCE_DIR) + "/tests/fuzz/regressions/treemaker_thick_child.tmpl";
+  const TreeMakerTemplate t = parse_treemaker_template(read_text_file(path), path);
+  const Skeleton sk = grow_treemaker(t, TreeMakerOptions{});
+  EXPECT_EQ(validate(sk), "");
+}
+
+}  // namespace arbor::gen
