@@ -18,27 +18,27 @@
 
 
 TEST(ArborCli, VersionAndHelp) {
-  const CliRun v = arbor("--version");
+  const CliRun v = run_arbor("--version");
   EXPECT_EQ(v.code, 0);
   EXPECT_NE(v.out.find("arbor 0.1.0"), std::string::npos);
-  const CliRun h = arbor("grow --help");
+  const CliRun h = run_arbor("grow --help");
   EXPECT_EQ(h.code, 0);
   EXPECT_NE(h.out.find("--quality"), std::string::npos);
   EXPECT_NE(h.out.find(".obj or .ply"), std::string::npos);
-  const CliRun top = arbor("--help");
+  const CliRun top = run_arbor("--help");
   EXPECT_NE(top.out.find("Compare image A against reference B"), std::string::npos) << top.out;
-  const CliRun c = arbor("compare --help");
+  const CliRun c = run_arbor("compare --help");
   EXPECT_EQ(c.code, 0);
   for (const char* opt : {"--heatmap", "--side-by-side", "--json", "--reference-test", "--fit-treemaker"}) {
     EXPECT_NE(c.out.find(opt), std::string::npos) << opt << " in " << c.out;
   }
-  const CliRun r = arbor("render --help");
+  const CliRun r = run_arbor("render --help");
   EXPECT_NE(r.out.find("treemaker (TREE-MAKER's approximate shading)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("render.treemaker_spp"), std::string::npos) << r.out;
 }
 
 TEST(ArborCli, GrowPrintsTheContractStatistics) {
-  const CliRun r = arbor("grow " + species("quaking_aspen.toml") + " --seed 3 --stats --json");
+  const CliRun r = run_arbor("grow " + species("quaking_aspen.toml") + " --seed 3 --stats --json");
   ASSERT_EQ(r.code, 0) << r.err;
   for (const char* key : {"\"stems_per_level\"", "\"leaves\"", "\"curve_segments\"",
                           "\"triangles\"", "\"height\"", "\"crown_width\"", "\"seconds\""}) {
@@ -53,7 +53,7 @@ TEST(ArborCli, GrowPrintsTheContractStatistics) {
 
 TEST(ArborCli, GrowWritesPbrtWithCurves) {
   const std::string out = ::testing::TempDir() + "tree.pbrt";
-  const CliRun r = arbor("grow " + species("black_tupelo.toml") + " --quality 0.1 -o " + out);
+  const CliRun r = run_arbor("grow " + species("black_tupelo.toml") + " --quality 0.1 -o " + out);
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string text = slurp(out);
   EXPECT_NE(text.find("Shape \"curve\" \"string basis\" \"bezier\""), std::string::npos);
@@ -64,7 +64,7 @@ TEST(ArborCli, EveryShippedExampleOfEveryFormatGrowsWithStatistics) {
   for (const char* name : {"quaking_aspen.toml", "fractal_broadleaf.toml", "lsystem_bush.lsys",
                            "dogwood.tmpl", "young_pine.tmpl", "weeping_cherry.tmpl", "young_tree.skel",
                            "lsystem_2d_branching.lsys", "fractal_basic.toml", "saguaro_cactus.toml"}) {
-    const CliRun r = arbor("grow " + species(name) + " --stats --json");
+    const CliRun r = run_arbor("grow " + species(name) + " --stats --json");
     ASSERT_EQ(r.code, 0) << name << ": " << r.err;
     for (const char* key : {"\"stems_per_level\"", "\"leaves\"", "\"curve_segments\"", "\"height\"",
                             "\"crown_width\"", "\"seconds\""}) {
@@ -75,28 +75,28 @@ TEST(ArborCli, EveryShippedExampleOfEveryFormatGrowsWithStatistics) {
 
 TEST(ArborCli, SameSeedSameOutput) {
   const std::string a = ::testing::TempDir() + "a.obj", b = ::testing::TempDir() + "b.obj";
-  ASSERT_EQ(arbor("grow " + species("black_tupelo.toml") + " --quality 0.2 --seed 8 -o " + a).code, 0);
-  ASSERT_EQ(arbor("grow " + species("black_tupelo.toml") + " --quality 0.2 --seed 8 -o " + b).code, 0);
+  ASSERT_EQ(run_arbor("grow " + species("black_tupelo.toml") + " --quality 0.2 --seed 8 -o " + a).code, 0);
+  ASSERT_EQ(run_arbor("grow " + species("black_tupelo.toml") + " --quality 0.2 --seed 8 -o " + b).code, 0);
   EXPECT_EQ(slurp(a), slurp(b));
   EXPECT_GT(slurp(a).size(), 1000u);
 }
 
 TEST(ArborCli, BadInputExitsTwoWithPosition) {
   const std::string bad = write_temp("bad.toml", "model = \"weber-penn\"\n\nShape = 12\n");
-  const CliRun r = arbor("grow " + bad);
+  const CliRun r = run_arbor("grow " + bad);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find(bad + ":3:9: error: Shape = 12 is out of range"), std::string::npos) << r.err;
 
-  const CliRun missing = arbor("grow /no/such/tree.toml");
+  const CliRun missing = run_arbor("grow /no/such/tree.toml");
   EXPECT_EQ(missing.code, 2);
   EXPECT_NE(missing.err.find("/no/such/tree.toml: error: cannot open"), std::string::npos);
 
-  EXPECT_EQ(arbor("grow").code, 2);                                     // missing argument
-  EXPECT_EQ(arbor("grow " + species("quaking_aspen.toml") + " --bogus").code, 2);
-  EXPECT_EQ(arbor("grow " + species("quaking_aspen.toml") + " --quality 0").code, 2);
-  EXPECT_EQ(arbor("grow " + species("quaking_aspen.toml") + " --seed -3").code, 2);
-  EXPECT_EQ(arbor("grow " + species("quaking_aspen.toml") + " -o tree.stl").code, 2);
-  EXPECT_EQ(arbor("frobnicate").code, 2);
+  EXPECT_EQ(run_arbor("grow").code, 2);                                     // missing argument
+  EXPECT_EQ(run_arbor("grow " + species("quaking_aspen.toml") + " --bogus").code, 2);
+  EXPECT_EQ(run_arbor("grow " + species("quaking_aspen.toml") + " --quality 0").code, 2);
+  EXPECT_EQ(run_arbor("grow " + species("quaking_aspen.toml") + " --seed -3").code, 2);
+  EXPECT_EQ(run_arbor("grow " + species("quaking_aspen.toml") + " -o tree.stl").code, 2);
+  EXPECT_EQ(run_arbor("frobnicate").code, 2);
 }
 
 TEST(ArborCli, AbsurdTreesAreRefusedUnlessForced) {
@@ -104,13 +104,13 @@ TEST(ArborCli, AbsurdTreesAreRefusedUnlessForced) {
       "huge.toml",
       "model = \"weber-penn\"\nLevels = 4\n[level.1]\nBranches = 1000\n[level.2]\nBranches = "
       "1000\n[level.3]\nBranches = 1000\n");
-  const CliRun r = arbor("grow " + huge);
+  const CliRun r = run_arbor("grow " + huge);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--force"), std::string::npos) << r.err;
 }
 
 TEST(ArborCli, FailedWriteExitsOneAndLeavesNoFile) {
-  const CliRun r = arbor("grow " + species("quaking_aspen.toml") + " -o /no/such/dir/tree.obj");
+  const CliRun r = run_arbor("grow " + species("quaking_aspen.toml") + " -o /no/such/dir/tree.obj");
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("cannot write /no/such/dir/tree.obj"), std::string::npos) << r.err;
   EXPECT_FALSE(exists("/no/such/dir/tree.obj"));
@@ -123,7 +123,7 @@ TEST(ArborCli, CompareMetricsJsonAndImages) {
   const std::string side = ::testing::TempDir() + "cmp_side.png";
   std::remove(heat.c_str());
   std::remove(side.c_str());
-  const CliRun r = arbor("compare " + a + " " + b + " --json --heatmap " + heat + " --side-by-side " + side);
+  const CliRun r = run_arbor("compare " + a + " " + b + " --json --heatmap " + heat + " --side-by-side " + side);
   EXPECT_EQ(r.code, 0) << r.err;
   auto value = [&](const std::string& key) {
     const auto at = r.out.find("\"" + key + "\": ");
@@ -145,7 +145,7 @@ TEST(ArborCli, CompareMetricsJsonAndImages) {
   // An unknown view is refused before either picture is written.
   std::remove(heat.c_str());
   std::remove(side.c_str());
-  const CliRun bad = arbor("compare " + a + " " + b + " --heatmap " + heat + " --side-by-side " + side +
+  const CliRun bad = run_arbor("compare " + a + " " + b + " --heatmap " + heat + " --side-by-side " + side +
                            " --view 'No Such View'");
   EXPECT_EQ(bad.code, 2) << bad.err;
   EXPECT_NE(bad.err.find("No Such View"), std::string::npos) << bad.err;
@@ -153,7 +153,7 @@ TEST(ArborCli, CompareMetricsJsonAndImages) {
   EXPECT_FALSE(exists(side));
 
   // Identical images: PSNR has no finite value and JSON spells it null.
-  const CliRun same = arbor("compare " + b + " " + b + " --json");
+  const CliRun same = run_arbor("compare " + b + " " + b + " --json");
   EXPECT_EQ(same.code, 0);
   EXPECT_NE(same.out.find("\"psnr\": null"), std::string::npos) << same.out;
 }
@@ -162,21 +162,21 @@ TEST(ArborCli, CompareReferenceTestExitCodes) {
   const std::string ref = write_exr("rt_ref.exr", 16, 16, 0.5f, 1e-4f);
   const std::string close = write_exr("rt_close.exr", 16, 16, 0.505f, 1e-4f);  // 0.35 sigma
   const std::string far = write_exr("rt_far.exr", 16, 16, 0.6f, 1e-4f);        // 7 sigma
-  const CliRun pass = arbor("compare " + close + " " + ref + " --reference-test --json");
+  const CliRun pass = run_arbor("compare " + close + " " + ref + " --reference-test --json");
   EXPECT_EQ(pass.code, 0) << pass.out << pass.err;
   EXPECT_NE(pass.out.find("\"z_test_pass_fraction\": 1"), std::string::npos) << pass.out;
   EXPECT_NE(pass.out.find("\"passed\": true"), std::string::npos) << pass.out;
-  const CliRun fail = arbor("compare " + far + " " + ref + " --reference-test");
+  const CliRun fail = run_arbor("compare " + far + " " + ref + " --reference-test");
   EXPECT_EQ(fail.code, 1) << fail.out << fail.err;
   EXPECT_NE(fail.out.find("FAIL"), std::string::npos) << fail.out;
   // The reference must carry variance; inputs are never overwritten.
   const std::string plain = write_exr("rt_plain.exr", 16, 16, 0.5f, -1.0f);
-  const CliRun novar = arbor("compare " + close + " " + plain + " --reference-test");
+  const CliRun novar = run_arbor("compare " + close + " " + plain + " --reference-test");
   EXPECT_EQ(novar.code, 2);
   EXPECT_NE(novar.err.find(plain + ": error: has no variance"), std::string::npos) << novar.err;
-  EXPECT_EQ(arbor("compare " + close + " " + ref + " --heatmap " + ref).code, 2);
-  EXPECT_EQ(arbor("compare " + close + " /no/such.exr").code, 2);
-  const CliRun small = arbor("compare " + close + " " + write_exr("rt_small.exr", 8, 8, 0.5f, 1e-4f));
+  EXPECT_EQ(run_arbor("compare " + close + " " + ref + " --heatmap " + ref).code, 2);
+  EXPECT_EQ(run_arbor("compare " + close + " /no/such.exr").code, 2);
+  const CliRun small = run_arbor("compare " + close + " " + write_exr("rt_small.exr", 8, 8, 0.5f, 1e-4f));
   EXPECT_EQ(small.code, 2);
   EXPECT_NE(small.err.find("same size"), std::string::npos) << small.err;
 }
@@ -192,10 +192,10 @@ TEST(ArborCli, TreemakerRenderWritesTermsThatAddUpToTheBeauty) {
       std::string(ARBOR_SOURCE_DIR) + "/generator/species/black_tupelo.toml\"\n"
       "[tree.treemaker]\nambient = 0.2\nlambert = 0.5\nheight = 0.3\nradius = 0.1\nangle = 0.25\n"
       "[output]\naovs = [\"treemaker\"]\npixel_type = \"float\"\n");
-  const CliRun one = arbor("render " + scene + " --threads 1 -o " + dir + "tm1.exr");
+  const CliRun one = run_arbor("render " + scene + " --threads 1 -o " + dir + "tm1.exr");
   ASSERT_EQ(one.code, 0) << one.err;
   EXPECT_NE(one.err.find("at 3 spp"), std::string::npos) << one.err;
-  ASSERT_EQ(arbor("render " + scene + " --threads 2 -o " + dir + "tm2.exr").code, 0);
+  ASSERT_EQ(run_arbor("render " + scene + " --threads 2 -o " + dir + "tm2.exr").code, 0);
   OIIO::ImageBuf a(dir + "tm1.exr"), b(dir + "tm2.exr");
   ASSERT_TRUE(a.read(0, 0, true, OIIO::TypeDesc::FLOAT));
   ASSERT_TRUE(b.read(0, 0, true, OIIO::TypeDesc::FLOAT));
@@ -233,7 +233,7 @@ TEST(ArborCli, TreemakerRenderWritesTermsThatAddUpToTheBeauty) {
   }
   EXPECT_GT(tree_pixels, 40);
 
-  const CliRun path = arbor("render " + scene + " --integrator path -o " + dir + "tm_path.exr");
+  const CliRun path = run_arbor("render " + scene + " --integrator path -o " + dir + "tm_path.exr");
   EXPECT_EQ(path.code, 2);
   EXPECT_NE(path.err.find(scene + ":19:9: error: output.aovs lists \"treemaker\", which only the "
                                    "treemaker integrator writes"),
@@ -253,10 +253,10 @@ TEST(ArborCli, FitTreemakerRecoversTheWeightsOfAnotherRender) {
   const std::string target = write_temp(
       "fit_b.toml", head + "[tree.treemaker]\nambient = 0.05\nlambert = 0.3\nheight = 0.0\nradius = 0.25\n"
                            "angle = 0.15\n[output]\npixel_type = \"float\"\n");
-  ASSERT_EQ(arbor("render " + with_aovs + " -o " + dir + "fit_a.exr").code, 0);
-  ASSERT_EQ(arbor("render " + target + " -o " + dir + "fit_b.exr").code, 0);
+  ASSERT_EQ(run_arbor("render " + with_aovs + " -o " + dir + "fit_a.exr").code, 0);
+  ASSERT_EQ(run_arbor("render " + target + " -o " + dir + "fit_b.exr").code, 0);
   for (const std::string& order : {dir + "fit_b.exr " + dir + "fit_a.exr", dir + "fit_a.exr " + dir + "fit_b.exr"}) {
-    const CliRun r = arbor("compare " + order + " --fit-treemaker --json");
+    const CliRun r = run_arbor("compare " + order + " --fit-treemaker --json");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("\"exact\": \"" + dir + "fit_b.exr\""), std::string::npos) << r.out;
     auto number_after = [&](const std::string& key) {
@@ -275,12 +275,12 @@ TEST(ArborCli, FitTreemakerRecoversTheWeightsOfAnotherRender) {
     EXPECT_NE(r.out.find("\"render_weights\": \"ambient=0.1 lambert=0.4 height=0.2 radius=0.2 angle=0.1\""),
               std::string::npos) << r.out;
   }
-  const CliRun text = arbor("compare " + dir + "fit_b.exr " + dir + "fit_a.exr --fit-treemaker");
+  const CliRun text = run_arbor("compare " + dir + "fit_b.exr " + dir + "fit_a.exr --fit-treemaker");
   EXPECT_NE(text.out.find("[tree.treemaker]"), std::string::npos) << text.out;
-  const CliRun neither = arbor("compare " + dir + "fit_b.exr " + dir + "fit_b.exr --fit-treemaker");
+  const CliRun neither = run_arbor("compare " + dir + "fit_b.exr " + dir + "fit_b.exr --fit-treemaker");
   EXPECT_EQ(neither.code, 2);
   EXPECT_NE(neither.err.find("neither image has them"), std::string::npos) << neither.err;
-  const CliRun both = arbor("compare " + dir + "fit_a.exr " + dir + "fit_a.exr --fit-treemaker");
+  const CliRun both = run_arbor("compare " + dir + "fit_a.exr " + dir + "fit_a.exr --fit-treemaker");
   EXPECT_EQ(both.code, 2);
   EXPECT_NE(both.err.find("both images have them"), std::string::npos) << both.err;
 }
@@ -293,8 +293,8 @@ TEST(ArborCli, RenderedExrPixelsAreIdenticalAtOneAndTwoThreads) {
       "look_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) +
       "/generator/species/black_tupelo.toml\"\n[output]\naovs = [\"albedo\", \"normal\", "
       "\"depth\", \"variance\"]\npixel_type = \"float\"\n");
-  ASSERT_EQ(arbor("render " + scene + " --threads 1 -o " + dir + "one.exr").code, 0);
-  ASSERT_EQ(arbor("render " + scene + " --threads 2 -o " + dir + "two.exr").code, 0);
+  ASSERT_EQ(run_arbor("render " + scene + " --threads 1 -o " + dir + "one.exr").code, 0);
+  ASSERT_EQ(run_arbor("render " + scene + " --threads 2 -o " + dir + "two.exr").code, 0);
   OIIO::ImageBuf one(dir + "one.exr"), two(dir + "two.exr");
   ASSERT_TRUE(one.read(0, 0, true, OIIO::TypeDesc::FLOAT));
   ASSERT_TRUE(two.read(0, 0, true, OIIO::TypeDesc::FLOAT));
@@ -309,14 +309,14 @@ TEST(ArborCli, RenderedExrPixelsAreIdenticalAtOneAndTwoThreads) {
 
 TEST(ArborCli, RenderRejectsBadScenesWithPosition) {
   const std::string bad = write_temp("bad_scene.toml", "[render]\nwidth = 64\nspp = 0\n");
-  const CliRun r = arbor("render " + bad + " -o out.exr");
+  const CliRun r = run_arbor("render " + bad + " -o out.exr");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find(bad + ":3:7: error: render.spp = 0 is out of range"), std::string::npos) << r.err;
   const std::string unknown = write_temp("unknown_key.toml", "[camera]\nfov = 40\nzoom = 2\n");
-  const CliRun u = arbor("render " + unknown + " -o out.exr");
+  const CliRun u = run_arbor("render " + unknown + " -o out.exr");
   EXPECT_EQ(u.code, 2);
   EXPECT_NE(u.err.find(unknown + ":3:1: error: unknown key 'zoom' in [camera]"), std::string::npos) << u.err;
-  const CliRun missing = arbor("render /no/such/scene.toml -o out.exr");
+  const CliRun missing = run_arbor("render /no/such/scene.toml -o out.exr");
   EXPECT_EQ(missing.code, 2);
 }
 
@@ -327,12 +327,12 @@ TEST(ArborCli, RenderWritesExrAndPngAndNothingOnFailure) {
       "[render]\nwidth = 24\nheight = 16\nspp = 2\n[camera]\nposition = [10.0, -14.0, 3.0]\n"
       "look_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) +
       "/generator/species/quaking_aspen.toml\"\n");
-  const CliRun r = arbor("render " + scene + " -o " + dir + "tiny.exr --png " + dir + "tiny.png");
+  const CliRun r = run_arbor("render " + scene + " -o " + dir + "tiny.exr --png " + dir + "tiny.png");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(exists(dir + "tiny.exr"));
   EXPECT_TRUE(exists(dir + "tiny.png"));
   EXPECT_NE(r.err.find("samples/s"), std::string::npos);
-  const CliRun bad = arbor("render " + scene + " -o /no/such/dir/tiny.exr");
+  const CliRun bad = run_arbor("render " + scene + " -o /no/such/dir/tiny.exr");
   EXPECT_EQ(bad.code, 1);
   EXPECT_FALSE(exists("/no/such/dir/tiny.exr"));
 }

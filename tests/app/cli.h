@@ -27,7 +27,7 @@ inline std::string slurp(const std::string& path) {
 }
 
 // Runs `arbor ARGS` through /bin/sh, after `shell_prefix` (e.g. "ulimit -f 8;").
-inline CliRun arbor_with(const std::string& shell_prefix, const std::string& args) {
+inline CliRun run_arbor_with(const std::string& shell_prefix, const std::string& args) {
   // ctest runs tests as parallel processes: name the capture files after the test.
   const std::string stem = ::testing::TempDir() + "cli_" +
                            ::testing::UnitTest::GetInstance()->current_test_info()->name();
@@ -43,7 +43,7 @@ inline CliRun arbor_with(const std::string& shell_prefix, const std::string& arg
   return r;
 }
 
-inline CliRun arbor(const std::string& args) { return arbor_with("", args); }
+inline CliRun run_arbor(const std::string& args) { return run_arbor_with("", args); }
 
 inline std::string species(const char* name) {
   return std::string(ARBOR_SOURCE_DIR) + "/generator/species/" + name;

@@ -1,6 +1,5 @@
 // The command line against hostile input and hostile conditions: outputs are never lost or
 // half-written, inputs are never overwritten, bad values are refused with their position.
-#include <dirent.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -11,28 +10,16 @@
 
 #include <gtest/gtest.h>
 
+#include "temp_files.h"
+// Named before app/cli.h declares its function run_arbor(), which hides the namespace.
+using arbor::testing::files_in;
+namespace {
+std::string fresh_folder(const std::string& name) { return arbor::testing::fresh_folder("robust_" + name); }
+}  // namespace
+
 #include "app/cli.h"
 
 namespace {
-
-std::string fresh_folder(const std::string& name) {
-  const std::string dir = ::testing::TempDir() + "robust_" + name;
-  std::system(("rm -rf '" + dir + "' && mkdir -p '" + dir + "'").c_str());
-  return dir;
-}
-
-std::vector<std::string> files_in(const std::string& dir) {
-  std::vector<std::string> names;
-  if (DIR* d = opendir(dir.c_str())) {
-    while (dirent* e = readdir(d)) {
-      const std::string n = e->d_name;
-      if (n != "." && n != "..") names.push_back(n);
-    }
-    closedir(d);
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
 
 // A 160x120 image of smooth noise: its PNG heatmap is tens of kilobytes.
 std::string noisy_exr(const std::string& path, int seed) {
@@ -59,13 +46,13 @@ TEST(Robustness, FailedPngWriteKeepsTheOldFile) {
   const std::string a = noisy_exr(dir + "/a.exr", 1), b = noisy_exr(dir + "/b.exr", 2);
   const std::string heat = dir + "/heat.png";
   write_temp("robust_png_limit/heat.png", "the old picture");
-  const CliRun r = arbor_with("trap '' XFSZ; ulimit -f 8;", "compare " + a + " " + b + " --heatmap " + heat);
+  const CliRun r = run_arbor_with("trap '' XFSZ; ulimit -f 8;", "compare " + a + " " + b + " --heatmap " + heat);
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_NE(r.err.find("cannot write " + heat), std::string::npos) << r.err;
   EXPECT_EQ(slurp(heat), "the old picture");
   EXPECT_EQ(files_in(dir), (std::vector<std::string>{"a.exr", "b.exr", "heat.png"}));
   // Without the limit the same command writes it.
-  const CliRun ok = arbor("compare " + a + " " + b + " --heatmap " + heat);
+  const CliRun ok = run_arbor("compare " + a + " " + b + " --heatmap " + heat);
   EXPECT_EQ(ok.code, 0) << ok.err;
   EXPECT_GT(slurp(heat).size(), 8u * 1024u);
 }
@@ -76,22 +63,22 @@ TEST(Robustness, OutputsNeverOverwriteInputsHoweverSpelled) {
   ASSERT_EQ(symlink("a.exr", (dir + "/link.exr").c_str()), 0);
   const std::string before = slurp(a);
   for (const std::string& out : {dir + "/./a.exr", dir + "/../robust_overwrite/a.exr", dir + "/link.exr"}) {
-    const CliRun r = arbor("compare " + a + " " + b + " --heatmap " + out);
+    const CliRun r = run_arbor("compare " + a + " " + b + " --heatmap " + out);
     EXPECT_EQ(r.code, 2) << out;
     EXPECT_NE(r.err.find("would overwrite the input"), std::string::npos) << r.err;
-    const CliRun s = arbor("compare " + a + " " + b + " --side-by-side " + out);
+    const CliRun s = run_arbor("compare " + a + " " + b + " --side-by-side " + out);
     EXPECT_EQ(s.code, 2) << out;
   }
   EXPECT_EQ(slurp(a), before);
   // Both pictures to one file is refused too.
-  const CliRun both = arbor("compare " + a + " " + b + " --heatmap " + dir + "/x.png --side-by-side " +
+  const CliRun both = run_arbor("compare " + a + " " + b + " --heatmap " + dir + "/x.png --side-by-side " +
                             dir + "/./x.png");
   EXPECT_EQ(both.code, 2) << both.err;
   // A render whose output is one of the scene's inputs (here its environment map).
   const std::string scene = write_temp(
       "robust_overwrite/env.toml",
       "[render]\nwidth = 8\nheight = 8\nspp = 1\n[sky]\nmodel = \"envmap\"\npath = \"a.exr\"\n");
-  const CliRun r = arbor("render " + scene + " -o " + dir + "/link.exr");
+  const CliRun r = run_arbor("render " + scene + " -o " + dir + "/link.exr");
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("would overwrite the input"), std::string::npos) << r.err;
   EXPECT_EQ(slurp(a), before);
@@ -99,7 +86,7 @@ TEST(Robustness, OutputsNeverOverwriteInputsHoweverSpelled) {
   const std::string sp = dir + "/tree.skel";
   ASSERT_EQ(std::system(("cp " + std::string(ARBOR_SOURCE_DIR) + "/generator/species/*.skel " + sp).c_str()), 0);
   const std::string skel = slurp(sp);
-  const CliRun g = arbor("grow " + sp + " -o " + dir + "/./tree.skel");
+  const CliRun g = run_arbor("grow " + sp + " -o " + dir + "/./tree.skel");
   EXPECT_EQ(g.code, 2) << g.err;
   EXPECT_EQ(slurp(sp), skel);
 }
@@ -111,7 +98,7 @@ TEST(Robustness, OutputsWriteThroughSymlinks) {
   ASSERT_EQ(mkdir((dir + "/real").c_str(), 0755), 0);
   write_temp("robust_symlink/real/heat.png", "old");
   ASSERT_EQ(symlink("real/heat.png", (dir + "/heat.png").c_str()), 0);
-  const CliRun r = arbor("compare " + a + " " + b + " --heatmap " + dir + "/heat.png");
+  const CliRun r = run_arbor("compare " + a + " " + b + " --heatmap " + dir + "/heat.png");
   ASSERT_EQ(r.code, 0) << r.err;
   struct stat st;
   ASSERT_EQ(lstat((dir + "/heat.png").c_str(), &st), 0);
@@ -133,11 +120,11 @@ TEST(Robustness, CommandLineNumbersAreCheckedStrictly) {
         "render " + scene + " --time inf -o x.exr", "render " + scene + " --time 1e308 -o x.exr",
         "render " + scene + " --seed 18446744073709551616 -o x.exr", "render " + scene + " --spp 0 -o x.exr",
         "render " + scene + " --width -5 -o x.exr", "render " + scene + " --threads nan -o x.exr"}) {
-    const CliRun r = arbor(args);
+    const CliRun r = run_arbor(args);
     EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
   }
   // The largest seed is a seed like any other, and it differs from its neighbour.
-  const CliRun top = arbor("grow " + species("lsystem_weed.lsys") + " --seed 18446744073709551615 --stats --json");
+  const CliRun top = run_arbor("grow " + species("lsystem_weed.lsys") + " --seed 18446744073709551615 --stats --json");
   EXPECT_EQ(top.code, 0) << top.err;
   EXPECT_NE(top.out.find("\"seed\": 18446744073709551615"), std::string::npos) << top.out;
 }
@@ -150,12 +137,12 @@ TEST(Robustness, AbsurdRendersAreRefusedUpFront) {
       "[render]\nwidth = 8\nheight = 8\nspp = 1\n[[forest]]\nspecies = \"" + species("young_tree.skel") +
           "\"\ncount = 10000000\nvariants = 1\narea = [[-1000.0, -1000.0], [1000.0, 1000.0]]\n");
   // Under an 8 GB address-space limit, as the report's machine had.
-  const CliRun r = arbor_with("ulimit -v 8000000;", "render " + forest + " -o " + ::testing::TempDir() + "f.exr");
+  const CliRun r = run_arbor_with("ulimit -v 8000000;", "render " + forest + " -o " + ::testing::TempDir() + "f.exr");
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find(forest + ":5:1: error: the render would need about"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--force"), std::string::npos) << r.err;
   const std::string image = write_temp("robust_image.toml", "[render]\nwidth = 16384\nheight = 16384\nspp = 1\n");
-  const CliRun big = arbor("render " + image + " -o " + ::testing::TempDir() + "big.exr");
+  const CliRun big = run_arbor("render " + image + " -o " + ::testing::TempDir() + "big.exr");
   EXPECT_EQ(big.code, 2) << big.err;
   EXPECT_NE(big.err.find("16384x16384"), std::string::npos) << big.err;
   EXPECT_FALSE(exists(::testing::TempDir() + "big.exr"));

@@ -2,7 +2,6 @@
 // not outlive a signal, and same_file sees through spellings and links.
 #include "common/atomic_file.h"
 
-#include <dirent.h>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -17,28 +16,13 @@
 #include <gtest/gtest.h>
 
 #include "common/error.h"
+#include "temp_files.h"
 
 namespace arbor {
 namespace {
 
-// A fresh empty folder for one test.
-std::string fresh_folder(const std::string& name) {
-  const std::string dir = ::testing::TempDir() + "atomic_" + name;
-  std::system(("rm -rf '" + dir + "' && mkdir -p '" + dir + "'").c_str());
-  return dir;
-}
-
-std::vector<std::string> files_in(const std::string& dir) {
-  std::vector<std::string> names;
-  if (DIR* d = opendir(dir.c_str())) {
-    while (dirent* e = readdir(d)) {
-      const std::string n = e->d_name;
-      if (n != "." && n != "..") names.push_back(n);
-    }
-    closedir(d);
-  }
-  return names;
-}
+std::string fresh_folder(const std::string& name) { return testing::fresh_folder("atomic_" + name); }
+using testing::files_in;
 
 std::string read(const std::string& path) {
   std::ifstream in(path);

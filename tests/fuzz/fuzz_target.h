@@ -13,7 +13,9 @@
 #include <glm/vec4.hpp>
 
 #include "common/error.h"
+#include "generator/grow.h"
 #include "generator/skeleton.h"
+#include "generator/species.h"
 #include "generator/tree_geometry.h"
 
 namespace arbor::fuzz {
@@ -39,6 +41,14 @@ inline void check_tree(const gen::Skeleton& sk, const gen::GeometryOptions& opti
   for (const glm::vec3& v : g.grids.vertices) require(finite(v), "grid vertices are finite");
   for (const glm::vec3& n : g.grids.normals) require(finite(n), "grid normals are finite");
   for (const glm::vec3& v : g.leaves.positions) require(finite(v), "leaf vertices are finite");
+}
+
+// Grows a Weber & Penn species when it is small (a few thousand stems) and checks the tree.
+inline void grow_and_check(const gen::Species& species) {
+  gen::GrowOptions o;
+  o.max_stems = 2000;
+  o.max_leaves = 20000;
+  check_tree(gen::grow_tree(species, o), gen::geometry_options_for(species.leaf));
 }
 
 }  // namespace arbor::fuzz
