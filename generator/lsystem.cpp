@@ -1,6 +1,7 @@
 // L-system language (Borenszweig 2008) with arbor's directives, and its 3D turtle.
 #include "generator/lsystem.h"
 
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -226,56 +227,34 @@ class Parser {
   int branch_depth_ = 0;
 };
 
-// Actions interpreted (of any kind) by one interpretation of a rule at `depth`: what bounds the
-// time, even for a system that draws nothing (A: A A;).
-double count_work(const LSystem& sys, char name, int depth, std::map<std::pair<char, int>, double>& memo);
-
-double count_work_body(const LSystem& sys, const std::vector<LAction>& body, int depth,
-                       std::map<std::pair<char, int>, double>& memo) {
+// The most one interpretation of `body` at recursion depth `depth` costs: its actions of any kind
+// (`work`: what bounds the time, even for a system that draws nothing, A: A A;) or its f
+// segments. `deeper` holds each rule's cost one depth further down.
+double body_cost(const LSystem& sys, const std::vector<LAction>& body, int depth,
+                 const std::array<double, 26>& deeper, bool work) {
   double n = 0.0;
   for (const LAction& a : body) {
-    n += 1.0;
-    if (a.kind == LAction::Branch) n += count_work_body(sys, a.branch, depth, memo);
-    else if (a.kind == LAction::Rule && depth + 1 <= sys.iterations) n += count_work(sys, a.rule, depth + 1, memo);
+    if (work || a.kind == LAction::Forward) n += 1.0;
+    if (a.kind == LAction::Branch) n += body_cost(sys, a.branch, depth, deeper, work);
+    else if (a.kind == LAction::Rule && depth + 1 <= sys.iterations) n += deeper[static_cast<size_t>(a.rule - 'A')];
   }
   return n;
 }
 
-double count_work(const LSystem& sys, char name, int depth, std::map<std::pair<char, int>, double>& memo) {
-  const auto key = std::make_pair(name, depth);
-  const auto it = memo.find(key);
-  if (it != memo.end()) return it->second;
-  double worst = 0.0;
-  for (const LRule& r : sys.rules) {
-    if (r.name == name) worst = std::max(worst, count_work_body(sys, r.body, depth, memo));
+// The axiom's cost, the most any choice of alternatives can reach: a table of every rule's cost
+// filled from the deepest iteration up, so that no recursion runs through the rules (only
+// through one body's brackets, at most 100 deep).
+double axiom_cost(const LSystem& sys, bool work) {
+  std::array<double, 26> deeper{};
+  for (int depth = sys.iterations; depth >= 0; --depth) {
+    std::array<double, 26> here{};
+    for (const LRule& r : sys.rules) {
+      double& worst = here[static_cast<size_t>(r.name - 'A')];
+      worst = std::max(worst, body_cost(sys, r.body, depth, deeper, work));
+    }
+    deeper = here;
   }
-  return memo[key] = worst;
-}
-
-// Number of f segments one interpretation of `body` draws at recursion depth `depth`.
-double count_segments(const LSystem& sys, const std::vector<LAction>& body, int depth,
-                      std::map<std::pair<char, int>, double>& memo);
-
-double count_rule(const LSystem& sys, char name, int depth, std::map<std::pair<char, int>, double>& memo) {
-  const auto key = std::make_pair(name, depth);
-  const auto it = memo.find(key);
-  if (it != memo.end()) return it->second;
-  double worst = 0.0;
-  for (const LRule& r : sys.rules) {
-    if (r.name == name) worst = std::max(worst, count_segments(sys, r.body, depth, memo));
-  }
-  return memo[key] = worst;
-}
-
-double count_segments(const LSystem& sys, const std::vector<LAction>& body, int depth,
-                      std::map<std::pair<char, int>, double>& memo) {
-  double n = 0.0;
-  for (const LAction& a : body) {
-    if (a.kind == LAction::Forward) n += 1.0;
-    else if (a.kind == LAction::Branch) n += count_segments(sys, a.branch, depth, memo);
-    else if (a.kind == LAction::Rule && depth + 1 <= sys.iterations) n += count_rule(sys, a.rule, depth + 1, memo);
-  }
-  return n;
+  return deeper[static_cast<size_t>(sys.rules.front().name - 'A')];
 }
 
 // The turtle: position, orientation (heading, left, up), and the multipliers of the language.
@@ -298,7 +277,7 @@ class Interpreter {
     Turtle t;
     t.step = sys_.step;
     t.radius = sys_.radius;
-    expand(sys_.rules.front().name, 0, t);
+    interpret(choose(sys_.rules.front().name), t);
     finish_stems();
     add_leaves();
     int levels = 1;
@@ -310,22 +289,20 @@ class Interpreter {
  private:
   double vary() { return sys_.randomness > 0.0 ? 1.0 + sys_.randomness * jitter_.symmetric() : 1.0; }
 
-  void expand(char name, int depth, Turtle& t) {
-    // Rules of this name, chosen by weight (the number after a rule's name).
+  // The body a rule of this name runs, chosen by weight (the number after a rule's name).
+  const std::vector<LAction>& choose(char name) {
     double total = 0.0;
     for (const LRule& r : sys_.rules) total += r.name == name ? r.weight : 0.0;
     double pick = choice_.uniform() * total;
     for (const LRule& r : sys_.rules) {
       if (r.name != name) continue;
       pick -= r.weight;
-      if (pick <= 0.0) {
-        run_actions(r.body, depth, t);
-        return;
-      }
+      if (pick <= 0.0) return r.body;
     }
     for (auto it = sys_.rules.rbegin(); it != sys_.rules.rend(); ++it) {
-      if (it->name == name) return run_actions(it->body, depth, t);
+      if (it->name == name) return it->body;
     }
+    return sys_.rules.front().body;
   }
 
   void turn(Vec3& a, Vec3& b, double degrees) {
@@ -386,8 +363,31 @@ class Interpreter {
     t.stem = static_cast<int>(stems_.size()) - 1;
   }
 
-  void run_actions(const std::vector<LAction>& body, int depth, Turtle& t) {
-    for (const LAction& a : body) {
+  // Interprets a rule's body with an explicit stack instead of recursion (64 iterations of
+  // rules with brackets 100 deep would need thousands of frames): the same actions in the same
+  // order as the recursive reading. A frame runs a body at a depth with a turtle; a rule
+  // shares its caller's turtle, a branch has a copy of its own.
+  void interpret(const std::vector<LAction>& axiom, Turtle start) {
+    struct Frame {
+      const std::vector<LAction>* body;
+      std::size_t next;
+      int depth;
+      std::size_t turtle;
+      bool own_turtle;
+    };
+    std::vector<Turtle> turtles{start};
+    std::vector<Frame> frames{{&axiom, 0, 0, 0, false}};
+    while (!frames.empty()) {
+      Frame& f = frames.back();
+      if (f.next == f.body->size()) {
+        if (f.own_turtle) turtles.pop_back();
+        frames.pop_back();
+        continue;
+      }
+      const LAction& a = (*f.body)[f.next++];
+      const int depth = f.depth;
+      const std::size_t turtle = f.turtle;
+      Turtle& t = turtles[turtle];
       const double amount = a.has_number ? a.number : sys_.angle;
       switch (a.kind) {
         case LAction::Forward: forward(a, t); break;
@@ -404,7 +404,7 @@ class Interpreter {
         case LAction::ScaleRadius: t.radius *= a.number; break;
         case LAction::Rule:
           // Iterations bound the recursion: a rule is consumed only down to that depth.
-          if (depth + 1 <= sys_.iterations) expand(a.rule, depth + 1, t);
+          if (depth + 1 <= sys_.iterations) frames.push_back({&choose(a.rule), 0, depth + 1, turtle, false});
           break;
         case LAction::Branch: {
           Turtle inner = t;
@@ -413,7 +413,8 @@ class Interpreter {
             inner.parent_point = static_cast<int>(stems_[static_cast<size_t>(t.stem)].points.size()) - 1;
           }
           inner.stem = -1;
-          run_actions(a.branch, depth, inner);
+          turtles.push_back(inner);
+          frames.push_back({&a.branch, 0, depth, turtles.size() - 1, true});
           break;
         }
       }
@@ -485,10 +486,7 @@ LSystem parse_lsystem(const std::string& text, const std::string& path) {
   return Parser(text, path).parse();
 }
 
-double estimate_segments(const LSystem& sys) {
-  std::map<std::pair<char, int>, double> memo;
-  return count_rule(sys, sys.rules.front().name, 0, memo);
-}
+double estimate_segments(const LSystem& sys) { return axiom_cost(sys, false); }
 
 Skeleton grow_lsystem(const LSystem& sys, const LSystemOptions& o) {
   const double estimate = estimate_segments(sys);
@@ -500,8 +498,7 @@ Skeleton grow_lsystem(const LSystem& sys, const LSystemOptions& o) {
                   estimate, o.max_segments);
     throw RuntimeFailure(buf);
   }
-  std::map<std::pair<char, int>, double> memo;
-  const double work = count_work(sys, sys.rules.front().name, 0, memo);
+  const double work = axiom_cost(sys, true);
   if (!o.force && work > 50.0 * o.max_segments) {
     char buf[200];
     std::snprintf(buf, sizeof buf,

@@ -51,9 +51,8 @@ std::uint64_t usable_memory_bytes() {
   return usable;
 }
 
-void check_render_memory(const SceneDesc& s, bool force) {
+void check_render_memory(const SceneDesc& s, bool force, std::uint64_t usable) {
   const MemoryEstimate e = estimate_render_memory(s);
-  const std::uint64_t usable = usable_memory_bytes();
   if (force || e.total() + kBaseline <= usable) return;
   SourceLocation where{s.path, 0, 0};
   int largest = 0;

@@ -25,8 +25,8 @@ MemoryEstimate estimate_render_memory(const SceneDesc& scene);
 // limit (ulimit -v / -d) when it is lower.
 std::uint64_t usable_memory_bytes();
 
-// InputError (at the largest forest, or the scene file) when the estimate exceeds the usable
-// memory, saying how much each part needs and that --force renders it anyway.
-void check_render_memory(const SceneDesc& scene, bool force);
+// InputError (at the largest forest, or the scene file) when the estimate exceeds `usable`
+// bytes, saying how much each part needs and that --force renders it anyway.
+void check_render_memory(const SceneDesc& scene, bool force, std::uint64_t usable = usable_memory_bytes());
 
 }  // namespace arbor::trace

@@ -129,22 +129,16 @@ TEST(Robustness, CommandLineNumbersAreCheckedStrictly) {
   EXPECT_NE(top.out.find("\"seed\": 18446744073709551615"), std::string::npos) << top.out;
 }
 
-// The largest forest count and image size the scene allows are refused before anything is
-// built (exit 2, naming --force), instead of exhausting the machine's memory.
+// The largest image the scene allows is refused before anything is built (exit 2, naming
+// --force), instead of exhausting the machine's memory. (The largest forest, which fits in this
+// machine's 24 GB but not in the report's 8 GB, is tested with that limit in render_budget_test.)
 TEST(Robustness, AbsurdRendersAreRefusedUpFront) {
-  const std::string forest = write_temp(
-      "robust_forest.toml",
-      "[render]\nwidth = 8\nheight = 8\nspp = 1\n[[forest]]\nspecies = \"" + species("young_tree.skel") +
-          "\"\ncount = 10000000\nvariants = 1\narea = [[-1000.0, -1000.0], [1000.0, 1000.0]]\n");
-  // Under an 8 GB address-space limit, as the report's machine had.
-  const CliRun r = run_arbor_with("ulimit -v 8000000;", "render " + forest + " -o " + ::testing::TempDir() + "f.exr");
-  EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_NE(r.err.find(forest + ":5:1: error: the render would need about"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("--force"), std::string::npos) << r.err;
   const std::string image = write_temp("robust_image.toml", "[render]\nwidth = 16384\nheight = 16384\nspp = 1\n");
   const CliRun big = run_arbor("render " + image + " -o " + ::testing::TempDir() + "big.exr");
   EXPECT_EQ(big.code, 2) << big.err;
+  EXPECT_NE(big.err.find(image + ": error: the render would need about"), std::string::npos) << big.err;
   EXPECT_NE(big.err.find("16384x16384"), std::string::npos) << big.err;
+  EXPECT_NE(big.err.find("--force"), std::string::npos) << big.err;
   EXPECT_FALSE(exists(::testing::TempDir() + "big.exr"));
 }
 

@@ -1,6 +1,10 @@
 // The up-front memory estimate: absurd sizes are refused before anything is allocated.
 #include "tracer/render_budget.h"
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "common/error.h"
@@ -48,6 +52,44 @@ TEST(RenderBudget, TheLargestImageIsRefusedUnlessForced) {
   EXPECT_NO_THROW(check_render_memory(s, true));
   s.render.width = s.render.height = 1024;
   EXPECT_NO_THROW(check_render_memory(s, false));
+}
+
+// The largest forest count the scene allows needs about 10 GB: refused on a machine (or under a
+// ulimit) of 8 GB, at the forest's table.
+TEST(RenderBudget, TheLargestForestIsRefusedWhereItDoesNotFit) {
+  SceneDesc s;
+  s.path = "forest.toml";
+  s.render.width = s.render.height = 8;
+  ForestDesc f;
+  f.count = 10000000;
+  f.where = {"forest.toml", 5, 1};
+  s.forests = {f};
+  const std::uint64_t eight_gb = 8ull << 30;
+  try {
+    check_render_memory(s, false, eight_gb);
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().line, 5);
+    EXPECT_NE(e.message().find("10000000 trees"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(check_render_memory(s, true, eight_gb));
+  EXPECT_NO_THROW(check_render_memory(s, false, 16ull << 30));
+}
+
+// ulimit -v and -d lower what a render may use below the physical memory.
+TEST(RenderBudget, TheProcessLimitsLowerTheUsableMemory) {
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const rlimit limit{3ull << 30, 3ull << 30};
+    if (setrlimit(RLIMIT_DATA, &limit) != 0) _exit(3);
+    _exit(usable_memory_bytes() == (3ull << 30) ? 0 : 1);
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_GT(usable_memory_bytes(), 1ull << 30);  // this machine's own memory, over a gigabyte
 }
 
 }  // namespace
