@@ -45,6 +45,11 @@ Skeleton grow_model(const Species& species, const GrowOptions& options) {
 
 Skeleton grow_tree(const Species& species, const GrowOptions& options) {
   Skeleton sk = grow_model(species, options);
+  const std::string outside = extent_problem(sk);
+  if (!outside.empty()) {
+    throw InputError({species.path, 0, 0}, "the grown tree is out of bounds: " + outside +
+                                               "; the species' sizes or growth compound past any scale");
+  }
   // Every model must grow a valid skeleton; one that does not is arbor's bug, never written out.
   const std::string problem = validate(sk);
   if (!problem.empty()) check_failed(("the grown skeleton is valid: " + problem).c_str(), __FILE__, __LINE__);

@@ -48,6 +48,30 @@ std::size_t Skeleton::leaf_count() const {
   return leaves.size() + static_cast<std::size_t>(free + 1);
 }
 
+std::string extent_problem(const Skeleton& sk) {
+  constexpr float kReach = 1e6f;  // metres
+  auto outside = [](const glm::vec3& p) {
+    return !(std::fabs(p.x) <= kReach && std::fabs(p.y) <= kReach && std::fabs(p.z) <= kReach);
+  };
+  for (const SkeletonPoint& p : sk.points) {
+    if (outside(p.position) || !(p.radius <= kReach)) return "a limb point lies beyond 1000 km (or is not finite)";
+  }
+  for (const Leaf& l : sk.leaves) {
+    if (outside(l.position) || !(l.length <= kReach && l.width <= kReach)) {
+      return "a leaf lies beyond 1000 km or is larger (or is not finite)";
+    }
+  }
+  for (const LeafTriangle& t : sk.leaf_triangles) {
+    for (const glm::vec3& v : t.v) {
+      if (outside(v)) return "a leaf triangle lies beyond 1000 km (or is not finite)";
+    }
+  }
+  for (const LeafLine& l : sk.leaf_lines) {
+    if (outside(l.a) || outside(l.b) || !(l.radius <= kReach)) return "a leaf line lies beyond 1000 km (or is not finite)";
+  }
+  return "";
+}
+
 std::string validate(const Skeleton& sk) {
   int roots = 0;
   for (size_t i = 0; i < sk.stems.size(); ++i) {

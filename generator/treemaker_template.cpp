@@ -164,6 +164,8 @@ class Parser {
   double number() {
     if (tok_.kind != Token::Number) fail("expected a number" + (tok_.kind == Token::End ? std::string(" before the end of the file") : ", found '" + tok_.text + "'"));
     const double v = tok_.value;
+    // Template numbers are centimetres, degrees, factors: past a million they only overflow.
+    if (!(std::fabs(v) <= 1e6)) fail("the number " + tok_.text + " is out of range [-1e6, 1e6]");
     take();
     return v;
   }

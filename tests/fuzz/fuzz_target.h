@@ -34,6 +34,7 @@ inline bool finite(const glm::vec4& v) { return finite(glm::vec3(v)) && std::isf
 // A grown or read tree must be valid, and small ones must turn into finite geometry.
 inline void check_tree(const gen::Skeleton& sk, const gen::GeometryOptions& options = {}) {
   require(gen::validate(sk).empty(), "the skeleton is valid");
+  require(gen::extent_problem(sk).empty(), "the tree is within bounds");
   if (sk.points.size() > 3000 || sk.leaves.size() > 20000) return;
   const gen::TreeGeometry g = gen::build_tree_geometry(sk, options);
   for (const glm::vec4& p : g.curves.points) require(finite(p), "curve points are finite");
@@ -43,7 +44,7 @@ inline void check_tree(const gen::Skeleton& sk, const gen::GeometryOptions& opti
   for (const glm::vec3& v : g.leaves.positions) require(finite(v), "leaf vertices are finite");
 }
 
-// Grows a Weber & Penn species when it is small (a few thousand stems) and checks the tree.
+// Grows a species of any model when it is small (a few thousand stems) and checks the tree.
 inline void grow_and_check(const gen::Species& species) {
   gen::GrowOptions o;
   o.max_stems = 2000;

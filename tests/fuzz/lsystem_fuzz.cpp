@@ -3,8 +3,9 @@
 #include "generator/lsystem.h"
 
 ARBOR_FUZZ_TARGET({
-  const arbor::gen::LSystem sys = arbor::gen::parse_lsystem(text, "fuzz.lsys");
-  arbor::gen::LSystemOptions o;
-  o.max_segments = 5000;
-  arbor::fuzz::check_tree(arbor::gen::grow_lsystem(sys, o));
+  arbor::gen::Species s;
+  s.path = "fuzz.lsys";
+  s.model = arbor::gen::Model::LSystem;
+  s.lsystem = arbor::gen::parse_lsystem(text, s.path);
+  arbor::fuzz::grow_and_check(s);
 })

@@ -1,11 +1,11 @@
 // Fuzz target: TREE-MAKER templates, read, grown (small) and meshed.
 #include "fuzz_target.h"
-#include "generator/treemaker.h"
 #include "generator/treemaker_template.h"
 
 ARBOR_FUZZ_TARGET({
-  const arbor::gen::TreeMakerTemplate t = arbor::gen::parse_treemaker_template(text, "fuzz.tmpl");
-  arbor::gen::TreeMakerOptions o;
-  o.max_stems = 2000;
-  arbor::fuzz::check_tree(arbor::gen::grow_treemaker(t, o));
+  arbor::gen::Species s;
+  s.path = "fuzz.tmpl";
+  s.model = arbor::gen::Model::TreeMaker;
+  s.treemaker = arbor::gen::parse_treemaker_template(text, s.path);
+  arbor::fuzz::grow_and_check(s);
 })

@@ -305,3 +305,25 @@ TEST(TreeMakerGrowth, ABranchMovedToItsGrandparentStartsNoThickerThanIt) {
 }
 
 }  // namespace arbor::gen
+
+namespace arbor::gen {
+
+// Found by fuzzing (tests/fuzz/regressions/): a leaf line reaching 1e67 cm became a limb with
+// infinite float coordinates. Template numbers are bounded, and any tree grown past 1000 km is
+// refused at its file.
+TEST(TreeMakerGrowth, NumbersPastAMillionAreRefused) {
+  const std::string path = std::string(ARBOR_SOURCE_DIR) + "/tests/fuzz/regressions/treemaker_huge_leaf_line.tmpl";
+  testing::expect_input_error([&] { parse_treemaker_template(read_text_file(path), path); }, path, 30, 30,
+                              "out of range [-1e6, 1e6]");
+  expect_error("iterations { i= 3 }\ngravity { g= 2000000 }\n", 2, 14, "out of range");
+  Skeleton sk;
+  sk.points = {{glm::vec3(0.0f), 0.1f}, {glm::vec3(0.0f, 0.0f, 2e6f), 0.1f}};
+  EXPECT_NE(extent_problem(sk), "");
+  sk.points[1].position.z = 10.0f;
+  EXPECT_EQ(extent_problem(sk), "");
+  sk.leaf_lines.push_back({});
+  sk.leaf_lines.back().b = glm::vec3(std::nanf(""), 0.0f, 0.0f);
+  EXPECT_NE(extent_problem(sk), "");
+}
+
+}  // namespace arbor::gen
