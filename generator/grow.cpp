@@ -45,10 +45,11 @@ Skeleton grow_model(const Species& species, const GrowOptions& options) {
 
 Skeleton grow_tree(const Species& species, const GrowOptions& options) {
   Skeleton sk = grow_model(species, options);
-  const std::string outside = extent_problem(sk);
+  const std::string outside = scale_problem(sk);
   if (!outside.empty()) {
-    throw InputError({species.path, 0, 0}, "the grown tree is out of bounds: " + outside +
-                                               "; the species' sizes or growth compound past any scale");
+    throw InputError({species.path, 0, 0}, "the grown tree is out of scale: " + outside +
+                                               "; the species' sizes or growth compound past what "
+                                               "arbor's geometry can hold");
   }
   // Every model must grow a valid skeleton; one that does not is arbor's bug, never written out.
   const std::string problem = validate(sk);

@@ -48,13 +48,23 @@ std::size_t Skeleton::leaf_count() const {
   return leaves.size() + static_cast<std::size_t>(free + 1);
 }
 
-std::string extent_problem(const Skeleton& sk) {
+std::string scale_problem(const Skeleton& sk) {
   constexpr float kReach = 1e6f;  // metres
   auto outside = [](const glm::vec3& p) {
     return !(std::fabs(p.x) <= kReach && std::fabs(p.y) <= kReach && std::fabs(p.z) <= kReach);
   };
   for (const SkeletonPoint& p : sk.points) {
     if (outside(p.position) || !(p.radius <= kReach)) return "a limb point lies beyond 1000 km (or is not finite)";
+  }
+  for (std::size_t i = 0; i < sk.stems.size(); ++i) {
+    const Stem& s = sk.stems[i];
+    for (std::uint32_t k = 1; k < s.point_count; ++k) {
+      const float d = glm::length(sk.points[s.first_point + k].position - sk.points[s.first_point + k - 1].position);
+      if (!(d >= 1e-6f)) {
+        return "stem " + std::to_string(i) + " (level " + std::to_string(s.level) +
+               ") has a segment shorter than 1 micrometre";
+      }
+    }
   }
   for (const Leaf& l : sk.leaves) {
     if (outside(l.position) || !(l.length <= kReach && l.width <= kReach)) {

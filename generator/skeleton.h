@@ -89,10 +89,11 @@ struct Skeleton {
 // Checks the invariants: exactly one root, parents before children (so no cycles), every stem has
 // at least two points, finite values, non-negative radii, child base radius ≤ parent radius at
 // the branch point. Returns "" when valid, else the first violation in words.
-// Why a grown tree is out of bounds: a point, leaf or leaf element that is not finite or lies
-// more than 1000 km from the origin (numbers that compound, such as growth over many
-// iterations, can take a tree past any scale); "" when it is within.
-std::string extent_problem(const Skeleton& skeleton);
+// Why a grown tree is out of scale: a point, leaf or leaf element that is not finite or lies more
+// than 1000 km from the origin, or a limb segment shorter than 1 micrometre (numbers that
+// compound, such as growth over many iterations or size ratios over many levels, can take a
+// tree past what float geometry holds); "" when it is within.
+std::string scale_problem(const Skeleton& skeleton);
 
 std::string validate(const Skeleton& skeleton);
 

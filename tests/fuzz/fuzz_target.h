@@ -34,7 +34,7 @@ inline bool finite(const glm::vec4& v) { return finite(glm::vec3(v)) && std::isf
 // A grown or read tree must be valid, and small ones must turn into finite geometry.
 inline void check_tree(const gen::Skeleton& sk, const gen::GeometryOptions& options = {}) {
   require(gen::validate(sk).empty(), "the skeleton is valid");
-  require(gen::extent_problem(sk).empty(), "the tree is within bounds");
+  require(gen::scale_problem(sk).empty(), "the tree is within scale");
   if (sk.points.size() > 3000 || sk.leaves.size() > 20000) return;
   const gen::TreeGeometry g = gen::build_tree_geometry(sk, options);
   for (const glm::vec4& p : g.curves.points) require(finite(p), "curve points are finite");

@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "generator/grow.h"
 #include "generator/species.h"
 #include "generator/tree_stats.h"
 
@@ -187,6 +188,24 @@ TEST(Fractal, AbsurdSizesAreRefusedWithTheEstimate) {
     FAIL();
   } catch (const RuntimeFailure& e) {
     EXPECT_NE(std::string(e.what()).find("branches"), std::string::npos);
+  }
+}
+
+}  // namespace arbor::gen
+
+namespace arbor::gen {
+
+// Found by fuzzing (tests/fuzz/regressions/): size ratio 0.05 over seven levels makes twigs of
+// 39 nm, whose splines are NaN in float; such a tree is refused, naming its file.
+TEST(Fractal, TwigsShorterThanAMicrometreAreRefused) {
+  const std::string path = std::string(ARBOR_SOURCE_DIR) + "/tests/fuzz/regressions/fractal_tiny_twigs.toml";
+  const Species s = load_species(path);
+  try {
+    grow_tree(s, GrowOptions{});
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().path, path);
+    EXPECT_NE(e.message().find("shorter than 1 micrometre"), std::string::npos) << e.what();
   }
 }
 

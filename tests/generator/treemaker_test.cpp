@@ -318,12 +318,12 @@ TEST(TreeMakerGrowth, NumbersPastAMillionAreRefused) {
   expect_error("iterations { i= 3 }\ngravity { g= 2000000 }\n", 2, 14, "out of range");
   Skeleton sk;
   sk.points = {{glm::vec3(0.0f), 0.1f}, {glm::vec3(0.0f, 0.0f, 2e6f), 0.1f}};
-  EXPECT_NE(extent_problem(sk), "");
+  EXPECT_NE(scale_problem(sk), "");
   sk.points[1].position.z = 10.0f;
-  EXPECT_EQ(extent_problem(sk), "");
+  EXPECT_EQ(scale_problem(sk), "");
   sk.leaf_lines.push_back({});
   sk.leaf_lines.back().b = glm::vec3(std::nanf(""), 0.0f, 0.0f);
-  EXPECT_NE(extent_problem(sk), "");
+  EXPECT_NE(scale_problem(sk), "");
 }
 
 }  // namespace arbor::gen
