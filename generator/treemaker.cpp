@@ -138,7 +138,8 @@ class Grower {
       b.positions.push_back(p.pos);
       b.widths.push_back(0.0);
       for (double& w : b.widths) w += p.growth;
-      p.growth += p.age;
+      // A negative age shrinks the width growth, never below zero (as acc does the magnitude).
+      p.growth = std::max(0.0, p.growth + p.age);
       Rng rng(derive_key(p.key, b.positions.size()));
       if (const TmBranchRule* rule = t_.rule_for(p.level + 1)) {
         // The count is drawn from the uniform range and truncated (§V, dogwood level 2).

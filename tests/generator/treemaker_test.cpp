@@ -327,3 +327,16 @@ TEST(TreeMakerGrowth, NumbersPastAMillionAreRefused) {
 }
 
 }  // namespace arbor::gen
+
+namespace arbor::gen {
+
+// Found by fuzzing (tests/fuzz/regressions/): age= -1 drove the width growth below zero, so
+// limbs got negative radii; the growth stops at zero.
+TEST(TreeMakerGrowth, ANegativeAgeNeverMakesANegativeWidth) {
+  const std::string path = std::string(ARBOR_SOURCE_DIR) + "/tests/fuzz/regressions/treemaker_negative_age.tmpl";
+  const Skeleton sk = grow_treemaker(parse_treemaker_template(read_text_file(path), path), TreeMakerOptions{});
+  EXPECT_EQ(validate(sk), "");
+  for (const SkeletonPoint& p : sk.points) ASSERT_GE(p.radius, 0.0f);
+}
+
+}  // namespace arbor::gen
