@@ -14,6 +14,8 @@ for species in quaking_aspen black_tupelo ca_black_oak weeping_willow; do
   "$build/bench/grow_bench" --benchmark_filter="/$species\$" --benchmark_min_time=0.2 \
     --benchmark_out="$out/grow_bench_$species.json" --benchmark_out_format=json > /dev/null
 done
+"$build/bench/reader_bench" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+  --benchmark_out="$out/reader_bench.json" --benchmark_out_format=json
 "$build/bench/geometry_bench" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
   --benchmark_out="$out/geometry_bench.json" --benchmark_out_format=json
 "$build/bench/render_bench" --benchmark_filter='raw_embree_rays|path_tracer|frame|world_build' \
