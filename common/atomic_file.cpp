@@ -19,19 +19,20 @@ namespace {
 
 // Temporaries open right now, for the signal handler: fixed storage, so removing them needs
 // nothing but unlink(), which is async-signal-safe.
+// A slot is claimed by one writer, then marked ready once its path is complete: the handler
+// only ever unlinks complete paths.
 constexpr int kSlots = 32;
 char g_temp_paths[kSlots][PATH_MAX];
-std::atomic<bool> g_temp_used[kSlots];
+std::atomic<bool> g_temp_claimed[kSlots];
+std::atomic<bool> g_temp_ready[kSlots];
 
 int register_temporary(const std::string& path) {
   if (path.size() >= PATH_MAX) return -1;
   for (int i = 0; i < kSlots; ++i) {
     bool expected = false;
-    if (g_temp_used[i].compare_exchange_strong(expected, true)) {
-      // Marked used before the path is complete: the handler may see a partial path, which
-      // names no file of ours; write the terminator last.
-      std::memcpy(g_temp_paths[i], path.c_str(), path.size());
-      g_temp_paths[i][path.size()] = '\0';
+    if (g_temp_claimed[i].compare_exchange_strong(expected, true)) {
+      std::memcpy(g_temp_paths[i], path.c_str(), path.size() + 1);
+      g_temp_ready[i].store(true);
       return i;
     }
   }
@@ -39,12 +40,14 @@ int register_temporary(const std::string& path) {
 }
 
 void release_temporary(int slot) {
-  if (slot >= 0) g_temp_used[slot].store(false);
+  if (slot < 0) return;
+  g_temp_ready[slot].store(false);
+  g_temp_claimed[slot].store(false);
 }
 
 extern "C" void remove_temporaries_and_die(int sig) {
   for (int i = 0; i < kSlots; ++i) {
-    if (g_temp_used[i].load()) ::unlink(g_temp_paths[i]);
+    if (g_temp_ready[i].load()) ::unlink(g_temp_paths[i]);
   }
   std::signal(sig, SIG_DFL);
   std::raise(sig);
@@ -71,6 +74,17 @@ std::string temporary_for(const std::string& target) {
   throw RuntimeFailure("cannot write " + path + ": " + std::strerror(err));
 }
 
+// The absolute name a path that may not exist yet would have: its folder's real path and its
+// own name, after symlinks.
+std::string canonical_name(const std::string& path) {
+  const std::string target = resolve_output_path(path);
+  const auto slash = target.find_last_of('/');
+  const std::string name = slash == std::string::npos ? target : target.substr(slash + 1);
+  char buf[PATH_MAX];
+  if (!::realpath(folder_of(target).c_str(), buf)) return target;
+  return std::string(buf) + "/" + name;
+}
+
 }  // namespace
 
 std::string resolve_output_path(const std::string& path) {
@@ -88,20 +102,6 @@ std::string resolve_output_path(const std::string& path) {
   throw RuntimeFailure("cannot write " + path + ": too many levels of symbolic links");
 }
 
-namespace {
-
-// The absolute name a path that may not exist yet would have: its folder's real path and its
-// own name, after symlinks.
-std::string canonical_name(const std::string& path) {
-  const std::string target = resolve_output_path(path);
-  const auto slash = target.find_last_of('/');
-  const std::string name = slash == std::string::npos ? target : target.substr(slash + 1);
-  char buf[PATH_MAX];
-  if (!::realpath(folder_of(target).c_str(), buf)) return target;
-  return std::string(buf) + "/" + name;
-}
-
-}  // namespace
 
 bool same_file(const std::string& a, const std::string& b) {
   if (a.empty() || b.empty()) return false;

@@ -24,25 +24,23 @@ glm::vec2 concentric_disk(glm::vec2 u) {
   return {r * std::cos(phi), r * std::sin(phi)};
 }
 
-std::string camera_problem(const CameraDesc& d) {
+void check_camera(const CameraDesc& d) {
   const glm::vec3 origin(d.position[0], d.position[1], d.position[2]);
   const glm::vec3 target(d.look_at[0], d.look_at[1], d.look_at[2]);
   const glm::vec3 up(d.up[0], d.up[1], d.up[2]);
-  if (glm::length(target - origin) < 1e-9f) return "camera.look_at must differ from camera.position";
-  if (glm::length(glm::cross(glm::normalize(target - origin), up)) < 1e-6f) {
-    return "camera.up must not be parallel to the viewing direction (nor zero)";
+  if (glm::length(target - origin) < 1e-9f) {
+    throw InputError(d.look_at_where, "camera.look_at must differ from camera.position");
   }
-  return "";
+  if (glm::length(glm::cross(glm::normalize(target - origin), up)) < 1e-6f) {
+    throw InputError(d.up_where, "camera.up must not be parallel to the viewing direction (nor zero)");
+  }
 }
 
 Camera::Camera(const CameraDesc& d, int width, int height) : width_(width), height_(height) {
   origin_ = glm::vec3(d.position[0], d.position[1], d.position[2]);
   const glm::vec3 target(d.look_at[0], d.look_at[1], d.look_at[2]);
   const glm::vec3 up(d.up[0], d.up[1], d.up[2]);
-  const std::string problem = camera_problem(d);
-  if (!problem.empty()) {
-    throw InputError(problem.compare(0, 9, "camera.up") == 0 ? d.up_where : d.look_at_where, problem);
-  }
+  check_camera(d);
   forward_ = glm::normalize(target - origin_);
   right_ = glm::normalize(glm::cross(forward_, up));
   up_ = glm::cross(right_, forward_);

@@ -38,8 +38,9 @@ struct CameraDesc {
   SourceLocation look_at_where, up_where;  // the keys' positions, for errors (else the file's)
 };
 
-// Why the camera cannot form an image (look_at at the position, up along the view), or "".
-std::string camera_problem(const CameraDesc& camera);
+// InputError at the key when the camera cannot form an image (look_at at the position, up along
+// the view or zero).
+void check_camera(const CameraDesc& camera);
 
 struct SunDesc {
   bool enabled = true;
@@ -136,7 +137,7 @@ struct OutputDesc {
   SourceLocation treemaker_aov_where;  // where "treemaker" is listed (only that integrator has it)
   std::string pixel_type = "half";
   // The keys' positions, for errors found later (by the OCIO config); the file's when unset.
-  SourceLocation exr_where, png_where, colorspace_where, display_where, view_where;
+  SourceLocation colorspace_where, display_where, view_where;
 };
 
 struct SceneDesc {

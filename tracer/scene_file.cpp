@@ -35,8 +35,7 @@ class SceneReader {
     s.path = path_;
     const SourceLocation file{path_, 0, 0};
     s.camera.look_at_where = s.camera.up_where = file;
-    s.output.exr_where = s.output.png_where = s.output.colorspace_where = s.output.display_where =
-        s.output.view_where = file;
+    s.output.colorspace_where = s.output.display_where = s.output.view_where = file;
     for (auto&& [key, node] : root) {
       const std::string k(key.str());
       if (k == "render") render(table(node, k), s.render);
@@ -50,10 +49,7 @@ class SceneReader {
       else if (k == "output") output(table(node, k), s.output);
       else throw InputError(at(key.source()), "unknown table or key '" + k + "'");
     }
-    const std::string camera = camera_problem(s.camera);
-    if (!camera.empty()) {
-      throw InputError(camera.compare(0, 9, "camera.up") == 0 ? s.camera.up_where : s.camera.look_at_where, camera);
-    }
+    check_camera(s.camera);
     // The colour space, display and view must exist in the OCIO config.
     ColorPipeline check(s.output);
     if (s.camera.focus_distance == 0.0) {
@@ -352,11 +348,11 @@ class SceneReader {
   }
 
   void output(const toml::table& t, OutputDesc& o) const {
-    o.exr_where = o.png_where = o.colorspace_where = o.display_where = o.view_where = at(t.source());
+    o.colorspace_where = o.display_where = o.view_where = at(t.source());
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
-      if (k == "exr") { o.exr = file(n, "output.exr"); o.exr_where = at(n.source()); extension(n, o.exr, ".exr", "output.exr"); }
-      else if (k == "png") { o.png = file(n, "output.png"); o.png_where = at(n.source()); extension(n, o.png, ".png", "output.png"); }
+      if (k == "exr") { o.exr = file(n, "output.exr"); extension(n, o.exr, ".exr", "output.exr"); }
+      else if (k == "png") { o.png = file(n, "output.png"); extension(n, o.png, ".png", "output.png"); }
       else if (k == "colorspace") { o.colorspace = text(n, "output.colorspace"); o.colorspace_where = at(n.source()); }
       else if (k == "display") { o.display = text(n, "output.display"); o.display_where = at(n.source()); }
       else if (k == "view") { o.view = text(n, "output.view"); o.view_where = at(n.source()); }
