@@ -18,23 +18,27 @@
 #include "common/error.h"
 #include "common/json.h"
 #include "common/progress.h"
-#include "generator/export_pbrt.h"
-#include "generator/skeleton_file.h"
+#include "generator/export/export_pbrt.h"
+#include "formats/skeleton_file.h"
 #include "generator/species.h"
-#include "generator/tree_geometry.h"
-#include "generator/tree_mesh.h"
-#include "generator/tree_stats.h"
+#include "generator/geometry/tree_geometry.h"
+#include "generator/geometry/tree_mesh.h"
+#include "generator/export/tree_stats.h"
 #include "generator/grow.h"
-#include "tracer/compare.h"
-#include "tracer/embree_device.h"
+#include "imaging/compare.h"
+#include "tracer/embree/embree_device.h"
 #include "tracer/film.h"
-#include "tracer/image_output.h"
-#include "tracer/integrator_treemaker.h"
-#include "tracer/render_budget.h"
-#include "tracer/scene_desc.h"
-#include "tracer/sky.h"
-#include "tracer/treemaker_fit.h"
-#include "tracer/world.h"
+#include "imaging/image_output.h"
+#include "tracer/integrators/treemaker.h"
+#include "scene/render_budget.h"
+#include "formats/scene_desc.h"
+#include "tracer/lights/sky.h"
+#include "imaging/treemaker_fit.h"
+#include "scene/scene.h"
+#include "tracer/embree/world.h"
+#include "formats/species_file.h"
+#include "generator/export/export_mesh.h"
+#include "generator/export/skeleton_file.h"
 
 namespace {
 
@@ -169,13 +173,14 @@ struct RenderArgs {
   std::optional<std::uint64_t> seed;
   std::optional<double> time;
   bool force = false;
+  std::string ocio_config;  // the run's OCIO config (read once, in main)
 };
 
 // The weights for the EXR's arbor:treemaker_weights: one set when every tree shares it.
-std::string treemaker_weights_text(const arbor::trace::World& world) {
+std::string treemaker_weights_text(const arbor::trace::Scene& scene) {
   std::string text;
-  for (std::size_t i = 0; i < world.instance_count(); ++i) {
-    const arbor::gen::TmLight& w = world.look(static_cast<int>(i)).treemaker;
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    const arbor::mat::TreemakerWeights& w = scene.instances[i].treemaker;
     char buf[160];
     std::snprintf(buf, sizeof buf, "ambient=%.9g lambert=%.9g height=%.9g radius=%.9g angle=%.9g",
                   w.ambient, w.lambert, w.height, w.radius, w.angle);
@@ -226,21 +231,23 @@ int run_render(const RenderArgs& a) {
     if (!out.empty()) check_output_folder(out);
   }
   trace::check_render_memory(scene, a.force);
-  const trace::ColorPipeline color(scene.output);
+  const trace::ColorPipeline color(a.ocio_config);
+  color.check(scene.output);
   const trace::EmbreeDevice device(r.threads > 0 ? "threads=" + std::to_string(r.threads) : "");
   Progress build_progress("build", 1);
-  const trace::World world(scene, device, &build_progress);
+  const std::unique_ptr<const trace::Scene> built = trace::build_scene(scene, color.config_path(), &build_progress);
+  const trace::World world(*built, device);
   build_progress.finish();
-  const trace::Sky sky(scene.sky, scene.sun, trace::xyz_to_scene_linear());
+  const trace::Sky sky(scene.sky, scene.sun, color.xyz_to_scene_linear());
   Progress progress("render", 1);
   trace::RenderStats stats;
   const trace::Image image =
-      treemaker ? trace::render_treemaker(scene, world, sky, color.to_output(), &progress, stats)
-                : trace::render_path(scene, world, sky, color.to_output(), &progress, stats);
+      treemaker ? trace::render_treemaker(scene, world, sky, color.to_output(scene.output.colorspace), &progress, stats)
+                : trace::render_path(scene, world, sky, color.to_output(scene.output.colorspace), &progress, stats);
   progress.finish();
   const int spp = treemaker ? r.treemaker_spp : r.spp;
   trace::ExrMetadata meta{scene.path, r.seed, spp, r.integrator, stats, {}};
-  if (treemaker) meta.treemaker_weights = treemaker_weights_text(world);
+  if (treemaker) meta.treemaker_weights = treemaker_weights_text(*built);
   if (!scene.output.exr.empty()) trace::write_exr(image, scene.output, meta, scene.output.exr);
   if (!scene.output.png.empty()) trace::write_png(image, scene.output, color, scene.output.png);
   const double seconds = std::max(stats.seconds, 1e-9);
@@ -248,8 +255,8 @@ int run_render(const RenderArgs& a) {
                "arbor: rendered %dx%d at %d spp in %.2f s (%.3g samples/s, %.3g rays/s; %zu trees "
                "from %zu prototypes, built in %.2f s)\n",
                r.width, r.height, spp, stats.seconds, double(stats.samples) / seconds,
-               double(stats.rays) / seconds, world.stats().instances, world.stats().prototypes,
-               world.stats().build_seconds);
+               double(stats.rays) / seconds, built->stats.instances, built->stats.prototypes,
+               built->stats.build_seconds + world.build_seconds());
   if (stats.nonfinite > 0) {
     std::fprintf(stderr, "arbor: warning: %llu samples were NaN or infinite and were left out\n",
                  static_cast<unsigned long long>(stats.nonfinite));
@@ -265,6 +272,7 @@ struct CompareArgs {
   std::string heatmap, side_by_side;
   std::string display = "sRGB", view = "ACES 1.0 SDR-video";
   bool json = false, reference_test = false, fit_treemaker = false;
+  std::string ocio_config;
 };
 
 // A number for JSON: infinities (PSNR of identical images) have no JSON spelling, so null.
@@ -316,7 +324,7 @@ int run_compare(const CompareArgs& args) {
     }
     fit = trace::fit_treemaker(exact, trace::read_treemaker_aovs(approx_path));
   }
-  trace::write_compare_pictures(a, b, {args.heatmap, args.side_by_side, args.display, args.view});
+  trace::write_compare_pictures(a, b, {args.heatmap, args.side_by_side, args.display, args.view, args.ocio_config});
   const auto& names = trace::kTreemakerTermNames;
   if (args.json) {
     std::printf("{\"rmse\": %s, \"mean_abs\": %s, \"rel_mse\": %s, \"max_abs\": %s, "
@@ -462,6 +470,8 @@ int main(int argc, char** argv) {
   }
 
   try {
+    // The OCIO config of this run: $OCIO, or arbor's own beside the executable.
+    render.ocio_config = cmp.ocio_config = arbor::trace::default_ocio_config();
     if (*grow_cmd) return run_grow(grow);
     if (*render_cmd) return run_render(render);
     if (*compare_cmd) return run_compare(cmp);

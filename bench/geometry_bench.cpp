@@ -7,15 +7,16 @@
 #include <benchmark/benchmark.h>
 
 #include "generator/species.h"
-#include "generator/tree_mesh.h"
-#include "generator/weber_penn.h"
-#include "tracer/embree_scene.h"
+#include "generator/geometry/tree_mesh.h"
+#include "generator/models/weber_penn/weber_penn.h"
+#include "tracer/embree/embree_scene.h"
+#include "formats/species_file.h"
 
 namespace {
 
 arbor::gen::Skeleton grow(const char* file) {
   const arbor::gen::Species species =
-      arbor::gen::load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/" + file);
+      arbor::gen::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + file);
   arbor::gen::GrowOptions options;
   options.seed = 1;
   return arbor::gen::grow_weber_penn(species.weber_penn, options);

@@ -9,12 +9,13 @@
 
 #include "generator/grow.h"
 #include "generator/species.h"
+#include "formats/species_file.h"
 
 namespace {
 
 void grow_species(benchmark::State& state, const char* file) {
   const arbor::gen::Species species =
-      arbor::gen::load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/" + file);
+      arbor::gen::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + file);
   arbor::gen::GrowOptions options;
   options.seed = 1;
   size_t stems = 0, leaves = 0;

@@ -6,10 +6,11 @@
 
 #include <benchmark/benchmark.h>
 
-#include "generator/skeleton_file.h"
-#include "generator/treemaker.h"
-#include "generator/treemaker_template.h"
-#include "tracer/obj_mesh.h"
+#include "formats/skeleton_file.h"
+#include "generator/models/treemaker/treemaker.h"
+#include "generator/models/treemaker/treemaker_template.h"
+#include "formats/obj_mesh.h"
+#include "formats/treemaker_template.h"
 
 namespace {
 

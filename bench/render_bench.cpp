@@ -15,15 +15,28 @@
 #include <benchmark/benchmark.h>
 #include <embree3/rtcore.h>
 
+#include "common/math.h"
 #include "common/rng.h"
 #include "tracer/film.h"
-#include "tracer/scene_desc.h"
-#include "tracer/sky.h"
-#include "tracer/world.h"
+#include "formats/scene_desc.h"
+#include "tracer/lights/sky.h"
+#include "imaging/color.h"
+#include "scene/scene.h"
+#include "tracer/embree/world.h"
 
 namespace {
 
 using namespace arbor;
+
+const std::string kOcioConfig = std::string(ARBOR_SOURCE_DIR) + "/imaging/ocio/config.ocio";
+
+// The scene built and put in Embree, as `arbor render` does.
+struct BuiltWorld {
+  BuiltWorld(const trace::SceneDesc& desc, const trace::EmbreeDevice& device)
+      : scene(trace::build_scene(desc, kOcioConfig)), world(*scene, device) {}
+  std::unique_ptr<const trace::Scene> scene;
+  trace::World world;
+};
 
 trace::SceneDesc default_scene() {
   trace::SceneDesc s = trace::load_scene(std::string(ARBOR_SOURCE_DIR) + "/scenes/default.toml");
@@ -34,7 +47,8 @@ trace::SceneDesc default_scene() {
 void raw_embree_rays(benchmark::State& state) {
   const trace::SceneDesc scene = default_scene();
   const trace::EmbreeDevice device("threads=1");
-  const trace::World world(scene, device);
+  const BuiltWorld built(scene, device);
+  const trace::World& world = built.world;
   Rng rng(1);
   std::vector<RTCRayHit> rays(1 << 16);
   for (RTCRayHit& r : rays) {
@@ -42,7 +56,7 @@ void raw_embree_rays(benchmark::State& state) {
     r.ray.org_x = static_cast<float>(rng.vary(0.0, 4.0));
     r.ray.org_y = static_cast<float>(rng.vary(0.0, 4.0));
     r.ray.org_z = static_cast<float>(rng.uniform() * 13.0);
-    const double z = rng.symmetric(), phi = 2 * 3.14159265358979 * rng.uniform();
+    const double z = rng.symmetric(), phi = 2 * kPi * rng.uniform();
     const double s = std::sqrt(std::max(0.0, 1 - z * z));
     r.ray.dir_x = static_cast<float>(s * std::cos(phi));
     r.ray.dir_y = static_cast<float>(s * std::sin(phi));
@@ -73,8 +87,9 @@ void render_frames(benchmark::State& state, int spp, bool treemaker) {
   scene.render.height = 120;
   scene.render.spp = spp;
   const trace::EmbreeDevice device("threads=1");
-  const trace::World world(scene, device);
-  const trace::Sky sky(scene.sky, scene.sun, trace::xyz_to_scene_linear());
+  const BuiltWorld built(scene, device);
+  const trace::World& world = built.world;
+  const trace::Sky sky(scene.sky, scene.sun, trace::ColorPipeline(kOcioConfig).xyz_to_scene_linear());
   std::uint64_t rays = 0, samples = 0;
   for (auto _ : state) {
     trace::RenderStats stats;
@@ -98,25 +113,25 @@ void world_build(benchmark::State& state) {
   const trace::SceneDesc scene = default_scene();
   const trace::EmbreeDevice device("threads=1");
   for (auto _ : state) {
-    const trace::World world(scene, device);
-    benchmark::DoNotOptimize(world.embree_scene());
+    const BuiltWorld built(scene, device);
+    benchmark::DoNotOptimize(built.world.embree_scene());
   }
 }
 
 void forest_1000(benchmark::State& state) {
   trace::SceneDesc scene;
   trace::ForestDesc f;
-  f.species = std::string(ARBOR_SOURCE_DIR) + "/generator/species/black_tupelo.toml";
+  f.species = std::string(ARBOR_SOURCE_DIR) + "/species/black_tupelo.toml";
   f.count = 1000;
   f.variants = 8;
   f.area = {-200.0, -200.0, 200.0, 200.0};
   scene.forests.push_back(f);
   const trace::EmbreeDevice device("threads=1");
   for (auto _ : state) {
-    const trace::World world(scene, device);
-    state.counters["instances"] = static_cast<double>(world.stats().instances);
-    state.counters["prototypes"] = static_cast<double>(world.stats().prototypes);
-    state.counters["geometry_MB"] = static_cast<double>(world.stats().geometry_bytes) / 1e6;
+    const BuiltWorld built(scene, device);
+    state.counters["instances"] = static_cast<double>(built.scene->stats.instances);
+    state.counters["prototypes"] = static_cast<double>(built.scene->stats.prototypes);
+    state.counters["geometry_MB"] = static_cast<double>(built.scene->stats.geometry_bytes) / 1e6;
   }
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);

@@ -6,13 +6,11 @@
 #include <glm/vec3.hpp>
 #include <glm/geometric.hpp>
 
+#include "common/math.h"
+
 namespace arbor {
 
 using Vec3 = glm::dvec3;
-
-constexpr double kPi = 3.14159265358979323846;
-constexpr double radians(double degrees) { return degrees * (kPi / 180.0); }
-constexpr double degrees(double radians) { return radians * (180.0 / kPi); }
 
 // Rotates v about the unit axis by angle (Rodrigues' formula).
 inline Vec3 rotate(const Vec3& v, const Vec3& axis, double angle) {
@@ -41,6 +39,24 @@ struct Frame {
     const Vec3 nz = glm::normalize(z);
     const Vec3 nx = glm::normalize(glm::cross(y, nz));
     return {nx, glm::cross(nz, nx), nz};
+  }
+};
+
+// An orthonormal shading frame around a unit normal n (its z), for converting directions to and
+// from a BSDF's local coordinates (Duff et al. 2017, "Building an orthonormal basis, revisited").
+struct ShadingFrame {
+  glm::vec3 x, y, z;
+  explicit ShadingFrame(const glm::vec3& n) : z(n) {
+    const float sign = std::copysign(1.0f, n.z);
+    const float a = -1.0f / (sign + n.z), b = n.x * n.y * a;
+    x = glm::vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    y = glm::vec3(b, sign + n.y * n.y * a, -n.y);
+  }
+  glm::dvec3 local(const glm::vec3& v) const {
+    return {glm::dot(v, x), glm::dot(v, y), glm::dot(v, z)};
+  }
+  glm::vec3 world(const glm::dvec3& v) const {
+    return x * static_cast<float>(v.x) + y * static_cast<float>(v.y) + z * static_cast<float>(v.z);
   }
 };
 

@@ -25,7 +25,7 @@ import json, sys
 root, out = sys.argv[1], sys.argv[2]
 weights = json.load(open(f"{out}/fit.json"))["treemaker_fit"]["weights"]
 scene = open(f"{root}/scenes/default_treemaker.toml").read()
-scene = scene.replace('"../generator/', f'"{root}/generator/')
+scene = scene.replace('"../species/', f'"{root}/species/')
 scene += "\n[tree.treemaker]\n" + "".join(f"{k} = {v:.6f}\n" for k, v in weights.items())
 open(f"{out}/fitted.toml", "w").write(scene)
 PY

@@ -2,8 +2,10 @@
 #include "generator/grow.h"
 
 #include "common/error.h"
-#include "generator/lsystem.h"
-#include "generator/treemaker.h"
+#include "generator/models/fractal/fractal.h"
+#include "generator/models/lsystem/lsystem.h"
+#include "generator/models/treemaker/treemaker.h"
+#include "generator/models/weber_penn/weber_penn.h"
 
 namespace arbor::gen {
 

@@ -4,7 +4,7 @@
 
 #include "generator/skeleton.h"
 #include "generator/species.h"
-#include "generator/weber_penn.h"
+#include "generator/grow_options.h"
 
 namespace arbor::gen {
 

@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "generator/weber_penn_formulas.h"
+#include "generator/models/weber_penn/weber_penn_formulas.h"
 
 namespace arbor::gen {
 

@@ -1,21 +1,8 @@
-// Species loading: dispatch on the file extension.
+// The checks every species reader ends with.
 #include "generator/species.h"
 
-#include "generator/skeleton_file.h"
-
-#include <fstream>
-#include <sstream>
 
 namespace arbor::gen {
-
-std::string read_text_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0, 0}, "cannot open the file for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError({path, 0, 0}, "cannot read the file");
-  return text.str();
-}
 
 void finish_species(Species& sp, const std::map<std::string, SourceLocation>& positions) {
   std::string key;
@@ -25,51 +12,6 @@ void finish_species(Species& sp, const std::map<std::string, SourceLocation>& po
     throw InputError(it != positions.end() ? it->second : SourceLocation{sp.path, 1, 1}, problem);
   }
   if (sp.name.empty()) sp.name = sp.path;
-}
-
-namespace {
-bool ends_with(const std::string& s, std::string_view suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(),
-                                                suffix.data(), suffix.size()) == 0;
-}
-}  // namespace
-
-namespace {
-// A species read from a model's own file format: named after its file.
-Species from_file(const std::string& path, Model model) {
-  Species sp;
-  sp.path = path;
-  sp.name = path;
-  sp.model = model;
-  return sp;
-}
-}  // namespace
-
-Species load_species(const std::string& path) {
-  if (ends_with(path, ".toml")) return parse_species_toml(read_text_file(path), path);
-  if (ends_with(path, ".xml")) return parse_arbaro_xml(read_text_file(path), path);
-  if (ends_with(path, ".lsys")) {
-    Species sp = from_file(path, Model::LSystem);
-    sp.lsystem = parse_lsystem(read_text_file(path), path);
-    return sp;
-  }
-  if (ends_with(path, ".skel")) {
-    Species sp = from_file(path, Model::SkeletonFile);
-    sp.skeleton = parse_skeleton_file(read_text_file(path), path);
-    return sp;
-  }
-  if (ends_with(path, ".tmpl")) {
-    Species sp = from_file(path, Model::TreeMaker);
-    sp.treemaker = parse_treemaker_template(read_text_file(path), path);
-    // Colours come from the template: the looks only scale them.
-    sp.bark.albedo = {1.0, 1.0, 1.0};
-    sp.bark.bump_height = 0.0;
-    sp.leaf.reflectance = sp.leaf.back_reflectance = {0.75, 0.75, 0.75};
-    sp.leaf.transmittance = {0.25, 0.25, 0.25};
-    return sp;
-  }
-  throw InputError({path, 0, 0},
-                   "unknown species format: expected .toml, .xml (Arbaro), .lsys, .skel or .tmpl");
 }
 
 }  // namespace arbor::gen

@@ -4,26 +4,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/math.h"
+
 namespace arbor::mat {
 
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
-
 Dir sample_cosine_hemisphere(const glm::dvec2& u) {
-  // Concentric mapping of the square to the disk (Shirley & Chiu), then lift to the hemisphere.
-  const double a = 2.0 * u.x - 1.0, b = 2.0 * u.y - 1.0;
-  double r = 0.0, phi = 0.0;
-  if (a != 0.0 || b != 0.0) {
-    if (std::fabs(a) > std::fabs(b)) {
-      r = a;
-      phi = (kPi / 4.0) * (b / a);
-    } else {
-      r = b;
-      phi = (kPi / 2.0) - (kPi / 4.0) * (a / b);
-    }
-  }
-  const double x = r * std::cos(phi), y = r * std::sin(phi);
+  // The concentric map of the square to the disk, lifted to the hemisphere (Malley).
+  const glm::dvec2 d = concentric_disk(u.x, u.y);
+  const double x = d.x, y = d.y;
   return {x, y, std::sqrt(std::max(0.0, 1.0 - x * x - y * y))};
 }
 

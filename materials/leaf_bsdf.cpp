@@ -2,11 +2,11 @@
 #include "materials/leaf_bsdf.h"
 
 #include <cmath>
+#include "common/math.h"
 
 namespace arbor::mat {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 double luminance(const Rgb& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 }  // namespace
 

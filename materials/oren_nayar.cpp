@@ -4,11 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include "common/math.h"
 
 namespace arbor::mat {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 }
 
 Rgb OrenNayar::eval(const Dir& wo, const Dir& wi) const {

@@ -6,35 +6,9 @@
 #include <glm/geometric.hpp>
 
 #include "common/error.h"
+#include "common/math.h"
 
 namespace arbor::trace {
-
-glm::vec2 concentric_disk(glm::vec2 u) {
-  const float a = 2.0f * u.x - 1.0f, b = 2.0f * u.y - 1.0f;
-  if (a == 0.0f && b == 0.0f) return {0.0f, 0.0f};
-  constexpr float kQuarterPi = 0.785398163f;
-  float r, phi;
-  if (std::fabs(a) > std::fabs(b)) {
-    r = a;
-    phi = kQuarterPi * (b / a);
-  } else {
-    r = b;
-    phi = 2.0f * kQuarterPi - kQuarterPi * (a / b);
-  }
-  return {r * std::cos(phi), r * std::sin(phi)};
-}
-
-void check_camera(const CameraDesc& d) {
-  const glm::vec3 origin(d.position[0], d.position[1], d.position[2]);
-  const glm::vec3 target(d.look_at[0], d.look_at[1], d.look_at[2]);
-  const glm::vec3 up(d.up[0], d.up[1], d.up[2]);
-  if (glm::length(target - origin) < 1e-9f) {
-    throw InputError(d.look_at_where, "camera.look_at must differ from camera.position");
-  }
-  if (glm::length(glm::cross(glm::normalize(target - origin), up)) < 1e-6f) {
-    throw InputError(d.up_where, "camera.up must not be parallel to the viewing direction (nor zero)");
-  }
-}
 
 Camera::Camera(const CameraDesc& d, int width, int height) : width_(width), height_(height) {
   origin_ = glm::vec3(d.position[0], d.position[1], d.position[2]);
@@ -44,7 +18,7 @@ Camera::Camera(const CameraDesc& d, int width, int height) : width_(width), heig
   forward_ = glm::normalize(target - origin_);
   right_ = glm::normalize(glm::cross(forward_, up));
   up_ = glm::cross(right_, forward_);
-  tan_half_ = static_cast<float>(std::tan(0.5 * d.fov * 3.14159265358979323846 / 180.0));
+  tan_half_ = static_cast<float>(std::tan(0.5 * d.fov * kPi / 180.0));
   aspect_ = static_cast<float>(width) / static_cast<float>(height);
   aperture_ = static_cast<float>(d.aperture_radius);
   focus_ = static_cast<float>(d.focus_distance);
@@ -59,7 +33,7 @@ Ray Camera::generate(glm::vec2 film, glm::vec2 lens) const {
   if (aperture_ > 0.0f) {
     // Points at the focus distance (along the view axis) stay sharp.
     const glm::vec3 focal = origin_ + dir * (focus_ / glm::dot(dir, forward_));
-    const glm::vec2 d = concentric_disk(lens) * aperture_;
+    const glm::vec2 d = concentric_disk(lens.x, lens.y) * aperture_;
     ray.origin = origin_ + right_ * d.x + up_ * d.y;
     dir = glm::normalize(focal - ray.origin);
   }

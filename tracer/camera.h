@@ -4,8 +4,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "tracer/embree_scene.h"
-#include "tracer/scene_desc.h"
+#include "formats/scene_desc.h"
+#include "tracer/ray.h"
 
 namespace arbor::trace {
 
@@ -21,8 +21,5 @@ class Camera {
   float tan_half_ = 0.0f, aspect_ = 1.0f, aperture_ = 0.0f, focus_ = 1.0f;
   int width_ = 1, height_ = 1;
 };
-
-// Uniform point on the unit disk from [0,1)² (Shirley–Chiu concentric map).
-glm::vec2 concentric_disk(glm::vec2 u);
 
 }  // namespace arbor::trace

@@ -14,7 +14,7 @@
 
 #include "common/progress.h"
 #include "tracer/camera.h"
-#include "tracer/integrator_treemaker.h"
+#include "tracer/integrators/treemaker.h"
 
 namespace arbor::trace {
 

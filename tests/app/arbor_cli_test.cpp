@@ -189,7 +189,7 @@ TEST(ArborCli, TreemakerRenderWritesTermsThatAddUpToTheBeauty) {
       "tm.toml",
       "[render]\nwidth = 40\nheight = 30\nspp = 4\ntreemaker_spp = 3\nintegrator = \"treemaker\"\n"
       "[camera]\nposition = [10.0, -14.0, 3.0]\nlook_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" +
-      std::string(ARBOR_SOURCE_DIR) + "/generator/species/black_tupelo.toml\"\n"
+      std::string(ARBOR_SOURCE_DIR) + "/species/black_tupelo.toml\"\n"
       "[tree.treemaker]\nambient = 0.2\nlambert = 0.5\nheight = 0.3\nradius = 0.1\nangle = 0.25\n"
       "[output]\naovs = [\"treemaker\"]\npixel_type = \"float\"\n");
   const CliRun one = run_arbor("render " + scene + " --threads 1 -o " + dir + "tm1.exr");
@@ -248,7 +248,7 @@ TEST(ArborCli, FitTreemakerRecoversTheWeightsOfAnotherRender) {
   const std::string head =
       "[render]\nwidth = 48\nheight = 36\ntreemaker_spp = 2\nintegrator = \"treemaker\"\n"
       "[camera]\nposition = [10.0, -14.0, 3.0]\nlook_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" +
-      std::string(ARBOR_SOURCE_DIR) + "/generator/species/quaking_aspen.toml\"\n";
+      std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml\"\n";
   const std::string with_aovs = write_temp("fit_a.toml", head + "[output]\naovs = [\"treemaker\"]\npixel_type = \"float\"\n");
   const std::string target = write_temp(
       "fit_b.toml", head + "[tree.treemaker]\nambient = 0.05\nlambert = 0.3\nheight = 0.0\nradius = 0.25\n"
@@ -291,7 +291,7 @@ TEST(ArborCli, RenderedExrPixelsAreIdenticalAtOneAndTwoThreads) {
       "threads.toml",
       "[render]\nwidth = 40\nheight = 30\nspp = 4\n[camera]\nposition = [10.0, -14.0, 3.0]\n"
       "look_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) +
-      "/generator/species/black_tupelo.toml\"\n[output]\naovs = [\"albedo\", \"normal\", "
+      "/species/black_tupelo.toml\"\n[output]\naovs = [\"albedo\", \"normal\", "
       "\"depth\", \"variance\"]\npixel_type = \"float\"\n");
   ASSERT_EQ(run_arbor("render " + scene + " --threads 1 -o " + dir + "one.exr").code, 0);
   ASSERT_EQ(run_arbor("render " + scene + " --threads 2 -o " + dir + "two.exr").code, 0);
@@ -326,7 +326,7 @@ TEST(ArborCli, RenderWritesExrAndPngAndNothingOnFailure) {
       "tiny.toml",
       "[render]\nwidth = 24\nheight = 16\nspp = 2\n[camera]\nposition = [10.0, -14.0, 3.0]\n"
       "look_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) +
-      "/generator/species/quaking_aspen.toml\"\n");
+      "/species/quaking_aspen.toml\"\n");
   const CliRun r = run_arbor("render " + scene + " -o " + dir + "tiny.exr --png " + dir + "tiny.png");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(exists(dir + "tiny.exr"));

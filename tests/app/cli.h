@@ -46,7 +46,7 @@ inline CliRun run_arbor_with(const std::string& shell_prefix, const std::string&
 inline CliRun run_arbor(const std::string& args) { return run_arbor_with("", args); }
 
 inline std::string species(const char* name) {
-  return std::string(ARBOR_SOURCE_DIR) + "/generator/species/" + name;
+  return std::string(ARBOR_SOURCE_DIR) + "/species/" + name;
 }
 
 inline std::string write_temp(const char* name, const std::string& text) {

@@ -84,7 +84,7 @@ TEST(Robustness, OutputsNeverOverwriteInputsHoweverSpelled) {
   EXPECT_EQ(slurp(a), before);
   // grow -o onto its own species file.
   const std::string sp = dir + "/tree.skel";
-  ASSERT_EQ(std::system(("cp " + std::string(ARBOR_SOURCE_DIR) + "/generator/species/*.skel " + sp).c_str()), 0);
+  ASSERT_EQ(std::system(("cp " + std::string(ARBOR_SOURCE_DIR) + "/species/*.skel " + sp).c_str()), 0);
   const std::string skel = slurp(sp);
   const CliRun g = run_arbor("grow " + sp + " -o " + dir + "/./tree.skel");
   EXPECT_EQ(g.code, 2) << g.err;

@@ -1,5 +1,6 @@
 // Fuzz target: Ünal fractal trees in TOML, read, grown (small) and meshed.
 #include "fuzz_target.h"
+#include "formats/species_file.h"
 
 ARBOR_FUZZ_TARGET({
   const arbor::gen::Species s = arbor::gen::parse_species_toml(text, "fuzz.toml");

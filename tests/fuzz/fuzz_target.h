@@ -16,7 +16,7 @@
 #include "generator/grow.h"
 #include "generator/skeleton.h"
 #include "generator/species.h"
-#include "generator/tree_geometry.h"
+#include "generator/geometry/tree_geometry.h"
 
 namespace arbor::fuzz {
 

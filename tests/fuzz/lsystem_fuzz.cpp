@@ -1,6 +1,7 @@
 // Fuzz target: L-systems, read, interpreted (small) and meshed.
 #include "fuzz_target.h"
-#include "generator/lsystem.h"
+#include "generator/models/lsystem/lsystem.h"
+#include "formats/lsystem_file.h"
 
 ARBOR_FUZZ_TARGET({
   arbor::gen::Species s;

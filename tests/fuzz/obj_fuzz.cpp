@@ -1,6 +1,6 @@
 // Fuzz target: Wavefront OBJ meshes; every index of a read mesh names a vertex.
 #include "fuzz_target.h"
-#include "tracer/obj_mesh.h"
+#include "formats/obj_mesh.h"
 
 ARBOR_FUZZ_TARGET({
   const arbor::trace::ObjMesh m = arbor::trace::parse_obj(text, "fuzz.obj");

@@ -1,5 +1,5 @@
-// Fuzz target: scene files (TOML), read and validated (the OCIO config included).
+// Fuzz target: scene files (TOML), read and validated (the OCIO names are checked later, by imaging/).
 #include "fuzz_target.h"
-#include "tracer/scene_desc.h"
+#include "formats/scene_desc.h"
 
 ARBOR_FUZZ_TARGET({ arbor::trace::parse_scene(text, "fuzz/scene.toml"); })

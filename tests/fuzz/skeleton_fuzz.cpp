@@ -1,5 +1,5 @@
 // Fuzz target: skeleton files, read and meshed.
 #include "fuzz_target.h"
-#include "generator/skeleton_file.h"
+#include "formats/skeleton_file.h"
 
 ARBOR_FUZZ_TARGET({ arbor::fuzz::check_tree(arbor::gen::parse_skeleton_file(text, "fuzz.skel")); })

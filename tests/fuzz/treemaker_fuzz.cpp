@@ -1,6 +1,7 @@
 // Fuzz target: TREE-MAKER templates, read, grown (small) and meshed.
 #include "fuzz_target.h"
-#include "generator/treemaker_template.h"
+#include "generator/models/treemaker/treemaker_template.h"
+#include "formats/treemaker_template.h"
 
 ARBOR_FUZZ_TARGET({
   arbor::gen::Species s;

@@ -1,6 +1,6 @@
 // Tests of the pbrt-v4 export: one Bézier cylinder curve per curve segment with the exact control
 // points, meshes for the trunk grid and leaves, well-formed parameter lists.
-#include "generator/export_pbrt.h"
+#include "generator/export/export_pbrt.h"
 
 #include <fstream>
 #include <sstream>
@@ -9,7 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "generator/weber_penn.h"
+#include "generator/models/weber_penn/weber_penn.h"
+#include "formats/species_file.h"
 
 namespace arbor::gen {
 
@@ -28,7 +29,7 @@ std::size_t count(const std::string& text, const std::string& what) {
 }  // namespace
 
 TEST(ExportPbrt, WritesEveryCurveAsABezierCylinderAndTheMeshes) {
-  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/quaking_aspen.toml");
+  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
   GrowOptions o;
   o.quality = 0.1;
   const TreeGeometry g = build_tree_geometry(grow_weber_penn(s.weber_penn, o));

@@ -1,6 +1,6 @@
 // Tests of Ünal's fractal model: the basic recursion, pruning, the refined perturbations, and
 // time-awareness (logarithmic growth, depth from age, the same tree over time).
-#include "generator/fractal.h"
+#include "generator/models/fractal/fractal.h"
 
 #include <cmath>
 #include <string>
@@ -10,7 +10,8 @@
 
 #include "generator/grow.h"
 #include "generator/species.h"
-#include "generator/tree_stats.h"
+#include "generator/export/tree_stats.h"
+#include "formats/species_file.h"
 
 namespace arbor::gen {
 
@@ -155,7 +156,7 @@ TEST(Fractal, ConeWidensAsChildrenGrow) {
 }
 
 TEST(Fractal, SpeciesFilesLoadAndBadKeysAreErrors) {
-  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/fractal_broadleaf.toml");
+  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/fractal_broadleaf.toml");
   EXPECT_EQ(s.model, Model::Fractal);
   EXPECT_EQ(s.fractal.depth, 6);
   try {

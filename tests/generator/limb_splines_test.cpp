@@ -1,14 +1,15 @@
 // Tests of the limb splines: interpolation, C2 continuity, clamped ends, frames, dominance.
-#include "generator/limb_splines.h"
+#include "generator/geometry/limb_splines.h"
 
 #include <cmath>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "generator/limbs.h"
+#include "generator/geometry/limbs.h"
 #include "generator/species.h"
-#include "generator/weber_penn.h"
+#include "generator/models/weber_penn/weber_penn.h"
+#include "formats/species_file.h"
 
 namespace arbor::gen {
 
@@ -21,7 +22,7 @@ std::vector<DVec3> wiggly_points() {
 
 Skeleton grow_species(const char* name, std::uint64_t seed = 1) {
   const Species s =
-      load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/" + name + ".toml");
+      load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + name + ".toml");
   GrowOptions o;
   o.seed = seed;
   o.quality = 0.2;

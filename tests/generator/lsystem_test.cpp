@@ -1,5 +1,5 @@
 // Tests of the L-system language and its turtle.
-#include "generator/lsystem.h"
+#include "generator/models/lsystem/lsystem.h"
 
 #include <cmath>
 #include <cstring>
@@ -11,7 +11,9 @@
 #include "expect_input_error.h"
 
 #include "generator/grow.h"
-#include "generator/tree_stats.h"
+#include "generator/export/tree_stats.h"
+#include "formats/lsystem_file.h"
+#include "formats/species_file.h"
 
 namespace arbor::gen {
 
@@ -172,7 +174,7 @@ TEST(LSystem, SeveralTrunksAreRefused) {
 TEST(LSystem, ShippedExamplesGrowValidTrees) {
   for (const char* name : {"lsystem_2d_branching", "lsystem_weed", "lsystem_bush",
                            "lsystem_realistic_tree", "lsystem_almost_real"}) {
-    const Species sp = load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/" + name + ".lsys");
+    const Species sp = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + name + ".lsys");
     GrowOptions o;
     const Skeleton sk = grow_tree(sp, o);
     EXPECT_EQ(validate(sk), "") << name;

@@ -1,5 +1,5 @@
 // Tests of skeleton files: Bloomenthal's validation rules with positions, and exact round trips.
-#include "generator/skeleton_file.h"
+#include "formats/skeleton_file.h"
 
 #include <cstring>
 #include <fstream>
@@ -12,7 +12,9 @@
 #include "expect_input_error.h"
 
 #include "generator/grow.h"
-#include "generator/tree_geometry.h"
+#include "generator/geometry/tree_geometry.h"
+#include "formats/species_file.h"
+#include "generator/export/skeleton_file.h"
 
 namespace arbor::gen {
 
@@ -82,7 +84,7 @@ TEST(SkeletonFile, UnconnectedPointsAreErrors) {
 TEST(SkeletonFile, RoundTripsAnyModelExactly) {
   for (const char* name : {"ca_black_oak.toml", "quaking_aspen.toml", "lsystem_almost_real.lsys",
                            "fractal_broadleaf.toml", "dogwood.tmpl"}) {
-    const Species sp = load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/" + name);
+    const Species sp = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + name);
     GrowOptions o;
     o.seed = 2;
     o.quality = 0.3;

@@ -7,12 +7,13 @@
 #include <gtest/gtest.h>
 
 #include "expect_input_error.h"
+#include "formats/species_file.h"
 
 namespace arbor::gen {
 
 namespace {
 
-std::string species_dir() { return std::string(ARBOR_SOURCE_DIR) + "/generator/species/"; }
+std::string species_dir() { return std::string(ARBOR_SOURCE_DIR) + "/species/"; }
 
 const char* const kMinimal = "model = \"weber-penn\"\n";
 

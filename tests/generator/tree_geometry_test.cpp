@@ -1,6 +1,6 @@
 // Tests of TreeGeometry: Embree's radius rule, continuity of the curve segments, the displaced
 // trunk, bark coordinates, leaves.
-#include "generator/tree_geometry.h"
+#include "generator/geometry/tree_geometry.h"
 
 #include <cmath>
 
@@ -8,8 +8,9 @@
 #include <gtest/gtest.h>
 
 #include "generator/species.h"
-#include "generator/weber_penn.h"
-#include "generator/weber_penn_formulas.h"
+#include "generator/models/weber_penn/weber_penn.h"
+#include "generator/models/weber_penn/weber_penn_formulas.h"
+#include "formats/species_file.h"
 
 namespace arbor::gen {
 
@@ -17,7 +18,7 @@ namespace {
 
 Skeleton grow_species(const char* name, std::uint64_t seed = 1, double quality = 0.2) {
   const Species s =
-      load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/" + name + ".toml");
+      load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + name + ".toml");
   GrowOptions o;
   o.seed = seed;
   o.quality = quality;

@@ -1,5 +1,5 @@
 // Tests of tessellation and the mesh exporters.
-#include "generator/tree_mesh.h"
+#include "generator/geometry/tree_mesh.h"
 
 #include <cmath>
 #include <cstdio>
@@ -12,16 +12,18 @@
 #include <tiny_obj_loader.h>
 
 #include "generator/grow.h"
-#include "generator/leaf_shapes.h"
+#include "generator/geometry/leaf_shapes.h"
 #include "generator/species.h"
-#include "generator/tree_geometry.h"
-#include "generator/weber_penn.h"
+#include "generator/geometry/tree_geometry.h"
+#include "generator/models/weber_penn/weber_penn.h"
+#include "formats/species_file.h"
+#include "generator/export/export_mesh.h"
 
 namespace arbor::gen {
 
 namespace {
 Skeleton small_tree() {
-  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/quaking_aspen.toml");
+  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
   GrowOptions o;
   o.quality = 0.2;
   return grow_weber_penn(s.weber_penn, o);
@@ -156,7 +158,7 @@ namespace arbor::gen {
 // ring, tapered to a point): every shipped species of every format tessellates to finite
 // positions, unit normals and finite uvs.
 TEST(TreeMesh, EveryShippedSpeciesTessellatesToFiniteUnitNormals) {
-  const std::string dir = std::string(ARBOR_SOURCE_DIR) + "/generator/species/";
+  const std::string dir = std::string(ARBOR_SOURCE_DIR) + "/species/";
   for (const char* name :
        {"quaking_aspen.toml", "black_tupelo.toml", "ca_black_oak.toml", "weeping_willow.toml",
         "sassafras.toml", "lombardy_poplar.toml", "black_spruce.toml", "queen_palm.toml",

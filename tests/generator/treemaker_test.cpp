@@ -1,16 +1,16 @@
 // Tests of TREE-MAKER templates: the paper's dogwood parses as Figure 6 describes, and every
 // malformed input is refused with its position.
-#include "generator/treemaker_template.h"
+#include "generator/models/treemaker/treemaker_template.h"
 
 #include <cmath>
 
 #include <glm/geometric.hpp>
 
 #include "generator/grow.h"
-#include "generator/skeleton_file.h"
-#include "generator/tree_geometry.h"
-#include "generator/tree_stats.h"
-#include "generator/treemaker.h"
+#include "formats/skeleton_file.h"
+#include "generator/geometry/tree_geometry.h"
+#include "generator/export/tree_stats.h"
+#include "generator/models/treemaker/treemaker.h"
 
 #include <cstring>
 #include <string>
@@ -19,6 +19,9 @@
 
 #include "expect_input_error.h"
 #include "generator/species.h"
+#include "formats/species_file.h"
+#include "formats/treemaker_template.h"
+#include "generator/export/skeleton_file.h"
 
 namespace arbor::gen {
 
@@ -38,7 +41,7 @@ const std::string kLeaf = "leaf { p= 1 coord= limb out= 10 up= 10 color= green b
 }  // namespace
 
 TEST(TreeMakerTemplate, TheDogwoodParses) {
-  const std::string path = std::string(ARBOR_SOURCE_DIR) + "/generator/species/dogwood.tmpl";
+  const std::string path = std::string(ARBOR_SOURCE_DIR) + "/species/dogwood.tmpl";
   const TreeMakerTemplate t = parse_treemaker_template(read_text_file(path), path);
   EXPECT_EQ(t.iterations, 13);
   EXPECT_DOUBLE_EQ(t.gravity, 0.08);
@@ -109,7 +112,7 @@ Skeleton grow_template(const std::string& text, std::uint64_t seed = 1) {
 }
 
 Skeleton dogwood(std::uint64_t seed) {
-  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/dogwood.tmpl");
+  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/dogwood.tmpl");
   GrowOptions o;
   o.seed = seed;
   return grow_tree(s, o);

@@ -1,15 +1,15 @@
 // Tests of the Weber & Penn §4 equations, one formula family at a time, against values worked
 // out by hand from the paper.
-#include "generator/weber_penn_formulas.h"
+#include "generator/models/weber_penn/weber_penn_formulas.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
+#include "common/math.h"
 
 namespace arbor::gen::wp {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 }
 
 TEST(ShapeRatio, MatchesThePaperTable) {

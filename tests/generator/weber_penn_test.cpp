@@ -1,6 +1,6 @@
 // Tests of the Weber & Penn generator: determinism, Skeleton invariants, and each parameter
 // family's effect on a grown tree.
-#include "generator/weber_penn.h"
+#include "generator/models/weber_penn/weber_penn.h"
 
 #include <cmath>
 #include <cstring>
@@ -11,17 +11,18 @@
 
 #include "common/error.h"
 #include "generator/species.h"
-#include "generator/tree_stats.h"
-#include "generator/weber_penn_formulas.h"
+#include "generator/export/tree_stats.h"
+#include "generator/models/weber_penn/weber_penn_formulas.h"
+#include "formats/species_file.h"
+#include "common/math.h"
 
 namespace arbor::gen {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 std::string species_path(const std::string& name) {
-  return std::string(ARBOR_SOURCE_DIR) + "/generator/species/" + name + ".toml";
+  return std::string(ARBOR_SOURCE_DIR) + "/species/" + name + ".toml";
 }
 
 WeberPennParams paper_species(const std::string& name) {

@@ -9,6 +9,7 @@
 
 #include "common/rng.h"
 #include "materials/bsdf.h"
+#include "common/math.h"
 
 namespace arbor::mat::testing {
 
@@ -20,7 +21,6 @@ struct ChiSquareResult {
 inline ChiSquareResult chi_square(const std::function<BsdfSample(Rng&)>& sample,
                                   const std::function<double(const Dir&)>& pdf, int samples,
                                   std::uint64_t seed) {
-  constexpr double kPi = 3.14159265358979323846;
   const int n_cos = 20, n_phi = 16;  // cos θ in [-1, 1]
   std::vector<double> observed(n_cos * n_phi, 0.0), expected(n_cos * n_phi, 0.0);
   Rng rng(seed);

@@ -9,11 +9,11 @@
 #include <glm/geometric.hpp>
 
 #include "common/rng.h"
+#include "common/math.h"
 
 namespace arbor::mat {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 }
 
 TEST(Lambert, SamplingMatchesPdfChiSquare) {

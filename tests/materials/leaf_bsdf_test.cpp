@@ -10,11 +10,11 @@
 
 #include "chi_square.h"
 #include "common/rng.h"
+#include "common/math.h"
 
 namespace arbor::mat {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 }
 
 TEST(LeafBsdf, SamplingMatchesPdfChiSquare) {

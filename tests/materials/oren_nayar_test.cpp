@@ -72,7 +72,7 @@ TEST(HeightMap, WrapsAndInterpolates) {
 }
 
 TEST(ColorMap, DecodesSrgbImagesAndRejectsAlbedosAboveOne) {
-  const std::string config = std::string(ARBOR_SOURCE_DIR) + "/tracer/ocio/config.ocio";
+  const std::string config = std::string(ARBOR_SOURCE_DIR) + "/imaging/ocio/config.ocio";
   const std::string png = ::testing::TempDir() + "grey.png";
   OIIO::ImageBuf grey(OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::UINT8));
   const float half[3] = {128.0f / 255.0f, 128.0f / 255.0f, 1.0f};

@@ -23,7 +23,7 @@ std::string write_image(const char* name, const float base[3], const float odd[3
   return path;
 }
 
-const std::string kConfig = std::string(ARBOR_SOURCE_DIR) + "/tracer/ocio/config.ocio";
+const std::string kConfig = std::string(ARBOR_SOURCE_DIR) + "/imaging/ocio/config.ocio";
 
 TEST(Textures, HeightMapTakesTheRec709Luminance) {
   const float base[3] = {0.0f, 0.0f, 0.0f}, odd[3] = {1.0f, 0.5f, 0.25f};

@@ -16,8 +16,8 @@ if [ -n "$perturbation" ]; then
     *) echo "reference_test.sh: unknown perturbation $perturbation" >&2; exit 2 ;;
   esac
   # The copy lives elsewhere: make its relative species paths absolute.
-  sed -e "$edit" -e "s|\"\.\./generator/|\"$src/generator/|" "$scene" > "$work/$tag.toml"
-  if cmp -s "$scene" "$work/$tag.toml" || ! grep -q "$src/generator/" "$work/$tag.toml"; then
+  sed -e "$edit" -e "s|\"\.\./species/|\"$src/species/|" "$scene" > "$work/$tag.toml"
+  if cmp -s "$scene" "$work/$tag.toml" || ! grep -q "$src/species/" "$work/$tag.toml"; then
     echo "reference_test.sh: the $perturbation perturbation did not change $scene" >&2
     exit 2
   fi

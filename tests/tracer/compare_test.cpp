@@ -10,7 +10,7 @@
 
 #include "common/error.h"
 #include "expect_input_error.h"
-#include "tracer/compare.h"
+#include "imaging/compare.h"
 
 namespace arbor::trace {
 namespace {

@@ -1,5 +1,5 @@
 // Tests of the Embree device wrapper.
-#include "tracer/embree_device.h"
+#include "tracer/embree/embree_device.h"
 
 #include <string>
 

@@ -1,6 +1,6 @@
 // Tracer-side tests of tree geometry in Embree: rays find the trunk's lobes and flare, curves
 // are hit at their radius with radial normals and bark coordinates, leaves report their side.
-#include "tracer/embree_scene.h"
+#include "tracer/embree/embree_scene.h"
 
 #include <cmath>
 #include <vector>
@@ -10,14 +10,15 @@
 
 #include "generator/species.h"
 #include "common/rng.h"
-#include "generator/weber_penn.h"
-#include "tracer/integrator_path.h"
+#include "generator/models/weber_penn/weber_penn.h"
+#include "tracer/integrators/path.h"
+#include "formats/species_file.h"
+#include "common/math.h"
 
 namespace arbor::trace {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Centre of the trunk grid's ring nearest height z (lobes cancel in the mean of a full ring).
 glm::vec2 ring_centre(const gen::TreeGeometry& g, float z) {
@@ -81,7 +82,7 @@ gen::Skeleton straight_stem() {
 
 TEST(TreePrototype, RaysFindTheTrunkLobesAndFlare) {
   const gen::Species aspen = gen::load_species(std::string(ARBOR_SOURCE_DIR) +
-                                               "/generator/species/quaking_aspen.toml");
+                                               "/species/quaking_aspen.toml");
   gen::GrowOptions o;
   o.quality = 0.1;
   const gen::Skeleton sk = gen::grow_weber_penn(aspen.weber_penn, o);
@@ -171,7 +172,7 @@ TEST(TreePrototype, RaysLeavingLimbsAndLeavesDoNotHitThemAgain) {
   // leaves, behind them) with the integrator's offset rule. None may hit the same primitive at
   // once, and a ray leaving an opaque limb outward must not hit that limb at all.
   const gen::Species tupelo = gen::load_species(std::string(ARBOR_SOURCE_DIR) +
-                                                "/generator/species/black_tupelo.toml");
+                                                "/species/black_tupelo.toml");
   gen::GrowOptions o;
   o.quality = 0.3;
   const gen::TreeGeometry g = gen::build_tree_geometry(gen::grow_weber_penn(tupelo.weber_penn, o));

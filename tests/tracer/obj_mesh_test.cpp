@@ -1,5 +1,5 @@
 // The OBJ reader: what it keeps, and every malformed record refused at its line and column.
-#include "tracer/obj_mesh.h"
+#include "formats/obj_mesh.h"
 
 #include <cmath>
 #include <string>
@@ -9,8 +9,10 @@
 #include "expect_input_error.h"
 #include "generator/grow.h"
 #include "generator/species.h"
-#include "generator/tree_geometry.h"
-#include "generator/tree_mesh.h"
+#include "generator/geometry/tree_geometry.h"
+#include "generator/geometry/tree_mesh.h"
+#include "formats/species_file.h"
+#include "generator/export/export_mesh.h"
 
 namespace arbor::trace {
 namespace {
@@ -81,7 +83,7 @@ TEST(ObjMesh, HugePolygonsAreFannedInLinearTime) {
 
 // What arbor exports, arbor reads back: the same vertices and triangles.
 TEST(ObjMesh, ReadsArborsOwnExport) {
-  const gen::Species s = gen::load_species(std::string(ARBOR_SOURCE_DIR) + "/generator/species/dogwood.tmpl");
+  const gen::Species s = gen::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/dogwood.tmpl");
   const gen::TreeMesh tree = gen::tessellate(
       gen::build_tree_geometry(gen::grow_tree(s, gen::GrowOptions{}), gen::geometry_options_for(s.leaf)));
   const std::string path = ::testing::TempDir() + "export_roundtrip.obj";

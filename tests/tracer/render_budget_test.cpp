@@ -1,5 +1,5 @@
 // The up-front memory estimate: absurd sizes are refused before anything is allocated.
-#include "tracer/render_budget.h"
+#include "scene/render_budget.h"
 
 #include <sys/resource.h>
 #include <sys/wait.h>

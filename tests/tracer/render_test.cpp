@@ -11,16 +11,17 @@
 
 #include "tracer/camera.h"
 #include "tracer/film.h"
-#include "tracer/image_output.h"
+#include "imaging/image_output.h"
 #include "tracer/sampler.h"
-#include "tracer/sky.h"
-#include "tracer/world.h"
+#include "tracer/lights/sky.h"
+#include "tracer/embree/world.h"
+#include "tracer/test_world.h"
+#include "common/math.h"
 
 namespace arbor::trace {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 const ColorTransform kIdentity = [](float*) {};
 
@@ -37,14 +38,15 @@ SceneDesc small_scene(int width, int height, int spp) {
 
 TreeDesc aspen() {
   TreeDesc t;
-  t.species = std::string(ARBOR_SOURCE_DIR) + "/generator/species/quaking_aspen.toml";
+  t.species = std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml";
   t.seed = 3;
   return t;
 }
 
 Image render(const SceneDesc& scene, RenderStats& stats) {
   const EmbreeDevice device(scene.render.threads > 0 ? "threads=" + std::to_string(scene.render.threads) : "");
-  const World world(scene, device);
+  const TestWorld test_world(scene, device);
+  const World& world = test_world.world;
   const Sky sky(scene.sky, scene.sun, xyz_to_scene_linear(), 128);
   return render_path(scene, world, sky, kIdentity, nullptr, stats);
 }
@@ -168,7 +170,8 @@ TEST(Render, ObjMeshesAreConvertedToZUpAndUseTheirMaterials) {
   s.meshes[0].materials["bark"] = floor;
   const EmbreeDevice device("threads=1");
   try {
-    const World world(s, device);
+    const TestWorld test_world(s, device);
+  const World& world = test_world.world;
     FAIL() << "an unmapped group was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(e.message().find("group 'floor'"), std::string::npos) << e.what();
@@ -211,7 +214,8 @@ TEST(Render, BarkBumpMapImagesShadeTheBarkAndMissingOnesAreErrors) {
   s.trees[0].bark.bump_map = ::testing::TempDir() + "missing.png";
   const EmbreeDevice device("threads=1");
   try {
-    const World world(s, device);
+    const TestWorld test_world(s, device);
+  const World& world = test_world.world;
     FAIL() << "a missing bump map was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("missing.png"), std::string::npos) << e.what();

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "expect_input_error.h"
-#include "tracer/treemaker_fit.h"
+#include "imaging/treemaker_fit.h"
 
 namespace arbor::trace {
 namespace {

@@ -10,15 +10,16 @@
 #include <gtest/gtest.h>
 
 #include "tracer/film.h"
-#include "tracer/integrator_treemaker.h"
-#include "tracer/sky.h"
-#include "tracer/world.h"
+#include "tracer/integrators/treemaker.h"
+#include "tracer/lights/sky.h"
+#include "tracer/embree/world.h"
+#include "tracer/test_world.h"
+#include "common/math.h"
 
 namespace arbor::trace {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 const ColorTransform kIdentity = [](float*) {};
 
 std::string write_file(const char* name, const std::string& text) {
@@ -76,7 +77,7 @@ TEST(Treemaker, FactorsMatchHandWorkedValues) {
   EXPECT_NEAR(treemaker_terms(tree, {1.0f, 1.0f, 3.0f}, up, false, L)[4], std::sqrt(0.5f), 1e-6f);
   EXPECT_NEAR(treemaker_terms(tree, {4.0f, 1.0f, 3.0f}, up, false, up)[4], std::sqrt(0.5f), 1e-6f);
 
-  const gen::TmLight w{0.1, 0.4, 0.4, 0.3, 0.2};  // the dogwood's light {}
+  const mat::TreemakerWeights w{0.1, 0.4, 0.4, 0.3, 0.2};  // the dogwood's light {}
   EXPECT_NEAR(treemaker_shade(w, t), 0.1 + 0.4 * 0.5 + 0.4 * 0.4 + 0.3 * 0.6 + 0.2 * 1.0, 1e-6);
 }
 
@@ -101,7 +102,8 @@ TEST(Treemaker, TreeExtentIsMeasuredFromTheFirstPoint) {
   scene.trees.push_back(t);
   scene.ground.enabled = false;
   const EmbreeDevice device("");
-  const World world(scene, device);
+  const TestWorld test_world(scene, device);
+  const World& world = test_world.world;
   const TreeExtent& e = world.extent(0);
   // Base (1, 2, 0) rotated 90° about z → (−2, 1, 0), × 2, + (10, 0, 0).
   EXPECT_NEAR(e.base.x, 6.0f, 1e-5f);
@@ -113,24 +115,25 @@ TEST(Treemaker, TreeExtentIsMeasuredFromTheFirstPoint) {
 
 TEST(Treemaker, WeightsComeFromTheTemplateThenTheScene) {
   SceneDesc scene;
-  scene.trees.push_back(tree_of(std::string(ARBOR_SOURCE_DIR) + "/generator/species/dogwood.tmpl"));
+  scene.trees.push_back(tree_of(std::string(ARBOR_SOURCE_DIR) + "/species/dogwood.tmpl"));
   TreeDesc overridden = scene.trees.back();
   overridden.treemaker.angle = 0.7;
   scene.trees.push_back(overridden);
   scene.trees.push_back(tree_of(known_skeleton()));
   const EmbreeDevice device("");
-  const World world(scene, device);
-  const gen::TmLight& dogwood = world.look(0).treemaker;  // light { 0.1 0.4 0.4 0.3 0.2 }
+  const TestWorld test_world(scene, device);
+  const World& world = test_world.world;
+  const mat::TreemakerWeights& dogwood = world.instance(0).treemaker;  // light { 0.1 0.4 0.4 0.3 0.2 }
   EXPECT_DOUBLE_EQ(dogwood.ambient, 0.1);
   EXPECT_DOUBLE_EQ(dogwood.lambert, 0.4);
   EXPECT_DOUBLE_EQ(dogwood.height, 0.4);
   EXPECT_DOUBLE_EQ(dogwood.radius, 0.3);
   EXPECT_DOUBLE_EQ(dogwood.angle, 0.2);
-  EXPECT_DOUBLE_EQ(world.look(1).treemaker.angle, 0.7);
-  EXPECT_DOUBLE_EQ(world.look(1).treemaker.height, 0.4);
-  const gen::TmLight defaults;
-  EXPECT_DOUBLE_EQ(world.look(2).treemaker.lambert, defaults.lambert);
-  EXPECT_DOUBLE_EQ(world.look(2).treemaker.angle, defaults.angle);
+  EXPECT_DOUBLE_EQ(world.instance(1).treemaker.angle, 0.7);
+  EXPECT_DOUBLE_EQ(world.instance(1).treemaker.height, 0.4);
+  const mat::TreemakerWeights defaults;
+  EXPECT_DOUBLE_EQ(world.instance(2).treemaker.lambert, defaults.lambert);
+  EXPECT_DOUBLE_EQ(world.instance(2).treemaker.angle, defaults.angle);
 }
 
 // Every pixel of a tree is albedo × MAX_INTENSITY × Σ w·factor with MAX_INTENSITY = (E_sun + E_sky)/π;
@@ -158,7 +161,8 @@ TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
   t.treemaker.ambient = 0.3;
   s.trees.push_back(t);
   const EmbreeDevice device("");
-  const World world(s, device);
+  const TestWorld test_world(s, device);
+  const World& world = test_world.world;
   const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 256);
   const TreemakerIntegrator integrator(world, sky);
   const float e_sky = sky.irradiance_up().x;
@@ -171,7 +175,7 @@ TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
   const std::size_t channels = img.extra_names.size();
   int tree = 0, lit_pixels = 0, shadow_pixels = 0;
   double shadow_x = 0.0;
-  const gen::TmLight& w = world.look(0).treemaker;
+  const mat::TreemakerWeights& w = world.instance(0).treemaker;
   for (int y = 0; y < s.render.height; ++y) {
     for (int x = 0; x < s.render.width; ++x) {
       const std::size_t p = static_cast<std::size_t>(y) * s.render.width + x;
@@ -210,13 +214,14 @@ TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
   s.output.aovs = {"treemaker"};
   s.camera.position = {9.0, -12.0, 4.0};
   s.camera.look_at = {0.0, 0.0, 6.0};
-  TreeDesc t = tree_of(std::string(ARBOR_SOURCE_DIR) + "/generator/species/quaking_aspen.toml");
+  TreeDesc t = tree_of(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
   s.trees.push_back(t);
   Image images[2];
   for (int threads : {1, 2}) {
     s.render.threads = threads;
     const EmbreeDevice device("threads=" + std::to_string(threads));
-    const World world(s, device);
+    const TestWorld test_world(s, device);
+  const World& world = test_world.world;
     const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 128);
     RenderStats stats;
     images[threads - 1] = render_treemaker(s, world, sky, kIdentity, nullptr, stats);
@@ -230,7 +235,8 @@ TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
   // Without the AOV nothing extra is kept, and the beauty is the same.
   s.output.aovs.clear();
   const EmbreeDevice device("threads=2");
-  const World world(s, device);
+  const TestWorld test_world(s, device);
+  const World& world = test_world.world;
   const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 128);
   RenderStats stats;
   const Image plain = render_treemaker(s, world, sky, kIdentity, nullptr, stats);

@@ -1,0 +1,163 @@
+// The scene file contract (DESIGN.md) as plain data: what a scene asks for, before anything is
+// built. Paths are already resolved relative to the scene file.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/error.h"
+#include "common/math.h"
+
+namespace arbor::trace {
+
+using Vec3d = std::array<double, 3>;
+
+struct RenderSettings {
+  int width = 960, height = 640;
+  int spp = 64;
+  std::uint64_t seed = 1;
+  std::string integrator = "path";  // "path" | "treemaker"
+  int max_depth = 12;
+  int treemaker_spp = 4;            // samples per pixel of the treemaker integrator (anti-aliasing)
+  int threads = 0;                  // 0: all cores (command line only)
+};
+
+struct CameraDesc {
+  Vec3d position{14.0, -20.0, 3.0};
+  Vec3d look_at{0.0, 0.0, 6.0};
+  Vec3d up{0.0, 0.0, 1.0};
+  double fov = 45.0;              // vertical, degrees
+  double aperture_radius = 0.0;   // metres
+  double focus_distance = 0.0;    // metres; 0: distance to look_at
+  double exposure = 0.0;          // stops
+  SourceLocation look_at_where, up_where;  // the keys' positions, for errors (else the file's)
+};
+
+// InputError at the key when the camera cannot form an image (look_at at the position, up along
+// the view or zero).
+void check_camera(const CameraDesc& camera);
+
+struct SunDesc {
+  bool enabled = true;
+  double elevation = 40.0, azimuth = 135.0;  // degrees; azimuth counter-clockwise from +x
+  double irradiance = 3.0;                   // scene-linear, on a plane facing the sun
+  double angular_diameter = 0.53;            // degrees
+};
+
+struct SkyDesc {
+  std::string model = "preetham";  // "preetham" | "constant" | "envmap" | "none"
+  double turbidity = 3.0;
+  Rgb color{1.0, 1.0, 1.0};
+  std::string path;          // envmap
+  double rotation = 0.0;     // envmap, degrees about z
+  double scale = 1.0;        // envmap
+};
+
+struct GroundDesc {
+  bool enabled = true;
+  Rgb albedo{0.16, 0.14, 0.10};
+};
+
+// Overrides of a species' bark and leaves; unset fields keep the species' values.
+struct BarkOverride {
+  std::optional<Rgb> albedo;
+  std::string bump_map;  // image path; empty: procedural bark
+  std::optional<double> bump_height;
+  double bump_tile = 0.25;  // metres along and around the limb per repeat of bump_map, albedo_map
+  std::string albedo_map;   // image multiplying the albedo; empty: none
+  std::optional<double> roughness;  // degrees, Oren–Nayar σ
+};
+struct LeafOverride {
+  std::optional<Rgb> reflectance, back_reflectance, transmittance;
+  std::string albedo_map;  // image over the leaf's uv multiplying R, back R and T; empty: none
+};
+
+// Overrides of the five TREE-MAKER shading weights (§III); unset ones keep the template's
+// `light {}` values, or arbor's defaults for trees of other models.
+struct TreemakerOverride {
+  std::optional<double> ambient, lambert, height, radius, angle;
+};
+
+struct Placement {
+  Vec3d position{0.0, 0.0, 0.0};
+  double rotation = 0.0;  // degrees about z
+  double scale = 1.0;
+};
+
+struct TreeDesc {
+  std::string species;  // resolved path
+  SourceLocation where;
+  std::uint64_t seed = 1;
+  Placement placement;
+  double time = 0.0;
+  BarkOverride bark;
+  LeafOverride leaf;
+  TreemakerOverride treemaker;
+};
+
+struct ForestDesc {
+  std::string species;
+  SourceLocation where;
+  int count = 1;
+  int variants = 1;
+  std::array<double, 4> area{-10.0, -10.0, 10.0, 10.0};  // x0, y0, x1, y1
+  std::uint64_t seed = 1;
+  BarkOverride bark;
+  LeafOverride leaf;
+  TreemakerOverride treemaker;
+};
+
+struct MeshMaterialDesc {
+  std::string kind = "diffuse";  // "bark" | "leaf" | "diffuse"
+  Rgb albedo{0.5, 0.5, 0.5};     // bark, diffuse
+  Rgb reflectance{0.06, 0.2, 0.04}, back_reflectance{0.1, 0.24, 0.07},
+      transmittance{0.05, 0.18, 0.03};  // leaf
+};
+
+struct MeshDesc {
+  std::string path;
+  SourceLocation where;
+  std::string up = "z";
+  Placement placement;
+  std::map<std::string, MeshMaterialDesc> materials;  // by OBJ group or material name
+};
+
+struct OutputDesc {
+  std::string exr;  // resolved; empty: none
+  std::string png;
+  std::string colorspace = "ACEScg";
+  std::string display = "sRGB";
+  std::string view = "ACES 1.0 SDR-video";
+  std::vector<std::string> aovs;  // of "albedo", "normal", "depth", "variance", "treemaker"
+  SourceLocation treemaker_aov_where;  // where "treemaker" is listed (only that integrator has it)
+  std::string pixel_type = "half";
+  // The keys' positions, for errors found later (by the OCIO config); the file's when unset.
+  SourceLocation colorspace_where, display_where, view_where;
+};
+
+struct SceneDesc {
+  std::string path;
+  RenderSettings render;
+  CameraDesc camera;
+  SunDesc sun;
+  SkyDesc sky;
+  GroundDesc ground;
+  std::vector<TreeDesc> trees;
+  std::vector<ForestDesc> forests;
+  std::vector<MeshDesc> meshes;
+  OutputDesc output;
+};
+
+// Reads and validates a scene file: unknown keys and out-of-range values are InputErrors with
+// their position; relative paths are resolved against the scene file's folder.
+SceneDesc load_scene(const std::string& path);
+SceneDesc parse_scene(const std::string& text, const std::string& path);
+
+// Every file the scene reads: the scene itself, species, textures, the environment map, meshes.
+std::vector<std::string> scene_inputs(const SceneDesc& scene);
+
+}  // namespace arbor::trace

@@ -1,0 +1,419 @@
+// Scene file reader (TOML): every key of the contract, each value range-checked, unknown keys
+// rejected, all with file, line and column.
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include <toml++/toml.h>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "formats/scene_desc.h"
+#include "formats/species_file.h"
+
+namespace arbor::trace {
+
+namespace {
+
+std::string folder_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
+}
+
+class SceneReader {
+ public:
+  explicit SceneReader(std::string path) : path_(std::move(path)), folder_(folder_of(path_)) {}
+
+  SceneDesc read(const std::string& text) {
+    toml::table root;
+    try {
+      root = toml::parse(text, path_);
+    } catch (const toml::parse_error& e) {
+      throw InputError(at(e.source()), std::string(e.description()));
+    }
+    SceneDesc s;
+    s.path = path_;
+    const SourceLocation file{path_, 0, 0};
+    s.camera.look_at_where = s.camera.up_where = file;
+    s.output.colorspace_where = s.output.display_where = s.output.view_where = file;
+    for (auto&& [key, node] : root) {
+      const std::string k(key.str());
+      if (k == "render") render(table(node, k), s.render);
+      else if (k == "camera") camera(table(node, k), s.camera);
+      else if (k == "sun") sun(table(node, k), s.sun);
+      else if (k == "sky") sky(table(node, k), s.sky);
+      else if (k == "ground") ground(table(node, k), s.ground);
+      else if (k == "tree") for_each_table(node, k, [&](const toml::table& t) { s.trees.push_back(tree(t)); });
+      else if (k == "forest") for_each_table(node, k, [&](const toml::table& t) { s.forests.push_back(forest(t)); });
+      else if (k == "mesh") for_each_table(node, k, [&](const toml::table& t) { s.meshes.push_back(mesh(t)); });
+      else if (k == "output") output(table(node, k), s.output);
+      else throw InputError(at(key.source()), "unknown table or key '" + k + "'");
+    }
+    check_camera(s.camera);
+    if (s.camera.focus_distance == 0.0) {
+      const double dx = s.camera.look_at[0] - s.camera.position[0];
+      const double dy = s.camera.look_at[1] - s.camera.position[1];
+      const double dz = s.camera.look_at[2] - s.camera.position[2];
+      s.camera.focus_distance = std::sqrt(dx * dx + dy * dy + dz * dz);
+    }
+    return s;
+  }
+
+ private:
+  SourceLocation at(const toml::source_region& r) const {
+    return {path_, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
+  }
+  [[noreturn]] void fail(const toml::node& n, const std::string& message) const {
+    throw InputError(at(n.source()), message);
+  }
+
+  const toml::table& table(const toml::node& n, const std::string& name) const {
+    if (const toml::table* t = n.as_table()) return *t;
+    fail(n, "'" + name + "' must be a table");
+  }
+
+  template <typename F>
+  void for_each_table(const toml::node& n, const std::string& name, F&& f) const {
+    const toml::array* a = n.as_array();
+    if (!a) fail(n, "'" + name + "' must be an array of tables: write [[" + name + "]]");
+    for (const toml::node& e : *a) f(table(e, name));
+  }
+
+  double number(const toml::node& n, const std::string& name, double lo, double hi) const {
+    std::optional<double> v;
+    if (n.is_floating_point() || n.is_integer()) v = n.value<double>();
+    if (!v) fail(n, name + " must be a number");
+    if (!std::isfinite(*v)) fail(n, name + " must be a finite number");
+    if (*v < lo || *v > hi) {
+      fail(n, name + " = " + std::to_string(*v) + " is out of range [" + std::to_string(lo) +
+                  ", " + std::to_string(hi) + "]");
+    }
+    return *v;
+  }
+  std::int64_t integer(const toml::node& n, const std::string& name, std::int64_t lo,
+                       std::int64_t hi) const {
+    if (!n.is_integer()) fail(n, name + " must be a whole number");
+    const std::int64_t v = *n.value<std::int64_t>();
+    if (v < lo || v > hi) {
+      fail(n, name + " = " + std::to_string(v) + " is out of range [" + std::to_string(lo) + ", " +
+                  std::to_string(hi) + "]");
+    }
+    return v;
+  }
+  std::string text(const toml::node& n, const std::string& name) const {
+    if (!n.is_string()) fail(n, name + " must be a string");
+    return *n.value<std::string>();
+  }
+  std::string choice(const toml::node& n, const std::string& name,
+                     std::initializer_list<const char*> options) const {
+    const std::string v = text(n, name);
+    std::string list;
+    for (const char* o : options) {
+      if (v == o) return v;
+      list += std::string(list.empty() ? "" : ", ") + "\"" + o + "\"";
+    }
+    fail(n, name + " must be one of " + list + ", not \"" + v + "\"");
+  }
+  bool boolean(const toml::node& n, const std::string& name) const {
+    if (!n.is_boolean()) fail(n, name + " must be true or false");
+    return *n.value<bool>();
+  }
+  std::array<double, 3> triple(const toml::node& n, const std::string& name, double lo,
+                               double hi) const {
+    const toml::array* a = n.as_array();
+    if (!a || a->size() != 3) fail(n, name + " must be an array of 3 numbers");
+    return {number(*a->get(0), name, lo, hi), number(*a->get(1), name, lo, hi),
+            number(*a->get(2), name, lo, hi)};
+  }
+  std::string file(const toml::node& n, const std::string& name) const {
+    const std::string v = text(n, name);
+    if (v.empty()) fail(n, name + " must not be empty");
+    return v[0] == '/' ? v : folder_ + v;
+  }
+  [[noreturn]] void unknown(const toml::key& key, const std::string& table) const {
+    throw InputError(at(key.source()), "unknown key '" + std::string(key.str()) + "' in [" + table + "]");
+  }
+
+  void render(const toml::table& t, RenderSettings& r) const {
+    for (auto&& [key, n] : t) {
+      const std::string k(key.str());
+      if (k == "width") r.width = static_cast<int>(integer(n, "render.width", 1, 16384));
+      else if (k == "height") r.height = static_cast<int>(integer(n, "render.height", 1, 16384));
+      else if (k == "spp") r.spp = static_cast<int>(integer(n, "render.spp", 1, 1 << 20));
+      else if (k == "seed") r.seed = static_cast<std::uint64_t>(integer(n, "render.seed", 0, INT64_MAX));
+      else if (k == "integrator") r.integrator = choice(n, "render.integrator", {"path", "treemaker"});
+      else if (k == "max_depth") r.max_depth = static_cast<int>(integer(n, "render.max_depth", 1, 1024));
+      else if (k == "treemaker_spp") r.treemaker_spp = static_cast<int>(integer(n, "render.treemaker_spp", 1, 1 << 20));
+      else unknown(key, "render");
+    }
+  }
+
+  void camera(const toml::table& t, CameraDesc& c) const {
+    // A look_at at the position is reported at look_at, else at position, else at the table.
+    c.look_at_where = c.up_where = at(t.source());
+    if (const toml::node* position = t.get("position"); position && !t.get("look_at")) {
+      c.look_at_where = at(position->source());
+    }
+    for (auto&& [key, n] : t) {
+      const std::string k(key.str());
+      if (k == "position") c.position = triple(n, "camera.position", -1e7, 1e7);
+      else if (k == "look_at") { c.look_at = triple(n, "camera.look_at", -1e7, 1e7); c.look_at_where = at(n.source()); }
+      else if (k == "up") { c.up = triple(n, "camera.up", -1e7, 1e7); c.up_where = at(n.source()); }
+      else if (k == "fov") c.fov = number(n, "camera.fov", 0.01, 179.0);
+      else if (k == "aperture_radius") c.aperture_radius = number(n, "camera.aperture_radius", 0.0, 100.0);
+      else if (k == "focus_distance") c.focus_distance = number(n, "camera.focus_distance", 1e-4, 1e7);
+      else if (k == "exposure") c.exposure = number(n, "camera.exposure", -64.0, 64.0);
+      else unknown(key, "camera");
+    }
+  }
+
+  void sun(const toml::table& t, SunDesc& s) const {
+    for (auto&& [key, n] : t) {
+      const std::string k(key.str());
+      if (k == "enabled") s.enabled = boolean(n, "sun.enabled");
+      else if (k == "elevation") s.elevation = number(n, "sun.elevation", -90.0, 90.0);
+      else if (k == "azimuth") s.azimuth = number(n, "sun.azimuth", -360.0, 360.0);
+      else if (k == "irradiance") s.irradiance = number(n, "sun.irradiance", 0.0, 1e6);
+      else if (k == "angular_diameter") s.angular_diameter = number(n, "sun.angular_diameter", 0.01, 30.0);
+      else unknown(key, "sun");
+    }
+  }
+
+  void sky(const toml::table& t, SkyDesc& s) const {
+    for (auto&& [key, n] : t) {
+      const std::string k(key.str());
+      if (k == "model") s.model = choice(n, "sky.model", {"preetham", "constant", "envmap", "none"});
+      else if (k == "turbidity") s.turbidity = number(n, "sky.turbidity", 1.7, 10.0);
+      else if (k == "color") s.color = triple(n, "sky.color", 0.0, 1e6);
+      else if (k == "path") s.path = file(n, "sky.path");
+      else if (k == "rotation") s.rotation = number(n, "sky.rotation", -360.0, 360.0);
+      else if (k == "scale") s.scale = number(n, "sky.scale", 0.0, 1e6);
+      else unknown(key, "sky");
+    }
+    if (s.model == "envmap" && s.path.empty()) {
+      throw InputError(at(t.source()), "sky.model = \"envmap\" needs sky.path (an image OIIO reads)");
+    }
+  }
+
+  void ground(const toml::table& t, GroundDesc& g) const {
+    for (auto&& [key, n] : t) {
+      const std::string k(key.str());
+      if (k == "enabled") g.enabled = boolean(n, "ground.enabled");
+      else if (k == "albedo") g.albedo = triple(n, "ground.albedo", 0.0, 1.0);
+      else unknown(key, "ground");
+    }
+  }
+
+  void bark(const toml::table& t, BarkOverride& b, const std::string& owner) const {
+    for (auto&& [key, n] : t) {
+      const std::string k(key.str());
+      if (k == "albedo") b.albedo = triple(n, owner + ".bark.albedo", 0.0, 1.0);
+      else if (k == "bump_map") b.bump_map = file(n, owner + ".bark.bump_map");
+      else if (k == "bump_height") b.bump_height = number(n, owner + ".bark.bump_height", 0.0, 1.0);
+      else if (k == "bump_tile") b.bump_tile = number(n, owner + ".bark.bump_tile", 1e-3, 100.0);
+      else if (k == "roughness") b.roughness = number(n, owner + ".bark.roughness", 0.0, 90.0);
+      else if (k == "albedo_map") b.albedo_map = file(n, owner + ".bark.albedo_map");
+      else unknown(key, owner + ".bark");
+    }
+  }
+
+  void leaf(const toml::table& t, LeafOverride& l, const std::string& owner) const {
+    for (auto&& [key, n] : t) {
+      const std::string k(key.str());
+      if (k == "reflectance") l.reflectance = triple(n, owner + ".leaf.reflectance", 0.0, 1.0);
+      else if (k == "back_reflectance") l.back_reflectance = triple(n, owner + ".leaf.back_reflectance", 0.0, 1.0);
+      else if (k == "transmittance") l.transmittance = triple(n, owner + ".leaf.transmittance", 0.0, 1.0);
+      else if (k == "albedo_map") l.albedo_map = file(n, owner + ".leaf.albedo_map");
+      else unknown(key, owner + ".leaf");
+    }
+  }
+
+  void treemaker(const toml::table& t, TreemakerOverride& w, const std::string& owner) const {
+    for (auto&& [key, n] : t) {
+      const std::string k(key.str());
+      const std::string name = owner + ".treemaker." + k;
+      // The template language's own range for these weights (treemaker-format.md).
+      if (k == "ambient") w.ambient = number(n, name, 0.0, 10.0);
+      else if (k == "lambert") w.lambert = number(n, name, 0.0, 10.0);
+      else if (k == "height") w.height = number(n, name, 0.0, 10.0);
+      else if (k == "radius") w.radius = number(n, name, 0.0, 10.0);
+      else if (k == "angle") w.angle = number(n, name, 0.0, 10.0);
+      else unknown(key, owner + ".treemaker");
+    }
+  }
+
+  void placement(const toml::node& n, const std::string& k, Placement& p, const std::string& owner) const {
+    if (k == "position") p.position = triple(n, owner + ".position", -1e7, 1e7);
+    else if (k == "rotation") p.rotation = number(n, owner + ".rotation", -360.0, 360.0);
+    else if (k == "scale") p.scale = number(n, owner + ".scale", 1e-6, 1e6);
+  }
+
+  TreeDesc tree(const toml::table& t) const {
+    TreeDesc d;
+    d.where = at(t.source());
+    for (auto&& [key, n] : t) {
+      const std::string k(key.str());
+      if (k == "species") d.species = file(n, "tree.species");
+      else if (k == "seed") d.seed = static_cast<std::uint64_t>(integer(n, "tree.seed", 0, INT64_MAX));
+      else if (k == "position" || k == "rotation" || k == "scale") placement(n, k, d.placement, "tree");
+      else if (k == "time") d.time = number(n, "tree.time", -1e6, 1e6);
+      else if (k == "bark") bark(table(n, "tree.bark"), d.bark, "tree");
+      else if (k == "leaf") leaf(table(n, "tree.leaf"), d.leaf, "tree");
+      else if (k == "treemaker") treemaker(table(n, "tree.treemaker"), d.treemaker, "tree");
+      else unknown(key, "[tree]");
+    }
+    if (d.species.empty()) throw InputError(d.where, "[[tree]] needs a species (a species file)");
+    return d;
+  }
+
+  ForestDesc forest(const toml::table& t) const {
+    ForestDesc d;
+    d.where = at(t.source());
+    for (auto&& [key, n] : t) {
+      const std::string k(key.str());
+      if (k == "species") d.species = file(n, "forest.species");
+      else if (k == "count") d.count = static_cast<int>(integer(n, "forest.count", 1, 10000000));
+      else if (k == "variants") d.variants = static_cast<int>(integer(n, "forest.variants", 1, 10000));
+      else if (k == "seed") d.seed = static_cast<std::uint64_t>(integer(n, "forest.seed", 0, INT64_MAX));
+      else if (k == "area") {
+        const toml::array* a = n.as_array();
+        if (!a || a->size() != 2 || !a->get(0)->is_array() || !a->get(1)->is_array() ||
+            a->get(0)->as_array()->size() != 2 || a->get(1)->as_array()->size() != 2) {
+          fail(n, "forest.area must be [[x0, y0], [x1, y1]]");
+        }
+        const toml::array& lo = *a->get(0)->as_array();
+        const toml::array& hi = *a->get(1)->as_array();
+        d.area = {number(*lo.get(0), "forest.area", -1e7, 1e7), number(*lo.get(1), "forest.area", -1e7, 1e7),
+                  number(*hi.get(0), "forest.area", -1e7, 1e7), number(*hi.get(1), "forest.area", -1e7, 1e7)};
+        if (!(d.area[2] > d.area[0] && d.area[3] > d.area[1])) {
+          fail(n, "forest.area must go from the smaller corner to the larger one");
+        }
+      } else if (k == "bark") bark(table(n, "forest.bark"), d.bark, "forest");
+      else if (k == "leaf") leaf(table(n, "forest.leaf"), d.leaf, "forest");
+      else if (k == "treemaker") treemaker(table(n, "forest.treemaker"), d.treemaker, "forest");
+      else unknown(key, "[forest]");
+    }
+    if (d.species.empty()) throw InputError(d.where, "[[forest]] needs a species (a species file)");
+    if (d.variants > d.count) throw InputError(d.where, "forest.variants must not exceed forest.count");
+    return d;
+  }
+
+  MeshMaterialDesc mesh_material(const toml::table& t, const std::string& name) const {
+    MeshMaterialDesc m;
+    const std::string owner = "mesh.material." + name;
+    for (auto&& [key, n] : t) {
+      const std::string k(key.str());
+      if (k == "kind") m.kind = choice(n, owner + ".kind", {"bark", "leaf", "diffuse"});
+      else if (k == "albedo") m.albedo = triple(n, owner + ".albedo", 0.0, 1.0);
+      else if (k == "reflectance") m.reflectance = triple(n, owner + ".reflectance", 0.0, 1.0);
+      else if (k == "back_reflectance") m.back_reflectance = triple(n, owner + ".back_reflectance", 0.0, 1.0);
+      else if (k == "transmittance") m.transmittance = triple(n, owner + ".transmittance", 0.0, 1.0);
+      else unknown(key, owner);
+    }
+    for (size_t i = 0; i < 3; ++i) {
+      if (m.kind == "leaf" && (m.reflectance[i] + m.transmittance[i] > 1.0 ||
+                               m.back_reflectance[i] + m.transmittance[i] > 1.0)) {
+        throw InputError(at(t.source()), owner + ": reflectance + transmittance must be at most 1");
+      }
+    }
+    return m;
+  }
+
+  MeshDesc mesh(const toml::table& t) const {
+    MeshDesc d;
+    d.where = at(t.source());
+    for (auto&& [key, n] : t) {
+      const std::string k(key.str());
+      if (k == "path") d.path = file(n, "mesh.path");
+      else if (k == "up") d.up = choice(n, "mesh.up", {"z", "y"});
+      else if (k == "position" || k == "rotation" || k == "scale") placement(n, k, d.placement, "mesh");
+      else if (k == "material") {
+        for (auto&& [mkey, mnode] : table(n, "mesh.material")) {
+          const std::string name(mkey.str());
+          d.materials[name] = mesh_material(table(mnode, "mesh.material." + name), name);
+        }
+      } else unknown(key, "[mesh]");
+    }
+    if (d.path.empty()) throw InputError(d.where, "[[mesh]] needs a path (an OBJ file)");
+    return d;
+  }
+
+  void extension(const toml::node& n, const std::string& path, const char* ext, const char* name) const {
+    const std::size_t len = std::strlen(ext);
+    if (path.size() < len || path.compare(path.size() - len, len, ext) != 0) {
+      fail(n, std::string(name) + " must name a " + ext + " file, not \"" + path + "\"");
+    }
+  }
+
+  void output(const toml::table& t, OutputDesc& o) const {
+    o.colorspace_where = o.display_where = o.view_where = at(t.source());
+    for (auto&& [key, n] : t) {
+      const std::string k(key.str());
+      if (k == "exr") { o.exr = file(n, "output.exr"); extension(n, o.exr, ".exr", "output.exr"); }
+      else if (k == "png") { o.png = file(n, "output.png"); extension(n, o.png, ".png", "output.png"); }
+      else if (k == "colorspace") { o.colorspace = text(n, "output.colorspace"); o.colorspace_where = at(n.source()); }
+      else if (k == "display") { o.display = text(n, "output.display"); o.display_where = at(n.source()); }
+      else if (k == "view") { o.view = text(n, "output.view"); o.view_where = at(n.source()); }
+      else if (k == "pixel_type") o.pixel_type = choice(n, "output.pixel_type", {"half", "float"});
+      else if (k == "aovs") {
+        const toml::array* a = n.as_array();
+        if (!a) fail(n, "output.aovs must be an array of strings");
+        for (const toml::node& e : *a) {
+          o.aovs.push_back(choice(e, "output.aovs", {"albedo", "normal", "depth", "variance", "treemaker"}));
+          if (o.aovs.back() == "treemaker") o.treemaker_aov_where = at(e.source());
+        }
+      } else unknown(key, "output");
+    }
+  }
+
+  std::string path_;
+  std::string folder_;
+};
+
+}  // namespace
+
+void check_camera(const CameraDesc& d) {
+  const glm::vec3 origin(d.position[0], d.position[1], d.position[2]);
+  const glm::vec3 target(d.look_at[0], d.look_at[1], d.look_at[2]);
+  const glm::vec3 up(d.up[0], d.up[1], d.up[2]);
+  if (glm::length(target - origin) < 1e-9f) {
+    throw InputError(d.look_at_where, "camera.look_at must differ from camera.position");
+  }
+  if (glm::length(glm::cross(glm::normalize(target - origin), up)) < 1e-6f) {
+    throw InputError(d.up_where, "camera.up must not be parallel to the viewing direction (nor zero)");
+  }
+}
+
+SceneDesc parse_scene(const std::string& text, const std::string& path) {
+  return SceneReader(path).read(text);
+}
+
+SceneDesc load_scene(const std::string& path) {
+  return parse_scene(gen::read_text_file(path), path);
+}
+
+std::vector<std::string> scene_inputs(const SceneDesc& s) {
+  std::vector<std::string> in{s.path};
+  auto add = [&](const std::string& p) {
+    if (!p.empty()) in.push_back(p);
+  };
+  auto looks = [&](const BarkOverride& b, const LeafOverride& l) {
+    add(b.bump_map);
+    add(b.albedo_map);
+    add(l.albedo_map);
+  };
+  for (const TreeDesc& t : s.trees) {
+    add(t.species);
+    looks(t.bark, t.leaf);
+  }
+  for (const ForestDesc& f : s.forests) {
+    add(f.species);
+    looks(f.bark, f.leaf);
+  }
+  for (const MeshDesc& m : s.meshes) add(m.path);
+  if (s.sky.model == "envmap") add(s.sky.path);
+  return in;
+}
+
+}  // namespace arbor::trace

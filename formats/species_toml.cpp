@@ -1,0 +1,240 @@
+// Reader of arbor's TOML species format (docs/species-format.md): paper parameter names, one
+// table per level, [bark] and [leaf] looks. Unknown keys and bad values are errors with position.
+#include <cmath>
+#include <map>
+#include <string>
+
+#include <toml++/toml.h>
+
+#include "generator/species.h"
+#include "formats/species_file.h"
+
+namespace arbor::gen {
+
+namespace {
+
+class TomlSpecies {
+ public:
+  TomlSpecies(const std::string& path) : path_(path) {}
+
+  SourceLocation at(const toml::source_region& r) const {
+    return {path_, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
+  }
+
+  double number(const toml::node& node, std::string_view name) const {
+    if (auto v = node.value<double>(); v && (node.is_floating_point() || node.is_integer())) {
+      if (!std::isfinite(*v)) throw InputError(at(node.source()), std::string(name) + " must be a finite number");
+      return *v;
+    }
+    throw InputError(at(node.source()), std::string(name) + " must be a number");
+  }
+
+  std::string text(const toml::node& node, std::string_view name) const {
+    if (auto v = node.value<std::string>(); v && node.is_string()) return *v;
+    throw InputError(at(node.source()), std::string(name) + " must be a string");
+  }
+
+  const toml::table& table(const toml::node& node, std::string_view name) const {
+    if (const toml::table* t = node.as_table()) return *t;
+    throw InputError(at(node.source()), std::string(name) + " must be a table");
+  }
+
+  Rgb colour(const toml::node& node, std::string_view name) const {
+    const toml::array* a = node.as_array();
+    if (!a || a->size() != 3) {
+      throw InputError(at(node.source()), std::string(name) + " must be an array of 3 numbers");
+    }
+    Rgb c{};
+    for (size_t i = 0; i < 3; ++i) {
+      c[i] = number(*a->get(i), name);
+      if (c[i] < 0.0 || c[i] > 1.0) {
+        throw InputError(at(a->get(i)->source()),
+                         std::string(name) + " components must be in [0, 1]");
+      }
+    }
+    return c;
+  }
+
+  void param(Species& sp, const ParamInfo& info, int level, const toml::node& node,
+             const std::string& paper_name) {
+    if (info.integer && !node.is_integer()) {
+      throw InputError(at(node.source()), paper_name + " must be a whole number");
+    }
+    const std::string problem = set_param(sp.weber_penn, info, level, number(node, paper_name));
+    if (!problem.empty()) {
+      throw InputError(at(node.source()), (level >= 0 && !info.real && !info.whole ? std::to_string(level) : "") + problem);
+    }
+    positions_[paper_name] = at(node.source());
+  }
+
+  void levels(Species& sp, const toml::table& levels) {
+    for (auto&& [key, node] : levels) {
+      const std::string k(key.str());
+      if (k.size() != 1 || k[0] < '0' || k[0] > '3') {
+        throw InputError(at(key.source()),
+                         "unknown level '" + k + "': levels are 0 (trunk) to 3; deeper levels "
+                         "reuse level 3");
+      }
+      const int level = k[0] - '0';
+      for (auto&& [pkey, pnode] : table(node, "level." + k)) {
+        const std::string name(pkey.str());
+        const ParamInfo* info = find_level_param(name);
+        if (!info) {
+          throw InputError(at(pkey.source()), "unknown key '" + name + "' in [level." + k + "]");
+        }
+        if (info->level0_only && level != 0) {
+          throw InputError(at(pkey.source()), name + " is a trunk parameter: put it in [level.0]");
+        }
+        if (info->children_only && level == 0) {
+          throw InputError(at(pkey.source()),
+                           name + " has no meaning for the trunk (level 0): remove it");
+        }
+        param(sp, *info, level, pnode, k + name);
+      }
+    }
+  }
+
+  void bark(Species& sp, const toml::table& t) {
+    for (auto&& [key, node] : t) {
+      const std::string k(key.str());
+      if (k == "albedo") {
+        sp.bark.albedo = colour(node, "bark.albedo");
+      } else if (k == "bump_height") {
+        const double h = number(node, "bark.bump_height");
+        if (h < 0.0 || h > 1.0) throw InputError(at(node.source()), "bark.bump_height must be in [0, 1] metres");
+        sp.bark.bump_height = h;
+      } else if (k == "roughness") {
+        const double r = number(node, "bark.roughness");
+        if (r < 0.0 || r > 90.0) throw InputError(at(node.source()), "bark.roughness must be in [0, 90] degrees");
+        sp.bark.roughness = r;
+      } else {
+        throw InputError(at(key.source()), "unknown key '" + k + "' in [bark]");
+      }
+    }
+  }
+
+  void leaf(Species& sp, const toml::table& t) {
+    for (auto&& [key, node] : t) {
+      const std::string k(key.str());
+      if (k == "reflectance") sp.leaf.reflectance = colour(node, "leaf.reflectance");
+      else if (k == "back_reflectance") sp.leaf.back_reflectance = colour(node, "leaf.back_reflectance");
+      else if (k == "transmittance") sp.leaf.transmittance = colour(node, "leaf.transmittance");
+      else if (k == "hinge_angle") {
+        const double a = number(node, "leaf.hinge_angle");
+        if (a < 0.0 || a > 90.0) throw InputError(at(node.source()), "leaf.hinge_angle must be in [0, 90] degrees");
+        sp.leaf.hinge_angle = a;
+      }
+      else throw InputError(at(key.source()), "unknown key '" + k + "' in [leaf]");
+    }
+    for (size_t i = 0; i < 3; ++i) {
+      const double t_i = sp.leaf.transmittance[i];
+      if (sp.leaf.reflectance[i] + t_i > 1.0 || sp.leaf.back_reflectance[i] + t_i > 1.0) {
+        throw InputError(at(t.source()),
+                         "leaf reflectance + transmittance must be at most 1 in every channel "
+                         "(for the front and the back), or the leaf would create energy");
+      }
+    }
+  }
+
+  // model = "fractal": Ünal's parameters (docs/fractal-format.md).
+  void fractal_key(Species& sp, const std::string& k, const toml::node& node, const toml::key& key) {
+    FractalParams& f = sp.fractal;
+    struct Real { const char* name; double lo, hi; double FractalParams::*field; };
+    struct Whole { const char* name; int lo, hi; int FractalParams::*field; };
+    static const Real reals[] = {
+        {"cone_angle", 0, 180, &FractalParams::cone_angle}, {"size_ratio", 0.01, 1.5, &FractalParams::size_ratio},
+        {"taper", 0.01, 1, &FractalParams::taper}, {"length", 1e-3, 500, &FractalParams::length},
+        {"radius", 1e-5, 50, &FractalParams::radius}, {"twist", -360, 360, &FractalParams::twist},
+        {"prune", 0, 0.99, &FractalParams::prune}, {"length_variation", 0, 0.99, &FractalParams::length_variation},
+        {"angle_variation", 0, 0.99, &FractalParams::angle_variation}, {"wiggle", 0, 0.5, &FractalParams::wiggle},
+        {"radius_variation", 0, 0.5, &FractalParams::radius_variation},
+        {"years_per_level", 1e-3, 1e4, &FractalParams::years_per_level}, {"age", 0, 1e6, &FractalParams::age},
+        {"cone_widening", 0, 1, &FractalParams::cone_widening}, {"leaf_length", 1e-4, 10, &FractalParams::leaf_length},
+        {"leaf_width", 1e-4, 10, &FractalParams::leaf_width}};
+    static const Whole wholes[] = {{"depth", 1, 32, &FractalParams::depth}, {"branches", 1, 64, &FractalParams::branches},
+                                   {"discs", 2, 256, &FractalParams::discs}, {"leaves", 0, 1000, &FractalParams::leaves},
+                                   {"leaf_shape", 0, 5, &FractalParams::leaf_shape}};
+    for (const Real& r : reals) {
+      if (k != r.name) continue;
+      const double v = number(node, k);
+      if (v < r.lo || v > r.hi) {
+        throw InputError(at(node.source()), k + " = " + std::to_string(v) + " is out of range [" +
+                                                std::to_string(r.lo) + ", " + std::to_string(r.hi) + "]");
+      }
+      f.*r.field = v;
+      return;
+    }
+    for (const Whole& w : wholes) {
+      if (k != w.name) continue;
+      if (!node.is_integer()) throw InputError(at(node.source()), k + " must be a whole number");
+      const double v = number(node, k);
+      if (v < w.lo || v > w.hi) {
+        throw InputError(at(node.source()), k + " = " + std::to_string(static_cast<long long>(v)) +
+                                                " is out of range [" + std::to_string(w.lo) + ", " + std::to_string(w.hi) + "]");
+      }
+      f.*w.field = static_cast<int>(v);
+      return;
+    }
+    throw InputError(at(key.source()), "unknown key '" + k + "' for model = \"fractal\"");
+  }
+
+  Species read(std::string_view source) {
+    toml::table root;
+    try {
+      root = toml::parse(source, path_);
+    } catch (const toml::parse_error& e) {
+      throw InputError(at(e.source()), std::string(e.description()));
+    }
+    Species sp;
+    sp.path = path_;
+    bool has_model = false;
+    if (const toml::node* m = root.get("model")) {
+      const std::string model = text(*m, "model");
+      if (model == "fractal") sp.model = Model::Fractal;
+      else if (model != "weber-penn") {
+        throw InputError(at(m->source()),
+                         "model '" + model + "' is not known; known: weber-penn, fractal");
+      }
+    }
+    for (auto&& [key, node] : root) {
+      const std::string k(key.str());
+      if (k == "model") {
+        has_model = true;
+      } else if (sp.model == Model::Fractal && k != "name" && k != "bark" && k != "leaf") {
+        fractal_key(sp, k, node, key);
+      } else if (k == "name") {
+        sp.name = text(node, "name");
+      } else if (k == "level") {
+        levels(sp, table(node, "level"));
+      } else if (k == "bark") {
+        bark(sp, table(node, "bark"));
+      } else if (k == "leaf") {
+        leaf(sp, table(node, "leaf"));
+      } else if (const ParamInfo* info = find_tree_param(k)) {
+        param(sp, *info, -1, node, k);
+      } else if (find_level_param(k)) {
+        throw InputError(at(key.source()),
+                         "'" + k + "' is a per-level parameter: put it in a [level.N] table");
+      } else {
+        throw InputError(at(key.source()), "unknown key '" + k + "'");
+      }
+    }
+    if (!has_model) {
+      throw InputError({path_, 1, 1}, "missing key 'model' (for example model = \"weber-penn\")");
+    }
+    finish_species(sp, positions_);
+    return sp;
+  }
+
+ private:
+  std::string path_;
+  std::map<std::string, SourceLocation> positions_;
+};
+
+}  // namespace
+
+Species parse_species_toml(std::string_view text, const std::string& path) {
+  return TomlSpecies(path).read(text);
+}
+
+}  // namespace arbor::gen

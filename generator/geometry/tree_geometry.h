@@ -1,0 +1,118 @@
+// TreeGeometry: what the tracer renders, as plain data with no Embree dependency — limbs as exact
+// round Hermite curve segments, the flared and lobed trunk as a displaced grid, leaves as
+// triangles, per-primitive material ids, and what is needed for bark coordinates at a hit.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "generator/skeleton.h"
+#include "materials/looks.h"
+
+namespace arbor::gen {
+
+enum MaterialId : std::uint16_t { kMaterialBark = 0, kMaterialLeafFront = 1, kMaterialLeafBack = 2 };
+
+// Metadata of one curve segment.
+struct CurveSegment {
+  std::int32_t limb = 0;
+  float arc0 = 0.0f, arc1 = 0.0f;   // bark arc length (m) at u = 0 and u = 1
+  glm::vec3 normal0{0.0f}, normal1{0.0f};  // rotation-minimising frame normal at the ends
+  std::uint16_t material = kMaterialBark;
+  glm::vec3 color{1.0f};  // multiplies the material's albedo (TREE-MAKER colours)
+};
+
+// Embree's ROUND_HERMITE_CURVE layout: segment i uses points[2i], points[2i+1] (x, y, z, radius)
+// and tangents[2i], tangents[2i+1] (their derivatives with respect to u in [0, 1]).
+struct CurveSet {
+  std::vector<glm::vec4> points;
+  std::vector<glm::vec4> tangents;
+  std::vector<CurveSegment> segments;
+
+  std::size_t size() const { return segments.size(); }
+  glm::vec4 position(std::size_t i, float u) const;    // (x, y, z, radius)
+  glm::vec4 derivative(std::size_t i, float u) const;  // d/du of (x, y, z, radius)
+  glm::vec4 second_derivative(std::size_t i, float u) const;  // d²/du² of (x, y, z, radius)
+};
+
+// One displaced surface of a trunk limb: width vertices around (the last column repeats the
+// first, at azimuth 2π) by height rings along, row-major from startVertex (Embree's RTCGrid).
+struct DisplacedGrid {
+  std::uint32_t first_vertex = 0;
+  std::uint16_t width = 0, height = 0;
+  std::int32_t limb = 0;
+  std::uint16_t material = kMaterialBark;
+};
+
+struct GridSet {
+  std::vector<glm::vec3> vertices;
+  std::vector<glm::vec3> normals;  // of the displaced surface (for shading)
+  std::vector<glm::vec2> bark;     // (arc length along, radius × azimuth around)
+  std::vector<DisplacedGrid> grids;
+};
+
+// Two-sided leaf triangles: the front material faces along the leaf normal (counter-clockwise
+// winding), the back material the other way.
+struct LeafMesh {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec2> uvs;
+  std::vector<std::uint32_t> indices;  // three per triangle
+  std::vector<std::uint16_t> front_material, back_material;  // per triangle
+  std::vector<std::int32_t> leaf;                            // per triangle: Skeleton leaf index
+  std::vector<glm::vec3> color;  // per triangle: multiplies R and T (1 unless the model colours)
+  std::size_t triangle_count() const { return indices.size() / 3; }
+};
+
+struct GeometryStats {
+  std::size_t limbs = 0;
+  std::size_t curve_segments = 0;
+  std::size_t tension_raised_limbs = 0;      // start tension raised to keep radius < curvature radius
+  std::size_t radius_adjusted_segments = 0;  // where radius ≥ radius of curvature was reduced
+  std::size_t grids = 0, grid_vertices = 0, grid_triangles = 0;
+  std::size_t leaf_triangles = 0;
+  std::size_t bytes = 0;  // of all the arrays above
+};
+
+struct TreeGeometry {
+  CurveSet curves;
+  GridSet grids;
+  LeafMesh leaves;
+  GeometryStats stats;
+  glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
+};
+
+enum class LeafStyle { Flat, Hinged };
+
+struct GeometryOptions {
+  bool displace_trunk = true;   // trunks with Flare or Lobes become displaced grids
+  double grid_step = 0.25;      // axial step of the trunk grid, × the local radius
+  int grid_sides = 0;           // around the trunk; 0: max(64, 16 × Lobes)
+  LeafStyle leaf_style = LeafStyle::Flat;
+  double hinge_angle = 20.0;    // degrees each side panel folds up (Bloomenthal §10)
+  double hinge_position = 1.0 / 6.0;  // hinges at x = ±this, across a leaf of unit width
+};
+
+TreeGeometry build_tree_geometry(const Skeleton& skeleton, const GeometryOptions& options = {});
+
+// Geometry options a species asks for (its leaf hinge), defaults otherwise.
+GeometryOptions geometry_options_for(const mat::LeafLook& leaf);
+
+// Bloomenthal §8 bark coordinates: arc length along the limb and circumferential distance
+// (radius × azimuth from the frame normal), continuous along a limb.
+struct BarkCoordinates {
+  float along = 0.0f;
+  float around = 0.0f;
+  float azimuth = 0.0f;  // radians in [0, 2π)
+  float radius = 0.0f;   // of the limb there (without displacement)
+};
+BarkCoordinates curve_bark(const CurveSet& curves, std::size_t segment, float u,
+                           const glm::vec3& point);
+BarkCoordinates grid_bark(const GridSet& grids, std::size_t grid, float u, float v);
+glm::vec3 grid_normal(const GridSet& grids, std::size_t grid, float u, float v);
+
+}  // namespace arbor::gen

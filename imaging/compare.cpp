@@ -1,0 +1,253 @@
+// Image comparison for `arbor compare` and the render tests.
+#include "imaging/compare.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <OpenImageIO/color.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include "common/error.h"
+#include "imaging/image_file.h"
+
+namespace arbor::trace {
+
+namespace {
+
+OIIO::ImageBuf rgb_buffer(const CompareImage& im, const std::vector<float>& data) {
+  OIIO::ImageBuf buf(OIIO::ImageSpec(im.width, im.height, 3, OIIO::TypeDesc::FLOAT));
+  OIIO::ImageBufAlgo::zero(buf);
+  buf.set_pixels(OIIO::ROI(0, im.width, 0, im.height, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT,
+                 data.data());
+  return buf;
+}
+
+void require_same_size(const CompareImage& a, const CompareImage& b) {
+  if (a.width != b.width || a.height != b.height) {
+    throw InputError({b.path, 0, 0}, "is " + std::to_string(b.width) + "x" +
+                                         std::to_string(b.height) + " but " + a.path + " is " +
+                                         std::to_string(a.width) + "x" + std::to_string(a.height) +
+                                         "; compare needs images of the same size");
+  }
+}
+
+// The per-pixel error of the heatmap: mean over R, G, B of |a - b|.
+std::vector<float> pixel_errors(const CompareImage& a, const CompareImage& b) {
+  std::vector<float> e(static_cast<std::size_t>(a.width) * a.height);
+  for (std::size_t p = 0; p < e.size(); ++p) {
+    float s = 0;
+    for (int c = 0; c < 3; ++c) s += std::fabs(a.rgb[3 * p + c] - b.rgb[3 * p + c]);
+    e[p] = s / 3.0f;
+  }
+  return e;
+}
+
+// arbor's false-colour ramp: black, violet, red, orange, pale yellow. Monotonic in luminance
+// so the picture still reads in grey. t in [0, 1]; output is display-referred sRGB.
+void ramp(float t, float rgb[3]) {
+  static const float stops[5][3] = {{0.00f, 0.00f, 0.02f}, {0.33f, 0.05f, 0.45f},
+                                    {0.80f, 0.20f, 0.25f}, {0.98f, 0.60f, 0.10f},
+                                    {0.99f, 0.99f, 0.75f}};
+  t = std::clamp(t, 0.0f, 1.0f) * 4.0f;
+  const int i = std::min(3, static_cast<int>(t));
+  const float f = t - static_cast<float>(i);
+  for (int c = 0; c < 3; ++c) rgb[c] = stops[i][c] + f * (stops[i + 1][c] - stops[i][c]);
+}
+
+// By name: OIIO looks for it in its font folders ($OPENIMAGEIO_FONTS, the system's fonts).
+const char* const kFont = "DejaVuSans";
+
+std::string short_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+// The heatmap with its scale bar: height + 36 rows, display-referred floats in [0, 1].
+OIIO::ImageBuf heatmap_buffer(const CompareImage& a, const CompareImage& b) {
+  const std::vector<float> err = pixel_errors(a, b);
+  const float top = err.empty() ? 0.0f : *std::max_element(err.begin(), err.end());
+  const int bar = 36;
+  OIIO::ImageBuf buf(OIIO::ImageSpec(a.width, a.height + bar, 3, OIIO::TypeDesc::FLOAT));
+  OIIO::ImageBufAlgo::zero(buf);
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = 0; x < a.width; ++x) {
+      float rgb[3];
+      ramp(top > 0 ? err[static_cast<std::size_t>(y) * a.width + x] / top : 0.0f, rgb);
+      buf.setpixel(x, y, rgb);
+    }
+  }
+  // The bar: the ramp from 0 (left) to the largest error (right), labelled at both ends.
+  const int margin = std::min(8, a.width / 8);
+  const int x0 = margin, x1 = std::max(x0 + 1, a.width - margin);
+  for (int y = a.height + 4; y < a.height + 16; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      float rgb[3];
+      ramp(static_cast<float>(x - x0) / static_cast<float>(std::max(1, x1 - x0 - 1)), rgb);
+      buf.setpixel(x, y, rgb);
+    }
+  }
+  const float white[3] = {1.0f, 1.0f, 1.0f};
+  // Labels are a convenience: without FreeType or the font the bar is still drawn.
+  OIIO::ImageBufAlgo::render_text(buf, x0, a.height + 31, "0", 12, kFont, white);
+  OIIO::ImageBufAlgo::render_text(buf, x1, a.height + 31, short_number(top) + " |a-b|", 12, kFont,
+                                  white, OIIO::ImageBufAlgo::TextAlignX::Right);
+  (void)buf.geterror();  // a missing font is not an error of the comparison
+  return buf;
+}
+
+// The variance of rounding v to a half float: 11 significant bits leave a uniform error one
+// ulp wide (ulp²/12); below the smallest normal half the ulp stays that of 2^-14.
+double half_rounding_variance(double v) {
+  const double ulp = std::ldexp(1.0, std::ilogb(std::max(std::fabs(v), 6.1e-5)) - 10);
+  return ulp * ulp / 12.0;
+}
+
+}  // namespace
+
+CompareImage read_compare_image(const std::string& path) {
+  const ImageChannels image = read_image_channels(path);
+  const OIIO::ImageSpec& spec = image.spec;
+  CompareImage im;
+  im.path = path;
+  im.width = spec.width;
+  im.height = spec.height;
+  // arbor's own attribute names the OCIO space exactly; OIIO reports EXRs as plain "Linear".
+  im.colorspace = spec.get_string_attribute("arbor:colorspace");
+  const int r = image.index("R"), g = image.index("G"), bl = image.index("B");
+  if (r < 0 || g < 0 || bl < 0) throw InputError({path, 0, 0}, "has no R, G and B channels");
+  im.half_beauty = spec.channelformat(r) == OIIO::TypeDesc::HALF;
+  const int vr = image.index("variance.R"), vg = image.index("variance.G"), vb = image.index("variance.B");
+  const bool has_var = vr >= 0 && vg >= 0 && vb >= 0;
+  const std::size_t n = static_cast<std::size_t>(spec.width) * spec.height;
+  im.rgb.resize(3 * n);
+  if (has_var) im.variance.resize(3 * n);
+  const int rgb_idx[3] = {r, g, bl}, var_idx[3] = {vr, vg, vb};
+  for (std::size_t p = 0; p < n; ++p) {
+    for (int c = 0; c < 3; ++c) {
+      im.rgb[3 * p + c] = image.finite(p, rgb_idx[c], "");
+      if (has_var) {
+        const float s = image.finite(p, var_idx[c], "the variance of ");
+        if (s < 0) {
+          throw InputError({path, 0, 0}, "the variance of pixel (" + std::to_string(p % spec.width) +
+                                             ", " + std::to_string(p / spec.width) + ") is negative");
+        }
+        im.variance[3 * p + c] = s;
+      }
+    }
+  }
+  return im;
+}
+
+CompareMetrics compare_images(const CompareImage& a, const CompareImage& b) {
+  require_same_size(a, b);
+  const OIIO::ImageBuf ba = rgb_buffer(a, a.rgb), bb = rgb_buffer(b, b.rgb);
+  const OIIO::ImageBufAlgo::CompareResults r = OIIO::ImageBufAlgo::compare(ba, bb, 1e30f, 1e30f);
+  if (r.error) throw RuntimeFailure("cannot compare " + a.path + " and " + b.path);
+  CompareMetrics m;
+  m.rmse = r.rms_error;
+  m.mean_abs = r.meanerror;
+  m.max_abs = r.maxerror;
+  m.max_x = r.maxx;
+  m.max_y = r.maxy;
+  m.psnr = r.PSNR;
+  double rel = 0;
+  for (std::size_t i = 0; i < a.rgb.size(); ++i) {
+    const double d = static_cast<double>(a.rgb[i]) - b.rgb[i];
+    rel += d * d / (static_cast<double>(b.rgb[i]) * b.rgb[i] + 0.01);
+  }
+  m.rel_mse = a.rgb.empty() ? 0.0 : rel / static_cast<double>(a.rgb.size());
+  return m;
+}
+
+double normal_two_sided_critical(double p) {
+  ARBOR_CHECK(p > 0 && p < 1);
+  // erfc(z / sqrt 2) is the two-sided tail; it falls monotonically, so bisect.
+  double lo = 0, hi = 40;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (std::erfc(mid / std::sqrt(2.0)) > p ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alpha, double required) {
+  require_same_size(a, b);
+  if (b.variance.empty()) {
+    throw InputError({b.path, 0, 0}, "has no variance.R/G/B channels; a reference for --reference-test "
+                                     "is rendered with aovs = [\"variance\"]");
+  }
+  ZTest t;
+  t.alpha = alpha;
+  t.required = required;
+  t.a_has_variance = !a.variance.empty();
+  const std::size_t n = static_cast<std::size_t>(a.width) * a.height;
+  t.pixels = static_cast<long long>(n);
+  // Sidak over all 3N channel tests: the chance that any of them fails by noise alone is alpha.
+  t.alpha_channel = -std::expm1(std::log1p(-alpha) / (3.0 * static_cast<double>(n)));
+  t.z_critical = normal_two_sided_critical(t.alpha_channel);
+  for (std::size_t p = 0; p < n; ++p) {
+    bool ok = true;
+    for (int c = 0; c < 3 && ok; ++c) {
+      const std::size_t i = 3 * p + c;
+      const double d = static_cast<double>(a.rgb[i]) - b.rgb[i];
+      double var = b.variance[i] + (t.a_has_variance ? a.variance[i] : 0.0);
+      if (b.half_beauty) var += half_rounding_variance(b.rgb[i]);
+      if (a.half_beauty) var += half_rounding_variance(a.rgb[i]);
+      ok = var > 0 ? std::fabs(d) <= t.z_critical * std::sqrt(var) : d == 0.0;
+    }
+    if (!ok) ++t.failed;
+  }
+  t.pass_fraction = n ? 1.0 - static_cast<double>(t.failed) / static_cast<double>(n) : 1.0;
+  t.passed = t.pass_fraction >= required;
+  return t;
+}
+
+void write_compare_pictures(const CompareImage& a, const CompareImage& b,
+                            const ComparePictures& pictures) {
+  require_same_size(a, b);
+  if (pictures.heatmap.empty() && pictures.side_by_side.empty()) return;
+  const OIIO::ImageBuf heat = heatmap_buffer(a, b);
+  OIIO::ImageBuf row;
+  if (!pictures.side_by_side.empty()) {
+    OIIO::ColorConfig config(pictures.ocio_config);
+    const std::vector<std::string> names = config.getColorSpaceNames();
+    auto shown = [&](const CompareImage& im) {
+      OIIO::ImageBuf out;
+      // Images not written by arbor are taken to be in the config's scene_linear role.
+      const std::string from = im.colorspace.empty() ? "scene_linear" : im.colorspace;
+      if (!im.colorspace.empty() && std::find(names.begin(), names.end(), from) == names.end()) {
+        throw InputError({im.path, 0, 0}, "its colour space \"" + from + "\" is not in " +
+                                              pictures.ocio_config);
+      }
+      if (!OIIO::ImageBufAlgo::ociodisplay(out, rgb_buffer(im, im.rgb), pictures.display,
+                                           pictures.view, from, "", false, "", "", &config)) {
+        throw InputError({im.path, 0, 0}, "cannot show it through display \"" + pictures.display +
+                                              "\", view \"" + pictures.view + "\": " + out.geterror());
+      }
+      return out;
+    };
+    const OIIO::ImageBuf sa = shown(a), sb = shown(b);
+    const int gap = 4;
+    row.reset(OIIO::ImageSpec(3 * a.width + 2 * gap, heat.spec().height, 3, OIIO::TypeDesc::FLOAT));
+    OIIO::ImageBufAlgo::zero(row);
+    const float white[3] = {1.0f, 1.0f, 1.0f};
+    const bool ok = OIIO::ImageBufAlgo::paste(row, 0, 0, 0, 0, sa) &&
+                    OIIO::ImageBufAlgo::paste(row, a.width + gap, 0, 0, 0, sb) &&
+                    OIIO::ImageBufAlgo::paste(row, 2 * (a.width + gap), 0, 0, 0, heat);
+    if (!ok) throw RuntimeFailure("cannot compose " + pictures.side_by_side + ": " + row.geterror());
+    OIIO::ImageBufAlgo::render_text(row, 4, a.height + 22, "A", 12, kFont, white);
+    OIIO::ImageBufAlgo::render_text(row, a.width + gap + 4, a.height + 22, "B", 12, kFont, white);
+    (void)row.geterror();
+  }
+  // Both pictures are made before either is written: a bad view leaves neither behind.
+  if (!pictures.heatmap.empty()) write_imagebuf_atomic(heat, pictures.heatmap, OIIO::TypeDesc::UINT8);
+  if (!pictures.side_by_side.empty()) {
+    write_imagebuf_atomic(row, pictures.side_by_side, OIIO::TypeDesc::UINT8);
+  }
+}
+
+}  // namespace arbor::trace

@@ -1,0 +1,69 @@
+// Image comparison: error metrics through OIIO, false-colour heatmaps, side-by-side pictures
+// through the OCIO display view, and the per-pixel z-test of render tests (DESIGN.md, "How we
+// know it is right").
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace arbor::trace {
+
+// The RGB of an EXR (or any image OIIO reads) and, when present, its variance.{R,G,B}
+// channels: the variance of each pixel's mean, as arbor writes it.
+struct CompareImage {
+  std::string path;
+  std::string colorspace;  // arbor:colorspace (the OCIO space it was written in), or empty
+  int width = 0, height = 0;
+  std::vector<float> rgb;       // width*height*3
+  std::vector<float> variance;  // width*height*3, or empty
+  bool half_beauty = false;     // R,G,B stored as half floats (adds quantisation noise)
+};
+
+// InputError when the file cannot be read, lacks R/G/B, or holds a NaN or infinity.
+CompareImage read_compare_image(const std::string& path);
+
+struct CompareMetrics {
+  double rmse = 0, mean_abs = 0, rel_mse = 0, max_abs = 0, psnr = 0;
+  int max_x = 0, max_y = 0;  // where max_abs is
+};
+
+// RMSE, mean absolute error, max error and PSNR (peak 1) from OIIO's ImageBufAlgo::compare,
+// over R, G and B. rel_mse = mean over channels of (a-b)^2 / (b^2 + 0.01), B the reference.
+CompareMetrics compare_images(const CompareImage& a, const CompareImage& b);
+
+struct ZTest {
+  double alpha = 0.01;          // family-wise level over all pixels
+  double alpha_channel = 0;     // per channel, after the Sidak correction over 3*pixels tests
+  double z_critical = 0;        // two-sided critical |z| at alpha_channel
+  double pass_fraction = 0;     // pixels whose three channels all pass
+  double required = 0.995;
+  long long pixels = 0, failed = 0;
+  bool passed = false;
+  bool a_has_variance = false;
+};
+
+// Per-pixel z-test of A against reference B: z = (a - b) / sqrt(var_a + var_b + q_b), q_b the
+// half-float quantisation variance of B's beauty when stored as half. B must carry variance
+// (InputError otherwise); A's is used when present. Sidak: alpha_channel = 1-(1-alpha)^(1/(3N)).
+ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alpha = 0.01,
+                       double required = 0.995);
+
+struct ComparePictures {
+  // A false-colour image of the per-pixel error (mean over RGB of |a-b|), 0 .. the largest
+  // error, with a labelled scale bar below it.
+  std::string heatmap;
+  // A, B (through the OCIO display/view from each file's colour space) and the heatmap in a row.
+  std::string side_by_side;
+  std::string display = "sRGB", view = "ACES 1.0 SDR-video";
+  std::string ocio_config;  // the config of the display and view (default_ocio_config())
+};
+
+// Writes the pictures whose paths are set, atomically (8-bit; format by extension). Both are
+// made before either is written, so an unknown display or view leaves neither behind.
+void write_compare_pictures(const CompareImage& a, const CompareImage& b,
+                            const ComparePictures& pictures);
+
+// The two-sided standard-normal critical value: P(|Z| > z) = p.
+double normal_two_sided_critical(double p);
+
+}  // namespace arbor::trace

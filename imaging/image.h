@@ -1,0 +1,32 @@
+// A rendered image as the film holds it (beauty, variance, AOVs) and what its render cost: the
+// plain data the image writers take.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace arbor::trace {
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<glm::vec3> beauty;    // mean, output colour space
+  std::vector<glm::vec3> variance;  // variance of the mean (sample variance / n), per channel
+  std::vector<glm::vec3> albedo;    // first hit, output colour space
+  std::vector<glm::vec3> normal;    // first hit, world space
+  std::vector<float> depth;         // distance to the first hit along the camera ray
+  // Integrator-specific AOVs (the treemaker integrator's), pixel means: extra_names.size()
+  // floats per pixel; colour triples are in the output colour space, like the beauty.
+  std::vector<std::string> extra_names;
+  std::vector<float> extra;
+};
+
+struct RenderStats {
+  double seconds = 0.0;
+  std::uint64_t samples = 0, rays = 0;
+  std::uint64_t nonfinite = 0;  // samples whose radiance was NaN or infinite (left out, counted)
+};
+
+}  // namespace arbor::trace

@@ -1,0 +1,98 @@
+// Bark tiling, bump mapping and leaf tints: surface points to BSDF values.
+#include "materials/material.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "common/math.h"
+#include "materials/bark_noise.h"
+
+namespace arbor::mat {
+
+namespace {
+// Whole repeats of a tile round a limb of `radius` (the nearest to circumference / tile, so
+// there is no seam), at least one.
+double repeats_round(double radius, double tile) {
+  return std::max(1.0, std::round(kTwoPi * radius / tile));
+}
+}  // namespace
+
+double BarkMaterial::height(double along, double azimuth, double radius) const {
+  if (!bump_map) return bark_height(along, azimuth, radius);
+  const double repeats = repeats_round(radius, bump_tile);
+  return bump_map->sample(azimuth / kTwoPi * repeats, along / bump_tile);
+}
+
+glm::vec3 BarkMaterial::bumped_normal(const SurfacePoint& p) const {
+  const glm::vec3 n = p.shading_normal;
+  if (bump_height <= 0.0f || p.radius <= 0.0f) return n;
+  glm::vec3 t = p.tangent - n * glm::dot(p.tangent, n);
+  if (glm::length(t) < 1e-6f) return n;
+  t = glm::normalize(t);
+  const glm::vec3 around = glm::cross(t, n);  // direction of increasing azimuth
+  const double a = p.along, th = p.azimuth, r = p.radius, e = 0.002;
+  const double h_along = (height(a + e, th, r) - height(a - e, th, r)) / (2 * e);
+  const double h_around = (height(a, th + e / r, r) - height(a, th - e / r, r)) / (2 * e);
+  const glm::vec3 bumped = n - t * static_cast<float>(bump_height * h_along) -
+                           around * static_cast<float>(bump_height * h_around);
+  return glm::normalize(bumped);
+}
+
+glm::vec3 BarkMaterial::albedo_at(const SurfacePoint& p) const {
+  glm::vec3 a = albedo * p.color;
+  if (albedo_map) {
+    // Tiled like the bump map: whole repeats round the limb, every bump_tile metres along it.
+    const double repeats = repeats_round(p.radius, bump_tile);
+    a *= albedo_map->sample(p.azimuth / kTwoPi * repeats, p.along / bump_tile);
+  }
+  return a;
+}
+
+glm::vec3 LeafMaterial::tint(const SurfacePoint& p) const {
+  const glm::vec3 tex = albedo_map ? albedo_map->sample(p.uv.x, p.uv.y) : glm::vec3(1.0f);
+  return tex * p.color;
+}
+
+glm::vec3 LeafMaterial::reflectance(const SurfacePoint& p) const {
+  const glm::vec3 side = p.leaf_back ? back : front;
+  return tinted ? side * tint(p) : side;
+}
+
+SurfaceBsdf Material::bsdf(const SurfacePoint& p) const {
+  SurfaceBsdf b;
+  b.normal = p.shading_normal;
+  switch (kind) {
+    case Kind::Diffuse:
+      b.diffuse.albedo = glm::dvec3(albedo);
+      break;
+    case Kind::Bark:
+      b.diffuse.albedo = glm::dvec3(bark.albedo_at(p));
+      b.diffuse.sigma = bark.roughness;
+      b.normal = bark.bumped_normal(p);
+      break;
+    case Kind::Leaf: {
+      b.leaf = true;
+      const glm::vec3 t = leaf.tinted ? leaf.tint(p) : glm::vec3(1.0f);
+      const glm::vec3 side = p.leaf_back ? leaf.back : leaf.front;
+      b.leaf_bsdf.reflectance = glm::dvec3(leaf.tinted ? side * t : side);
+      b.leaf_bsdf.transmittance = glm::dvec3(leaf.tinted ? leaf.transmittance * t : leaf.transmittance);
+      break;
+    }
+  }
+  if (glm::dot(b.normal, p.geometric_normal) < 0.0f) b.normal = -b.normal;
+  b.albedo = b.leaf ? glm::vec3(b.leaf_bsdf.reflectance) : glm::vec3(b.diffuse.albedo);
+  return b;
+}
+
+glm::vec3 Material::albedo_at(const SurfacePoint& p) const {
+  switch (kind) {
+    case Kind::Diffuse: return albedo;
+    case Kind::Bark: return bark.albedo_at(p);
+    case Kind::Leaf: return leaf.reflectance(p);
+  }
+  return albedo;
+}
+
+}  // namespace arbor::mat

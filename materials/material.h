@@ -1,0 +1,89 @@
+// The material layer: what a surface is made of (bark, a leaf, plain diffuse), and how a surface
+// point of it becomes a BSDF value. The tracer only finds hits and passes their geometry here.
+#pragma once
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "materials/leaf_bsdf.h"
+#include "materials/oren_nayar.h"
+#include "materials/textures.h"
+
+namespace arbor::mat {
+
+// What a material needs to know of the surface point it shades (world space, unit vectors).
+struct SurfacePoint {
+  glm::vec3 shading_normal{0.0f, 0.0f, 1.0f};  // on the side the ray came from
+  glm::vec3 geometric_normal{0.0f, 0.0f, 1.0f};
+  glm::vec3 tangent{1.0f, 0.0f, 0.0f};  // along the limb, for bark bump mapping
+  float along = 0.0f, azimuth = 0.0f, radius = 0.0f;  // bark coordinates (metres, radians, metres)
+  glm::vec2 uv{0.0f};          // over the unit leaf
+  glm::vec3 color{1.0f};       // the primitive's colour, multiplying the albedo
+  bool leaf_back = false;      // a leaf seen from its back (the back reflectance applies)
+};
+
+// Bark: Oren–Nayar reflection (Lambertian at σ = 0) of an albedo, optionally mapped by an image
+// tiled along and round the limb, with bump mapping by procedural furrows or a height image.
+struct BarkMaterial {
+  glm::vec3 albedo{0.3f};
+  float roughness = 0.0f;     // radians (Oren–Nayar σ)
+  float bump_height = 0.0f;   // metres of relief
+  const HeightMap* bump_map = nullptr;   // null: procedural bark (bark_noise.h)
+  float bump_tile = 0.25f;    // metres per repeat of bump_map and albedo_map
+  const ColorMap* albedo_map = nullptr;  // multiplies albedo
+
+  glm::vec3 albedo_at(const SurfacePoint& p) const;
+  // The shading normal tilted against the bark's height gradient along and round the limb.
+  glm::vec3 bumped_normal(const SurfacePoint& p) const;
+  // Bark height in [0, 1] at bark coordinates.
+  double height(double along, double azimuth, double radius) const;
+};
+
+// A thin leaf: diffuse reflection (front and back differ) and diffuse transmission, both
+// multiplied by the leaf's albedo map over its uv and the primitive's colour.
+struct LeafMaterial {
+  glm::vec3 front{0.1f}, back{0.1f}, transmittance{0.1f};
+  const ColorMap* albedo_map = nullptr;
+  bool tinted = true;  // false: R and T as given (mesh leaves have no uv or colour)
+
+  glm::vec3 tint(const SurfacePoint& p) const;
+  // The reflectance of the side that was hit, tinted: the albedo AOV of a leaf.
+  glm::vec3 reflectance(const SurfacePoint& p) const;
+};
+
+// A surface's BSDF at one point, in the shading frame of `normal`: opaque diffuse (bark, ground,
+// meshes) or a two-sided leaf.
+struct SurfaceBsdf {
+  bool leaf = false;
+  OrenNayar diffuse;
+  LeafBsdf leaf_bsdf;
+  glm::vec3 normal{0.0f};  // shading normal, on the side the ray came from
+  glm::vec3 albedo{0.0f};  // what the albedo AOV shows
+
+  glm::vec3 eval(const glm::dvec3& wo, const glm::dvec3& wi) const {
+    return glm::vec3(leaf ? leaf_bsdf.eval(wo, wi) : diffuse.eval(wo, wi));
+  }
+  float pdf(const glm::dvec3& wo, const glm::dvec3& wi) const {
+    return static_cast<float>(leaf ? leaf_bsdf.pdf(wo, wi) : diffuse.pdf(wo, wi));
+  }
+  // u chooses the direction, u_lobe the leaf's lobe (reflect or transmit).
+  BsdfSample sample(const glm::dvec3& wo, glm::vec2 u, float u_lobe) const {
+    return leaf ? leaf_bsdf.sample(wo, glm::dvec3(u_lobe, u.x, u.y)) : diffuse.sample(wo, glm::dvec2(u.x, u.y));
+  }
+};
+
+// What one surface of a scene is made of.
+struct Material {
+  enum class Kind { Diffuse, Bark, Leaf } kind = Kind::Diffuse;
+  glm::vec3 albedo{0.5f};  // Diffuse
+  BarkMaterial bark;       // Bark
+  LeafMaterial leaf;       // Leaf
+
+  // The BSDF at p (normals already facing the incoming ray). The shading normal is kept on the
+  // geometric normal's side after bump mapping.
+  SurfaceBsdf bsdf(const SurfacePoint& p) const;
+  // The albedo AOV at p: bsdf(p).albedo without building the BSDF.
+  glm::vec3 albedo_at(const SurfacePoint& p) const;
+};
+
+}  // namespace arbor::mat

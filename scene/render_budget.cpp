@@ -1,0 +1,75 @@
+// Up-front memory estimate of a render.
+#include "scene/render_budget.h"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
+#include "common/error.h"
+
+namespace arbor::trace {
+
+namespace {
+
+constexpr std::uint64_t kBytesPerPixel = 72;      // film and beauty, PNG included
+constexpr std::uint64_t kBytesPerChannel = 8;     // each EXR channel: its pixels and encoding
+constexpr std::uint64_t kBytesPerInstance = 1024;
+constexpr std::uint64_t kTreemakerChannels = 23;  // the treemaker AOVs (film.cpp)
+constexpr std::uint64_t kBaseline = 256ull << 20; // libraries, OCIO, Embree's device
+
+double gigabytes(std::uint64_t bytes) { return static_cast<double>(bytes) / double(1ull << 30); }
+
+}  // namespace
+
+MemoryEstimate estimate_render_memory(const SceneDesc& s) {
+  MemoryEstimate e;
+  std::uint64_t channels = 3;
+  for (const std::string& a : s.output.aovs) {
+    channels += a == "depth" ? 1 : a == "treemaker" ? kTreemakerChannels : 3;
+  }
+  const std::uint64_t pixels = static_cast<std::uint64_t>(s.render.width) * static_cast<std::uint64_t>(s.render.height);
+  e.image_bytes = pixels * (kBytesPerPixel + kBytesPerChannel * channels);
+  e.instances = s.trees.size();
+  for (const ForestDesc& f : s.forests) e.instances += static_cast<std::uint64_t>(f.count);
+  e.instance_bytes = e.instances * kBytesPerInstance;
+  return e;
+}
+
+std::uint64_t usable_memory_bytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+  std::uint64_t usable = pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page)
+                                               : ~0ull;
+  for (const int resource : {RLIMIT_AS, RLIMIT_DATA}) {
+    rlimit limit{};
+    if (::getrlimit(resource, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
+      usable = std::min<std::uint64_t>(usable, limit.rlim_cur);
+    }
+  }
+  return usable;
+}
+
+void check_render_memory(const SceneDesc& s, bool force, std::uint64_t usable) {
+  const MemoryEstimate e = estimate_render_memory(s);
+  if (force || e.total() + kBaseline <= usable) return;
+  SourceLocation where{s.path, 0, 0};
+  int largest = 0;
+  for (const ForestDesc& f : s.forests) {
+    if (f.count > largest && e.instance_bytes > e.image_bytes) {
+      largest = f.count;
+      where = f.where;
+    }
+  }
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "the render would need about %.1f GB (a %dx%d image with its outputs: %.1f GB; %llu "
+                "trees: %.1f GB), more than the %.1f GB this process may use; lower the size or the "
+                "count, or use --force to render it anyway",
+                gigabytes(e.total() + kBaseline), s.render.width, s.render.height, gigabytes(e.image_bytes),
+                static_cast<unsigned long long>(e.instances), gigabytes(e.instance_bytes), gigabytes(usable));
+  throw InputError(where, buf);
+}
+
+}  // namespace arbor::trace

@@ -1,0 +1,288 @@
+// Building a scene: species loaded once, trees grown once per (species, seed, time), placements,
+// materials from species looks and scene overrides, meshes in world space.
+#include "scene/scene.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "common/error.h"
+#include "common/math.h"
+#include "common/progress.h"
+#include "common/rng.h"
+#include "formats/obj_mesh.h"
+#include "formats/species_file.h"
+#include "generator/grow.h"
+
+namespace arbor::trace {
+
+namespace {
+
+glm::vec3 to_vec3(const Rgb& c) { return glm::vec3(c[0], c[1], c[2]); }
+
+// TREE-MAKER's h0 and r0 (§III) from the skeleton's points, measured from the root stem's first
+// point. A tree whose points all lie on one vertical line (r0 = 0), or at one height (h0 = 0),
+// takes that measure from its geometry's bounds instead, so h/h0 and r/r0 stay finite.
+TreeExtent tree_extent(const gen::Skeleton& sk, const gen::TreeGeometry& g) {
+  TreeExtent e;
+  for (const gen::Stem& stem : sk.stems) {
+    if (stem.parent < 0 && stem.point_count > 0) {
+      e.base = sk.points[stem.first_point].position;
+      break;
+    }
+  }
+  float h0 = 0.0f, r0 = 0.0f;
+  for (const gen::SkeletonPoint& p : sk.points) {
+    h0 = std::max(h0, p.position.z - e.base.z);
+    r0 = std::max(r0, glm::length(glm::vec2(p.position - e.base)));
+  }
+  if (h0 <= 1e-6f) h0 = std::max(g.bounds_max.z - e.base.z, 1e-3f);
+  if (r0 <= 1e-6f) {
+    const glm::vec2 far = glm::max(glm::abs(glm::vec2(g.bounds_min - e.base)),
+                                   glm::abs(glm::vec2(g.bounds_max - e.base)));
+    r0 = std::max(glm::length(far), 1e-3f);
+  }
+  e.height = h0;
+  e.radius = r0;
+  return e;
+}
+
+// The materials of one placed tree (species defaults with the scene's overrides).
+struct TreeLook {
+  mat::Material bark, leaf;
+  mat::TreemakerWeights treemaker;
+};
+
+class SceneBuilder {
+ public:
+  SceneBuilder(Scene& scene, std::string ocio_config) : s_(scene), ocio_config_(std::move(ocio_config)) {}
+
+  const gen::Species& species(const std::string& path) {
+    for (const auto& [p, sp] : species_) {
+      if (p == path) return *sp;
+    }
+    // A species file's errors name the species file, line and column themselves.
+    species_.emplace_back(path, std::make_unique<gen::Species>(gen::load_species(path)));
+    return *species_.back().second;
+  }
+
+  int prototype_for(const std::string& path, std::uint64_t seed, double time, const SourceLocation& where) {
+    const std::string key = path + "#" + std::to_string(seed) + "@" + std::to_string(time);
+    for (const auto& [k, index] : prototype_keys_) {
+      if (k == key) return index;
+    }
+    const gen::Species& sp = species(path);
+    gen::GrowOptions options;
+    options.seed = seed;
+    options.time = time;
+    gen::Skeleton skeleton;
+    try {
+      skeleton = gen::grow_tree(sp, options);
+    } catch (const RuntimeFailure& e) {
+      throw InputError(where, std::string(e.what()));
+    }
+    TreePrototypeData p;
+    p.geometry = std::make_unique<gen::TreeGeometry>(
+        gen::build_tree_geometry(skeleton, gen::geometry_options_for(sp.leaf)));
+    p.extent = tree_extent(skeleton, *p.geometry);
+    s_.stats.curve_segments += p.geometry->stats.curve_segments;
+    s_.stats.triangles += p.geometry->stats.leaf_triangles + p.geometry->stats.grid_triangles;
+    s_.stats.geometry_bytes += p.geometry->stats.bytes;
+    s_.prototypes.push_back(std::move(p));
+    const int index = static_cast<int>(s_.prototypes.size()) - 1;
+    prototype_keys_.emplace_back(key, index);
+    return index;
+  }
+
+  const mat::ColorMap* albedo_map(const std::string& path) {
+    for (const auto& [p, map] : s_.albedo_maps) {
+      if (p == path) return map.get();
+    }
+    s_.albedo_maps.emplace_back(path, std::make_unique<mat::ColorMap>(path, ocio_config_));
+    return s_.albedo_maps.back().second.get();
+  }
+
+  const mat::HeightMap* bump_map(const std::string& path) {
+    for (const auto& [p, map] : s_.bump_maps) {
+      if (p == path) return map.get();
+    }
+    s_.bump_maps.emplace_back(path, std::make_unique<mat::HeightMap>(path));
+    return s_.bump_maps.back().second.get();
+  }
+
+  TreeLook look_for(const gen::Species& sp, const BarkOverride& bark, const LeafOverride& leaf,
+                    const TreemakerOverride& tm, const SourceLocation& where) {
+    TreeLook look;
+    // The species' own weights (a template's light {}), else arbor's defaults
+    // (treemaker-format.md), then the scene's [tree.treemaker] / [forest.treemaker].
+    if (sp.treemaker_weights) look.treemaker = *sp.treemaker_weights;
+    look.treemaker.ambient = tm.ambient.value_or(look.treemaker.ambient);
+    look.treemaker.lambert = tm.lambert.value_or(look.treemaker.lambert);
+    look.treemaker.height = tm.height.value_or(look.treemaker.height);
+    look.treemaker.radius = tm.radius.value_or(look.treemaker.radius);
+    look.treemaker.angle = tm.angle.value_or(look.treemaker.angle);
+    mat::BarkMaterial& b = look.bark.bark;
+    look.bark.kind = mat::Material::Kind::Bark;
+    b.albedo = to_vec3(bark.albedo.value_or(sp.bark.albedo));
+    b.bump_height = static_cast<float>(bark.bump_height.value_or(sp.bark.bump_height));
+    b.roughness = static_cast<float>(bark.roughness.value_or(sp.bark.roughness) * kPi / 180.0);
+    b.bump_tile = static_cast<float>(bark.bump_tile);
+    if (!bark.albedo_map.empty()) b.albedo_map = albedo_map(bark.albedo_map);
+    if (!bark.bump_map.empty()) b.bump_map = bump_map(bark.bump_map);
+    mat::LeafMaterial& l = look.leaf.leaf;
+    look.leaf.kind = mat::Material::Kind::Leaf;
+    if (!leaf.albedo_map.empty()) l.albedo_map = albedo_map(leaf.albedo_map);
+    l.front = to_vec3(leaf.reflectance.value_or(sp.leaf.reflectance));
+    l.back = to_vec3(leaf.back_reflectance.value_or(sp.leaf.back_reflectance));
+    l.transmittance = to_vec3(leaf.transmittance.value_or(sp.leaf.transmittance));
+    for (int i = 0; i < 3; ++i) {
+      if (l.front[i] + l.transmittance[i] > 1.0f + 1e-6f || l.back[i] + l.transmittance[i] > 1.0f + 1e-6f) {
+        throw InputError(where, "leaf reflectance + transmittance must be at most 1 in every "
+                                "channel, front and back (species values with this tree's overrides)");
+      }
+    }
+    return look;
+  }
+
+  void add_instance(int prototype, const Placement& pl, const TreeLook& look) {
+    TreeInstance inst;
+    inst.prototype = prototype;
+    const glm::mat4 m = placement_matrix(pl);
+    inst.to_world = m;
+    inst.to_object = glm::inverse(m);
+    inst.normal_to_world = glm::inverseTranspose(glm::mat3(m));
+    inst.bark = look.bark;
+    inst.leaf = look.leaf;
+    inst.treemaker = look.treemaker;
+    // Rotation about z and uniform scale: heights and horizontal distances scale by `scale`.
+    const TreeExtent& pe = s_.prototypes[static_cast<size_t>(prototype)].extent;
+    inst.extent.base = glm::vec3(m * glm::vec4(pe.base, 1.0f));
+    inst.extent.height = pe.height * static_cast<float>(pl.scale);
+    inst.extent.radius = pe.radius * static_cast<float>(pl.scale);
+    s_.instances.push_back(inst);
+  }
+
+  void add_mesh(const MeshDesc& d);
+
+ private:
+  Scene& s_;
+  std::string ocio_config_;
+  std::vector<std::pair<std::string, std::unique_ptr<gen::Species>>> species_;
+  std::vector<std::pair<std::string, int>> prototype_keys_;
+};
+
+void SceneBuilder::add_mesh(const MeshDesc& d) {
+  const ObjMesh obj = load_obj(d.path);
+  MeshObject mesh;
+  // Placement: the file's up axis to z, then scale, rotation about z, position.
+  glm::mat4 m = placement_matrix(d.placement);
+  if (d.up == "y") m = glm::rotate(m, 1.5707963f, glm::vec3(1, 0, 0));  // y up → z up
+  mesh.positions.reserve(obj.positions.size());
+  for (const glm::vec3& p : obj.positions) mesh.positions.emplace_back(m * glm::vec4(p, 1.0f));
+  std::map<std::string, std::uint16_t> material_index;
+  auto material_of = [&](const std::string& name) -> std::uint16_t {
+    const auto found = material_index.find(name);
+    if (found != material_index.end()) return found->second;
+    if (mesh.materials.size() >= 65535) {
+      throw InputError(d.where, "mesh " + d.path + ": more than 65535 materials");
+    }
+    mat::Material material;
+    const auto it = d.materials.find(name);
+    if (it != d.materials.end()) {
+      const MeshMaterialDesc& md = it->second;
+      // A mesh's bark is its albedo, unmapped and unbumped; its leaves are untinted.
+      if (md.kind == "leaf") {
+        material.kind = mat::Material::Kind::Leaf;
+        material.leaf.tinted = false;
+        material.leaf.front = to_vec3(md.reflectance);
+        material.leaf.back = to_vec3(md.back_reflectance);
+        material.leaf.transmittance = to_vec3(md.transmittance);
+      } else {
+        material.albedo = to_vec3(md.albedo);
+      }
+    }
+    mesh.materials.push_back(material);
+    return material_index[name] = static_cast<std::uint16_t>(mesh.materials.size() - 1);
+  };
+  // [mesh.material.NAME] by the faces' material name, else by their group; with no table at all
+  // every face is diffuse grey.
+  std::vector<std::uint16_t> material_of_part(obj.parts.size());
+  for (std::size_t i = 0; i < obj.parts.size(); ++i) {
+    const ObjMesh::Part& part = obj.parts[i];
+    std::string key;
+    if (!d.materials.empty()) {
+      if (!part.material.empty() && d.materials.count(part.material)) key = part.material;
+      else if (d.materials.count(part.group)) key = part.group;
+      else {
+        throw InputError(d.where, "mesh " + d.path + ": faces of group '" + part.group + "' (material '" +
+                                      part.material + "', from line " + std::to_string(obj.part_line[i]) +
+                                      ") have no [mesh.material.*] entry; name the group or the material");
+      }
+    }
+    material_of_part[i] = material_of(key);
+  }
+  mesh.indices = obj.indices;
+  mesh.material.reserve(obj.part.size());
+  for (const std::uint32_t p : obj.part) mesh.material.push_back(material_of_part[p]);
+  if (mesh.indices.empty()) throw InputError({d.path, 0, 0}, "the OBJ mesh has no faces");
+  s_.stats.triangles += mesh.indices.size() / 3;
+  s_.meshes.push_back(std::move(mesh));
+}
+
+}  // namespace
+
+glm::mat4 placement_matrix(const Placement& pl) {
+  glm::mat4 m(1.0f);
+  m = glm::translate(m, glm::vec3(pl.position[0], pl.position[1], pl.position[2]));
+  m = glm::rotate(m, static_cast<float>(pl.rotation * kPi / 180.0), glm::vec3(0, 0, 1));
+  m = glm::scale(m, glm::vec3(static_cast<float>(pl.scale)));
+  return m;
+}
+
+std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::string& ocio_config,
+                                         Progress* progress) {
+  const auto start = std::chrono::steady_clock::now();
+  auto scene = std::make_unique<Scene>();
+  SceneBuilder b(*scene, ocio_config);
+  std::size_t total = desc.trees.size(), done = 0;
+  for (const ForestDesc& f : desc.forests) total += static_cast<std::size_t>(f.variants);
+  if (progress) progress->set_total(total);
+  for (const TreeDesc& t : desc.trees) {
+    const int p = b.prototype_for(t.species, t.seed, t.time, t.where);
+    b.add_instance(p, t.placement, b.look_for(b.species(t.species), t.bark, t.leaf, t.treemaker, t.where));
+    if (progress) progress->update(++done);
+  }
+  for (const ForestDesc& f : desc.forests) {
+    const TreeLook look = b.look_for(b.species(f.species), f.bark, f.leaf, f.treemaker, f.where);
+    std::vector<int> variants;
+    for (int v = 0; v < f.variants; ++v) {
+      variants.push_back(b.prototype_for(f.species, derive_key(f.seed, static_cast<std::uint64_t>(v)), 0.0, f.where));
+      if (progress) progress->update(++done);
+    }
+    for (int i = 0; i < f.count; ++i) {
+      Rng rng(derive_key(f.seed ^ 0xf0e57u, static_cast<std::uint64_t>(i)));
+      Placement pl;
+      pl.position = {f.area[0] + (f.area[2] - f.area[0]) * rng.uniform(),
+                     f.area[1] + (f.area[3] - f.area[1]) * rng.uniform(), 0.0};
+      pl.rotation = 360.0 * rng.uniform();
+      pl.scale = rng.vary(1.0, 0.1);
+      b.add_instance(variants[static_cast<size_t>(i % f.variants)], pl, look);
+    }
+  }
+  for (const MeshDesc& m : desc.meshes) b.add_mesh(m);
+  if (desc.ground.enabled) {
+    scene->has_ground = true;
+    scene->ground.albedo = to_vec3(desc.ground.albedo);
+  }
+  scene->stats.prototypes = scene->prototypes.size();
+  scene->stats.instances = scene->instances.size();
+  scene->stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return scene;
+}
+
+}  // namespace arbor::trace

@@ -1,0 +1,88 @@
+// A scene ready to render, without Embree: every distinct tree grown once (species, seed, time),
+// its placements with their materials, the meshes in world space, the ground. Immutable once
+// built; the tracer's Embree world is made from it.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "formats/scene_desc.h"
+#include "generator/geometry/tree_geometry.h"
+#include "materials/looks.h"
+#include "materials/material.h"
+
+namespace arbor {
+class Progress;
+}
+
+namespace arbor::trace {
+
+// A placed tree's extent as TREE-MAKER's shading measures it (§III), in world space: the first
+// particle's position (the base of the trunk), the height h0 of the highest skeleton point above
+// it and the radius r0, the largest horizontal distance of any skeleton point from it.
+struct TreeExtent {
+  glm::vec3 base{0.0f};
+  float height = 1.0f;
+  float radius = 1.0f;
+};
+
+// One grown tree, shared by every instance of the same (species, seed, time).
+struct TreePrototypeData {
+  std::unique_ptr<gen::TreeGeometry> geometry;
+  TreeExtent extent;  // in the prototype's own space
+};
+
+// One placed tree.
+struct TreeInstance {
+  int prototype = 0;
+  glm::mat4 to_world{1.0f}, to_object{1.0f};
+  glm::mat3 normal_to_world{1.0f};
+  mat::Material bark, leaf;             // species defaults with the scene's overrides
+  mat::TreemakerWeights treemaker;      // the TREE-MAKER shading weights (§III) of this tree
+  TreeExtent extent;                    // world space
+};
+
+// An external mesh in world space.
+struct MeshObject {
+  std::vector<glm::vec3> positions;
+  std::vector<std::uint32_t> indices;   // three per triangle
+  std::vector<std::uint16_t> material;  // per triangle, into materials
+  std::vector<mat::Material> materials;
+};
+
+struct SceneStats {
+  std::size_t prototypes = 0, instances = 0;
+  std::size_t curve_segments = 0, triangles = 0;  // over prototypes (not multiplied by instances)
+  std::size_t geometry_bytes = 0;
+  double build_seconds = 0.0;  // growing trees and building their geometry
+};
+
+struct Scene {
+  std::vector<TreePrototypeData> prototypes;
+  std::vector<TreeInstance> instances;
+  std::vector<MeshObject> meshes;
+  bool has_ground = false;
+  mat::Material ground;
+  SceneStats stats;
+  // The textures the materials point to.
+  std::vector<std::pair<std::string, std::unique_ptr<mat::HeightMap>>> bump_maps;
+  std::vector<std::pair<std::string, std::unique_ptr<mat::ColorMap>>> albedo_maps;
+};
+
+// Builds the scene: loads each species once, grows each tree once, assembles materials (albedo
+// maps converted through the OCIO config `ocio_config`), reads the meshes. InputError for bad
+// species, meshes or textures, at the scene key that names them.
+std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::string& ocio_config,
+                                         Progress* progress = nullptr);
+
+// The affine map of a placement: translate · rotate about z · uniform scale.
+glm::mat4 placement_matrix(const Placement& placement);
+
+}  // namespace arbor::trace

@@ -1,0 +1,62 @@
+// Embree device lifecycle and error callback.
+#include "tracer/embree/embree_device.h"
+
+#include <embree3/rtcore.h>
+
+#include "common/error.h"
+
+namespace arbor::trace {
+
+namespace {
+// Embree calls back inside its own code, where throwing is not allowed: keep the message for
+// check(), which turns it into an exception on the caller's side.
+thread_local std::string last_error;
+
+void on_embree_error(void*, RTCError code, const char* message) {
+  if (code == RTC_ERROR_NONE) return;
+  last_error = message ? message : "unknown Embree error";
+}
+}  // namespace
+
+EmbreeDevice::EmbreeDevice(const std::string& config) {
+  device_ = rtcNewDevice(config.empty() ? nullptr : config.c_str());
+  if (!device_) {
+    const RTCError code = rtcGetDeviceError(nullptr);
+    throw RuntimeFailure("cannot create the Embree device (error " +
+                         std::to_string(static_cast<int>(code)) + ")");
+  }
+  rtcSetDeviceErrorFunction(device_, on_embree_error, nullptr);
+}
+
+void EmbreeDevice::check(const char* doing) const {
+  const RTCError code = rtcGetDeviceError(device_);
+  if (code == RTC_ERROR_NONE) return;
+  std::string message = last_error.empty() ? "error " + std::to_string(int(code)) : last_error;
+  last_error.clear();
+  throw RuntimeFailure(std::string("Embree failed while ") + doing + ": " + message);
+}
+
+EmbreeDevice::~EmbreeDevice() {
+  if (device_) rtcReleaseDevice(device_);
+}
+
+void SceneRelease::operator()(RTCSceneTy* scene) const {
+  if (scene) rtcReleaseScene(scene);
+}
+
+SceneHandle new_scene(const EmbreeDevice& device) {
+  SceneHandle scene(rtcNewScene(device.get()));
+  device.check("creating a scene");
+  return scene;
+}
+
+std::string EmbreeDevice::version() {
+  RTCDevice device = rtcNewDevice(nullptr);
+  if (!device) return "unknown";
+  const auto v = rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_VERSION);
+  rtcReleaseDevice(device);
+  return std::to_string(v / 10000) + "." + std::to_string((v / 100) % 100) + "." +
+         std::to_string(v % 100);
+}
+
+}  // namespace arbor::trace

@@ -1,0 +1,131 @@
+// Embree geometry lifecycle for a tree prototype (new → buffers → commit → attach → release) and
+// hit interpretation (normals, leaf sides, bark coordinates).
+#include "tracer/embree/embree_scene.h"
+
+#include "tracer/embree/embree_internal.h"
+
+#include <chrono>
+#include <algorithm>
+#include <cstring>
+
+#include <glm/geometric.hpp>
+
+namespace arbor::trace {
+
+namespace {
+
+// Copies `count` elements of `stride` bytes into a new Embree buffer (Embree pads it as needed).
+void fill(RTCGeometry g, RTCBufferType type, RTCFormat format, const void* data,
+          std::size_t stride, std::size_t count) {
+  void* dst = rtcSetNewGeometryBuffer(g, type, 0, format, stride, count);
+  if (dst && count > 0) std::memcpy(dst, data, stride * count);
+}
+
+
+}  // namespace
+
+TreePrototype::TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry& geometry)
+    : geometry_(geometry) {
+  const auto start = std::chrono::steady_clock::now();
+  scene_ = new_scene(device);
+  const gen::CurveSet& c = geometry.curves;
+  if (c.size() > 0) {
+    RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_ROUND_HERMITE_CURVE);
+    std::vector<std::uint32_t> index(c.size());
+    for (std::size_t i = 0; i < c.size(); ++i) index[i] = static_cast<std::uint32_t>(2 * i);
+    fill(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT, index.data(), sizeof(std::uint32_t), index.size());
+    fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT4, c.points.data(), sizeof(glm::vec4), c.points.size());
+    fill(g, RTC_BUFFER_TYPE_TANGENT, RTC_FORMAT_FLOAT4, c.tangents.data(), sizeof(glm::vec4), c.tangents.size());
+    curve_id_ = attach(scene_.get(), g);
+  }
+  const gen::GridSet& gs = geometry.grids;
+  if (!gs.grids.empty()) {
+    RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_GRID);
+    std::vector<RTCGrid> grids(gs.grids.size());
+    for (std::size_t i = 0; i < grids.size(); ++i) {
+      grids[i] = {gs.grids[i].first_vertex, gs.grids[i].width, gs.grids[i].width,
+                  gs.grids[i].height};
+    }
+    fill(g, RTC_BUFFER_TYPE_GRID, RTC_FORMAT_GRID, grids.data(), sizeof(RTCGrid), grids.size());
+    fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, gs.vertices.data(), sizeof(glm::vec3), gs.vertices.size());
+    grid_id_ = attach(scene_.get(), g);
+  }
+  const gen::LeafMesh& lm = geometry.leaves;
+  if (lm.triangle_count() > 0) {
+    RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+    fill(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, lm.indices.data(), 3 * sizeof(std::uint32_t), lm.triangle_count());
+    fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, lm.positions.data(), sizeof(glm::vec3), lm.positions.size());
+    leaf_id_ = attach(scene_.get(), g);
+  }
+  rtcCommitScene(scene_.get());
+  device.check("building the tree's BVH");
+  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+TreePrototype::~TreePrototype() = default;
+
+bool TreePrototype::intersect(const Ray& ray, SurfaceHit& hit) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh = embree_ray_hit(ray);
+  rtcIntersect1(scene_.get(), &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+
+  describe_hit(ray, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar,
+               glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z), hit);
+  return true;
+}
+
+void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned primitive, float u,
+                                 float v, float t, const glm::vec3& embree_ng,
+                                 SurfaceHit& hit) const {
+  hit.t = t;
+  hit.primitive = primitive;
+  hit.u = u;
+  hit.v = v;
+  hit.position = ray.origin + ray.direction * t;
+  hit.leaf = -1;
+  const glm::vec3 ng = glm::normalize(embree_ng);
+  if (geom_id == curve_id_) {
+    const gen::CurveSet& c = geometry_.curves;
+    hit.kind = SurfaceKind::Curve;
+    hit.material = c.segments[primitive].material;
+    hit.geometric_normal = glm::dot(ng, ray.direction) < 0.0f ? ng : -ng;
+    hit.shading_normal = hit.geometric_normal;
+    hit.bark = gen::curve_bark(c, primitive, u, hit.position);
+    hit.tangent = glm::normalize(glm::vec3(c.derivative(primitive, u)));
+    hit.color = c.segments[primitive].color;
+  } else if (geom_id == grid_id_) {
+    const gen::GridSet& g = geometry_.grids;
+    const gen::DisplacedGrid& d = g.grids[primitive];
+    hit.kind = SurfaceKind::Grid;
+    hit.material = d.material;
+    hit.geometric_normal = glm::dot(ng, ray.direction) < 0.0f ? ng : -ng;
+    hit.shading_normal = gen::grid_normal(g, primitive, u, v);
+    if (glm::dot(hit.shading_normal, hit.geometric_normal) < 0.0f) hit.shading_normal = -hit.shading_normal;
+    hit.bark = gen::grid_bark(g, primitive, u, v);
+    // Along the trunk: between the rings around this hit.
+    const auto row = std::min(static_cast<std::uint32_t>(v * (d.height - 1)), d.height - 2u);
+    const auto col = std::min(static_cast<std::uint32_t>(u * (d.width - 1)), d.width - 2u);
+    const std::size_t base = d.first_vertex + static_cast<std::size_t>(row) * d.width + col;
+    const glm::vec3 along = g.vertices[base + d.width] - g.vertices[base];
+    hit.tangent = glm::length(along) > 0.0f ? glm::normalize(along) : glm::vec3(0, 0, 1);
+    hit.color = glm::vec3(1.0f);
+  } else {
+    hit.kind = SurfaceKind::Leaf;
+    const gen::LeafMesh& lm = geometry_.leaves;
+    const std::uint32_t* tri = &lm.indices[3 * static_cast<std::size_t>(primitive)];
+    const glm::vec3 a = lm.positions[tri[0]], b = lm.positions[tri[1]], c = lm.positions[tri[2]];
+    const glm::vec3 front = glm::normalize(glm::cross(b - a, c - a));  // counter-clockwise side
+    const bool from_front = glm::dot(front, ray.direction) < 0.0f;
+    hit.material = from_front ? lm.front_material[primitive] : lm.back_material[primitive];
+    hit.geometric_normal = from_front ? front : -front;
+    hit.shading_normal = hit.geometric_normal;
+    hit.leaf = lm.leaf[primitive];
+    hit.color = lm.color.empty() ? glm::vec3(1.0f) : lm.color[primitive];
+    hit.uv = lm.uvs[tri[0]] * (1.0f - u - v) + lm.uvs[tri[1]] * u + lm.uvs[tri[2]] * v;
+    hit.tangent = glm::normalize(b - a);
+  }
+}
+
+}  // namespace arbor::trace

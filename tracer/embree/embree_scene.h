@@ -1,0 +1,43 @@
+// One tree's geometry in Embree: a prototype scene (to be placed by instances) with its round
+// Hermite curves, displaced trunk grids and leaf triangles; and a closest-hit query.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include "generator/geometry/tree_geometry.h"
+#include "tracer/embree/embree_device.h"
+#include "tracer/ray.h"
+
+struct RTCSceneTy;
+
+namespace arbor::trace {
+
+class TreePrototype {
+ public:
+  // Copies the geometry's arrays into Embree buffers and commits the scene (BVH build).
+  // `geometry` must outlive the prototype (hits read its metadata).
+  TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry& geometry);
+  ~TreePrototype();
+  TreePrototype(const TreePrototype&) = delete;
+  TreePrototype& operator=(const TreePrototype&) = delete;
+
+  RTCSceneTy* scene() const { return scene_.get(); }
+  const gen::TreeGeometry& geometry() const { return geometry_; }
+  double build_seconds() const { return build_seconds_; }
+
+  // Closest hit along the ray; false when nothing is hit.
+  bool intersect(const Ray& ray, SurfaceHit& hit) const;
+
+  // Fills `hit` from Embree's answer for a ray in this prototype's own space (also used for
+  // instanced hits, with the ray taken to object space).
+  void describe_hit(const Ray& ray, unsigned geom_id, unsigned primitive, float u, float v,
+                    float t, const glm::vec3& embree_ng, SurfaceHit& hit) const;
+
+ private:
+  const gen::TreeGeometry& geometry_;
+  SceneHandle scene_;
+  unsigned curve_id_ = ~0u, grid_id_ = ~0u, leaf_id_ = ~0u;
+  double build_seconds_ = 0.0;
+};
+
+}  // namespace arbor::trace

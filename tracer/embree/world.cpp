@@ -1,0 +1,139 @@
+// The scene in Embree: instances of the tree prototypes, the meshes, the ground quad; world-space
+// hits from instanced hits.
+#include "tracer/embree/world.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+
+#include <glm/geometric.hpp>
+
+#include "tracer/embree/embree_internal.h"
+#include "tracer/embree/embree_scene.h"
+
+namespace arbor::trace {
+
+namespace {
+constexpr float kGroundHalfSize = 1.0e4f;  // metres: the ground quad reaches past any horizon
+
+
+// Records that Embree geometry `id` is item `index` of some list.
+void map_id(std::vector<int>& map, unsigned id, std::size_t index) {
+  if (map.size() <= id) map.resize(id + 1, -1);
+  map[id] = static_cast<int>(index);
+}
+}  // namespace
+
+World::World(const Scene& scene, const EmbreeDevice& device) : scene_(scene), device_(device) {
+  const auto start = std::chrono::steady_clock::now();
+  top_ = new_scene(device);
+  for (const TreePrototypeData& p : scene.prototypes) {
+    prototypes_.push_back(std::make_unique<TreePrototype>(device, *p.geometry));
+  }
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    const TreeInstance& inst = scene.instances[i];
+    RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(g, prototypes_[static_cast<std::size_t>(inst.prototype)]->scene());
+    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.to_world[0][0]);
+    map_id(instance_of_geometry_, attach(top_.get(), g), i);
+  }
+  for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+    const MeshObject& mesh = scene.meshes[i];
+    RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3), mesh.positions.size());
+    std::memcpy(v, mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3));
+    auto* ix = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), mesh.indices.size() / 3);
+    std::memcpy(ix, mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t));
+    map_id(mesh_of_geometry_, attach(top_.get(), g), i);
+  }
+  if (scene.has_ground) {
+    RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, 4));
+    const float s = kGroundHalfSize;
+    const float corners[12] = {-s, -s, 0, s, -s, 0, s, s, 0, -s, s, 0};
+    std::copy(corners, corners + 12, v);
+    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12, 2));
+    const unsigned tris[6] = {0, 1, 2, 0, 2, 3};
+    std::copy(tris, tris + 6, idx);
+    attach(top_.get(), g);
+  }
+  rtcCommitScene(top_.get());
+  device.check("building the scene");
+  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+World::~World() = default;
+
+bool World::intersect(const Ray& ray, WorldHit& hit) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh = embree_ray_hit(ray);
+  rtcIntersect1(top_.get(), &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  SurfaceHit& s = hit.surface;
+  if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && rh.hit.geomID < mesh_of_geometry_.size() &&
+      mesh_of_geometry_[rh.hit.geomID] >= 0) {
+    const MeshObject& mesh = scene_.meshes[static_cast<std::size_t>(mesh_of_geometry_[rh.hit.geomID])];
+    const std::uint32_t* tri = &mesh.indices[3 * static_cast<std::size_t>(rh.hit.primID)];
+    const glm::vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]], c = mesh.positions[tri[2]];
+    const glm::vec3 front = glm::normalize(glm::cross(b - a, c - a));
+    s.kind = SurfaceKind::None;
+    s.t = rh.ray.tfar;
+    s.primitive = rh.hit.primID;
+    s.position = ray.origin + ray.direction * s.t;
+    hit.mesh_front = glm::dot(front, ray.direction) < 0.0f;
+    s.geometric_normal = hit.mesh_front ? front : -front;
+    s.shading_normal = s.geometric_normal;
+    s.tangent = glm::normalize(b - a);
+    s.leaf = -1;
+    hit.ground = false;
+    hit.mesh = true;
+    hit.instance = -1;
+    hit.material = &mesh.materials[mesh.material[rh.hit.primID]];
+    return true;
+  }
+  if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID) {
+    // The ground.
+    hit.ground = true;
+    hit.mesh = false;
+    hit.instance = -1;
+    hit.material = &scene_.ground;
+    s.kind = SurfaceKind::None;
+    s.t = rh.ray.tfar;
+    s.position = ray.origin + ray.direction * s.t;
+    s.position.z = 0.0f;
+    s.geometric_normal = ray.direction.z < 0.0f ? glm::vec3(0, 0, 1) : glm::vec3(0, 0, -1);
+    s.shading_normal = s.geometric_normal;
+    s.tangent = glm::vec3(1, 0, 0);
+    s.leaf = -1;
+    return true;
+  }
+  const int instance = instance_of_geometry_[rh.hit.instID[0]];
+  const TreeInstance& inst = scene_.instances[static_cast<std::size_t>(instance)];
+  // The same ray in the prototype's space (t is unchanged by an affine map of the direction).
+  Ray local;
+  local.origin = glm::vec3(inst.to_object * glm::vec4(ray.origin, 1.0f));
+  local.direction = glm::vec3(inst.to_object * glm::vec4(ray.direction, 0.0f));
+  const glm::vec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+  prototypes_[static_cast<std::size_t>(inst.prototype)]->describe_hit(
+      local, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, ng, s);
+  s.position = ray.origin + ray.direction * s.t;
+  s.geometric_normal = glm::normalize(inst.normal_to_world * s.geometric_normal);
+  s.shading_normal = glm::normalize(inst.normal_to_world * s.shading_normal);
+  s.tangent = glm::normalize(glm::mat3(inst.to_world) * s.tangent);
+  hit.ground = false;
+  hit.mesh = false;
+  hit.instance = instance;
+  hit.material = s.kind == SurfaceKind::Leaf ? &inst.leaf : &inst.bark;
+  return true;
+}
+
+bool World::occluded(const Ray& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r = embree_ray(ray);
+  rtcOccluded1(top_.get(), &context, &r);
+  return r.tfar < 0.0f;
+}
+
+}  // namespace arbor::trace

@@ -1,0 +1,48 @@
+// The renderable world: a scene (scene/) in Embree — one prototype scene per grown tree, placed
+// by instances, the meshes and a ground quad — and the hits it answers in world space.
+// Immutable while rendering.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "scene/scene.h"
+#include "tracer/embree/embree_device.h"
+#include "tracer/ray.h"
+
+namespace arbor::trace {
+
+class TreePrototype;
+
+class World {
+ public:
+  // `scene` must outlive the world.
+  World(const Scene& scene, const EmbreeDevice& device);
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  // The closest hit, in world space, with its material; false when the ray escapes.
+  bool intersect(const Ray& ray, WorldHit& hit) const;
+  // True when anything lies on the ray between t_min and t_max.
+  bool occluded(const Ray& ray) const;
+
+  const Scene& scene() const { return scene_; }
+  const TreeInstance& instance(int i) const { return scene_.instances[static_cast<std::size_t>(i)]; }
+  const TreeExtent& extent(int i) const { return instance(i).extent; }
+  std::size_t instance_count() const { return scene_.instances.size(); }
+  double build_seconds() const { return build_seconds_; }  // the BVHs, after the scene
+  RTCSceneTy* embree_scene() const { return top_.get(); }  // for benchmarks of raw Embree throughput
+
+ private:
+  const Scene& scene_;
+  const EmbreeDevice& device_;
+  SceneHandle top_;
+  std::vector<std::unique_ptr<TreePrototype>> prototypes_;
+  std::vector<int> instance_of_geometry_;  // Embree geometry id in the top scene → instance
+  std::vector<int> mesh_of_geometry_;      // Embree geometry id in the top scene → mesh
+  double build_seconds_ = 0.0;
+};
+
+}  // namespace arbor::trace

@@ -1,0 +1,109 @@
+// Path tracing with NEE + MIS + Russian roulette. The material layer turns each hit into a plain
+// BSDF value; nothing is allocated per sample.
+#include "tracer/integrators/path.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "common/frame.h"
+
+namespace arbor::trace {
+
+namespace {
+
+float power_heuristic(float a, float b) {
+  const float a2 = a * a, b2 = b * b;
+  return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
+}
+
+}  // namespace
+
+glm::vec3 surface_albedo(const WorldHit& hit) { return hit.material->albedo_at(hit.point()); }
+
+Ray spawn_ray(const glm::vec3& p, const glm::vec3& ng, const glm::vec3& dir) {
+  Ray r;
+  const float side = glm::dot(dir, ng) >= 0.0f ? 1.0f : -1.0f;
+  r.origin = p + ng * (side * ray_offset(p));
+  r.direction = dir;
+  return r;
+}
+
+float ray_offset(const glm::vec3& p) {
+  const float m = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+  return 2e-5f + 4e-6f * m;
+}
+
+PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& sampler,
+                                 std::uint32_t index) const {
+  PathSample out;
+  glm::vec3 beta(1.0f);
+  Ray ray = camera_ray;
+  float bsdf_pdf = 0.0f;  // of the direction just taken (0: camera ray, no MIS)
+  for (int depth = 0;; ++depth) {
+    WorldHit hit;
+    ++out.rays;
+    if (!world_.intersect(ray, hit)) {
+      // Escaped: sky and sun, weighted against their own sampling where NEE could have found them.
+      const glm::vec3 sky = sky_.radiance(ray.direction);
+      const float w_sky = bsdf_pdf > 0.0f ? power_heuristic(bsdf_pdf, sky_.pdf(ray.direction)) : 1.0f;
+      out.radiance += beta * sky * w_sky;
+      if (sky_.in_sun(ray.direction)) {
+        const float w_sun = bsdf_pdf > 0.0f ? power_heuristic(bsdf_pdf, sky_.sun_pdf()) : 1.0f;
+        out.radiance += beta * sky_.sun_radiance() * w_sun;
+      }
+      break;
+    }
+    const SurfaceHit& s = hit.surface;
+    const mat::SurfaceBsdf sh = hit.material->bsdf(hit.point());
+    if (depth == 0) {
+      out.albedo = sh.albedo;
+      out.normal = sh.normal;
+      out.depth = s.t;
+    }
+    if (depth >= max_depth_) break;
+    const ShadingFrame frame(sh.normal);
+    const glm::dvec3 wo = frame.local(-ray.direction);
+    const std::uint32_t dim = 2 + 4 * static_cast<std::uint32_t>(depth);
+
+    // Next-event estimation: one sample of the sun and one of the sky, each with MIS.
+    const LightSample lights[2] = {sky_.sample_sun(sampler.get2d(index, dim)),
+                                   sky_.sample(sampler.get2d(index, dim + 1))};
+    for (int k = 0; k < 2; ++k) {
+      const LightSample& ls = lights[k];
+      if (ls.pdf <= 0.0f || (ls.radiance.x <= 0.0f && ls.radiance.y <= 0.0f && ls.radiance.z <= 0.0f)) continue;
+      const float cos_g = glm::dot(ls.direction, s.geometric_normal);
+      if (!sh.leaf && cos_g <= 0.0f) continue;  // below an opaque surface
+      const glm::dvec3 wi = frame.local(ls.direction);
+      const glm::vec3 f = sh.eval(wo, wi);
+      if (f.x <= 0.0f && f.y <= 0.0f && f.z <= 0.0f) continue;
+      ++out.rays;
+      if (world_.occluded(spawn_ray(s.position, s.geometric_normal, ls.direction))) continue;
+      const float w = power_heuristic(ls.pdf, sh.pdf(wo, wi));
+      out.radiance += beta * f * ls.radiance * (static_cast<float>(std::fabs(wi.z)) * w / ls.pdf);
+    }
+
+    // Continue the path by sampling the BSDF.
+    const glm::vec2 u = sampler.get2d(index, dim + 2);
+    const glm::vec2 u2 = sampler.get2d(index, dim + 3);
+    const mat::BsdfSample bs = sh.sample(wo, u, u2.x);
+    if (bs.pdf <= 0.0) break;
+    const glm::vec3 dir = glm::normalize(frame.world(bs.wi));
+    const float cos_g = glm::dot(dir, s.geometric_normal);
+    // A direction the shading normal allows but the geometry does not would leak light.
+    if (!sh.leaf && cos_g <= 0.0f) break;
+    beta *= glm::vec3(bs.value) * static_cast<float>(std::fabs(bs.wi.z) / bs.pdf);
+    bsdf_pdf = static_cast<float>(bs.pdf);
+    // Russian roulette after three bounces, survival by throughput.
+    if (depth >= 3) {
+      const float q = std::min(0.95f, std::max({beta.x, beta.y, beta.z}));
+      if (u2.y >= q) break;
+      beta /= q;
+    }
+    ray = spawn_ray(s.position, s.geometric_normal, dir);
+  }
+  return out;
+}
+
+}  // namespace arbor::trace

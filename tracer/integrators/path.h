@@ -1,0 +1,52 @@
+// The exact integrator: unidirectional path tracing with next-event estimation to the sun and
+// the sky, multiple importance sampling (power heuristic) and Russian roulette.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/vec3.hpp>
+
+#include "tracer/sampler.h"
+#include "tracer/lights/sky.h"
+#include "tracer/embree/world.h"
+
+namespace arbor::trace {
+
+// What one camera sample brings back: radiance and the first hit's AOVs.
+struct PathSample {
+  glm::vec3 radiance{0.0f};
+  glm::vec3 albedo{0.0f};
+  glm::vec3 normal{0.0f};
+  float depth = 0.0f;  // distance along the camera ray to the first hit (0 when none)
+  std::uint32_t rays = 0;  // rays traced for it (closest-hit and shadow)
+};
+
+class PathIntegrator {
+ public:
+  PathIntegrator(const World& world, const Sky& sky, int max_depth)
+      : world_(world), sky_(sky), max_depth_(max_depth) {}
+
+  // Dimension pairs 0 and 1 are the camera's (film, lens); each bounce uses four more.
+  PathSample trace(const Ray& camera_ray, const PixelSampler& sampler, std::uint32_t index) const;
+
+ private:
+  const World& world_;
+  const Sky& sky_;
+  int max_depth_;
+};
+
+// The diffuse colour at a hit, scene-linear, as the path integrator shades it: the bark albedo
+// with its map and the primitive's colour, the reflectance of the leaf side that was hit (with
+// its map and colour), a mesh material's or the ground's albedo. The albedo AOV is this.
+glm::vec3 surface_albedo(const WorldHit& hit);
+
+// How far a new ray starts from a surface along its geometric normal (metres): 2e-5 + 4e-6 × the
+// largest coordinate — above Embree's float rounding of hit points (including its iterative
+// round-curve intersection) at that distance from the origin, and far below twig radii (≥ 1 mm).
+float ray_offset(const glm::vec3& p);
+
+// A ray leaving surface point p in direction dir: started ray_offset(p) off the surface on the
+// side dir goes to (so transmission through a leaf starts behind it).
+Ray spawn_ray(const glm::vec3& p, const glm::vec3& geometric_normal, const glm::vec3& dir);
+
+}  // namespace arbor::trace

@@ -1,0 +1,239 @@
+// Sky radiance maps, their importance sampling, the Preetham model and the sun disk.
+#include "tracer/lights/sky.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <OpenImageIO/imagebuf.h>
+#include <glm/geometric.hpp>
+
+#include "common/error.h"
+#include "imaging/color.h"
+#include "common/math.h"
+
+
+namespace arbor::trace {
+
+namespace {
+constexpr float kPif = static_cast<float>(kPi);
+
+double perez(double theta, double gamma, const double c[5]) {
+  // Perez et al. luminance distribution: (1 + A e^(B / cos θ)) (1 + C e^(D γ) + E cos² γ).
+  const double cos_theta = std::max(std::cos(theta), 1e-3);
+  return (1.0 + c[0] * std::exp(c[1] / cos_theta)) *
+         (1.0 + c[2] * std::exp(c[3] * gamma) + c[4] * std::cos(gamma) * std::cos(gamma));
+}
+}  // namespace
+
+glm::dvec3 preetham_xyz(double T, double theta, double gamma, double theta_s, double sun_e) {
+  // Preetham, Shirley & Smits 1999, appendix: Perez coefficients linear in turbidity T.
+  const double cY[5] = {0.1787 * T - 1.4630, -0.3554 * T + 0.4275, -0.0227 * T + 5.3251,
+                        0.1206 * T - 2.5771, -0.0670 * T + 0.3703};
+  const double cx[5] = {-0.0193 * T - 0.2592, -0.0665 * T + 0.0008, -0.0004 * T + 0.2125,
+                        -0.0641 * T - 0.8989, -0.0033 * T + 0.0452};
+  const double cy[5] = {-0.0167 * T - 0.2608, -0.0950 * T + 0.0092, -0.0079 * T + 0.2102,
+                        -0.0441 * T - 1.6537, -0.0109 * T + 0.0529};
+  const double chi = (4.0 / 9.0 - T / 120.0) * (kPi - 2.0 * theta_s);
+  const double Yz = (4.0453 * T - 4.9710) * std::tan(chi) - 0.2155 * T + 2.4192;  // kcd/m²
+  const double t2 = theta_s * theta_s, t3 = t2 * theta_s;
+  const double xz = T * T * (0.00166 * t3 - 0.00375 * t2 + 0.00209 * theta_s) +
+                    T * (-0.02903 * t3 + 0.06377 * t2 - 0.03202 * theta_s + 0.00394) +
+                    (0.11693 * t3 - 0.21196 * t2 + 0.06052 * theta_s + 0.25886);
+  const double yz = T * T * (0.00275 * t3 - 0.00610 * t2 + 0.00317 * theta_s) +
+                    T * (-0.04214 * t3 + 0.08970 * t2 - 0.04153 * theta_s + 0.00516) +
+                    (0.15346 * t3 - 0.26756 * t2 + 0.06670 * theta_s + 0.26688);
+  const double Y = Yz * perez(theta, gamma, cY) / perez(0.0, theta_s, cY);
+  const double x = xz * perez(theta, gamma, cx) / perez(0.0, theta_s, cx);
+  const double y = yz * perez(theta, gamma, cy) / perez(0.0, theta_s, cy);
+  // xyY → XYZ. A sun of irradiance E stands for 100 klux: the sky keeps the model's ratio to it.
+  const double X = x / y * Y, Z = (1.0 - x - y) / y * Y;
+  const double scale = std::max(0.0, sun_e) * 1000.0 / 100000.0;
+  return glm::dvec3(X, Y, Z) * scale;
+}
+
+Distribution2D::Distribution2D(const std::vector<float>& w, int width, int height)
+    : width_(width), height_(height), weights_(w) {
+  row_cdf_.assign(static_cast<size_t>(height) + 1, 0.0);
+  col_cdf_.assign(static_cast<size_t>(height) * (width + 1), 0.0);
+  for (int j = 0; j < height; ++j) {
+    double* cdf = &col_cdf_[static_cast<size_t>(j) * (width + 1)];
+    for (int i = 0; i < width; ++i) cdf[i + 1] = cdf[i] + w[static_cast<size_t>(j) * width + i];
+    row_cdf_[static_cast<size_t>(j) + 1] = row_cdf_[static_cast<size_t>(j)] + cdf[width];
+  }
+  total_ = row_cdf_.back();
+}
+
+glm::vec2 Distribution2D::sample(glm::vec2 u, float& pdf) const {
+  const double ru = u.y * total_;
+  int j = static_cast<int>(std::upper_bound(row_cdf_.begin(), row_cdf_.end(), ru) - row_cdf_.begin()) - 1;
+  j = std::clamp(j, 0, height_ - 1);
+  while (j > 0 && row_cdf_[static_cast<size_t>(j) + 1] == row_cdf_[static_cast<size_t>(j)]) --j;
+  const double* cdf = &col_cdf_[static_cast<size_t>(j) * (width_ + 1)];
+  const double row_total = cdf[width_];
+  const double cu = u.x * row_total;
+  int i = static_cast<int>(std::upper_bound(cdf, cdf + width_ + 1, cu) - cdf) - 1;
+  i = std::clamp(i, 0, width_ - 1);
+  const double wij = weights_[static_cast<size_t>(j) * width_ + i];
+  const double fx = wij > 0.0 ? (cu - cdf[i]) / wij : 0.5;
+  const double row_w = row_cdf_[static_cast<size_t>(j) + 1] - row_cdf_[static_cast<size_t>(j)];
+  const double fy = row_w > 0.0 ? (ru - row_cdf_[static_cast<size_t>(j)]) / row_w : 0.5;
+  pdf = static_cast<float>(wij / total_ * width_ * height_);
+  return {static_cast<float>((i + std::clamp(fx, 0.0, 0.999999)) / width_),
+          static_cast<float>((j + std::clamp(fy, 0.0, 0.999999)) / height_)};
+}
+
+float Distribution2D::pdf(glm::vec2 p) const {
+  const int i = std::clamp(static_cast<int>(p.x * width_), 0, width_ - 1);
+  const int j = std::clamp(static_cast<int>(p.y * height_), 0, height_ - 1);
+  return static_cast<float>(weights_[static_cast<size_t>(j) * width_ + i] / total_ * width_ * height_);
+}
+
+Sky::Sky(const SkyDesc& sky, const SunDesc& sun, const ColorTransform& xyz_to_linear, int width) {
+  const double elevation = sun.elevation * kPi / 180.0, azimuth = sun.azimuth * kPi / 180.0;
+  sun_direction_ = glm::vec3(std::cos(elevation) * std::cos(azimuth),
+                             std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
+  if (sun.enabled && sun.irradiance > 0.0) {
+    // E = ∫ L cos θ dω over the disk = L π sin²(α): uniform radiance L = E / (π sin² α).
+    const double alpha = 0.5 * sun.angular_diameter * kPi / 180.0;
+    sun_cos_ = static_cast<float>(std::cos(alpha));
+    sun_radiance_ = glm::vec3(static_cast<float>(sun.irradiance / (kPi * std::sin(alpha) * std::sin(alpha))));
+    sun_irradiance_ = static_cast<float>(sun.irradiance);
+    sun_present_ = true;
+  }
+  if (sky.model == "none") return;
+  rotation_ = static_cast<float>(sky.rotation * kPi / 180.0);
+  if (sky.model == "envmap") {
+    OIIO::ImageBuf image(sky.path);
+    if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
+      throw InputError({sky.path, 0, 0}, "cannot read the environment map: " + image.geterror());
+    }
+    const OIIO::ImageSpec& spec = image.spec();
+    width_ = spec.width;
+    height_ = spec.height;
+    map_.resize(static_cast<size_t>(width_) * height_);
+    std::vector<float> pixel(static_cast<size_t>(std::max(3, spec.nchannels)));
+    for (int j = 0; j < height_; ++j) {
+      for (int i = 0; i < width_; ++i) {
+        image.getpixel(i, j, pixel.data(), static_cast<int>(pixel.size()));
+        const glm::vec3 c = spec.nchannels >= 3 ? glm::vec3(pixel[0], pixel[1], pixel[2])
+                                                : glm::vec3(pixel[0]);
+        if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) {
+          throw InputError({sky.path, 0, 0}, "the environment map has a pixel that is not finite");
+        }
+        map_[static_cast<size_t>(j) * width_ + i] = glm::max(c, glm::vec3(0.0f)) * static_cast<float>(sky.scale);
+      }
+    }
+  } else {
+    width_ = width;
+    height_ = width / 2;
+    map_.resize(static_cast<size_t>(width_) * height_);
+    const double theta_s = kPi / 2.0 - elevation;
+    for (int j = 0; j < height_; ++j) {
+      for (int i = 0; i < width_; ++i) {
+        const glm::vec3 d = from_map({(i + 0.5f) / width_, (j + 0.5f) / height_});
+        glm::vec3 c(0.0f);
+        if (sky.model == "constant") {
+          c = glm::vec3(sky.color[0], sky.color[1], sky.color[2]);
+        } else if (d.z > 0.0f) {
+          const double gamma = std::acos(std::clamp(double(glm::dot(d, sun_direction_)), -1.0, 1.0));
+          const glm::dvec3 xyz = preetham_xyz(sky.turbidity, std::acos(double(d.z)), gamma,
+                                              std::min(theta_s, kPi / 2.0 - 1e-3), sun.irradiance);
+          float rgb[3] = {static_cast<float>(xyz.x), static_cast<float>(xyz.y), static_cast<float>(xyz.z)};
+          xyz_to_linear(rgb);
+          // Out-of-gamut negatives (none for daylight) would be emission of negative light.
+          c = glm::max(glm::vec3(rgb[0], rgb[1], rgb[2]), glm::vec3(0.0f));
+        }
+        map_[static_cast<size_t>(j) * width_ + i] = c;
+      }
+    }
+  }
+  // Sampling weights: luminance × sin θ (the lat-long map's area element).
+  std::vector<float> w(map_.size());
+  for (int j = 0; j < height_; ++j) {
+    const float sin_theta = std::sin(kPif * (j + 0.5f) / height_);
+    for (int i = 0; i < width_; ++i) {
+      const glm::vec3 c = map_[static_cast<size_t>(j) * width_ + i];
+      w[static_cast<size_t>(j) * width_ + i] = (0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z) * sin_theta;
+    }
+  }
+  distribution_ = Distribution2D(w, width_, height_);
+  // Each texel covers (2π / width) (π / height) sin θ of solid angle.
+  glm::dvec3 e(0.0);
+  const double texel = 2.0 * kPi * kPi / (static_cast<double>(width_) * height_);
+  for (int j = 0; j < height_; ++j) {
+    const double theta = kPi * (j + 0.5) / height_;
+    const double cos_theta = std::cos(theta);
+    if (cos_theta <= 0.0) continue;
+    glm::dvec3 row(0.0);
+    for (int i = 0; i < width_; ++i) row += glm::dvec3(map_[static_cast<size_t>(j) * width_ + i]);
+    e += row * (cos_theta * std::sin(theta) * texel);
+  }
+  irradiance_up_ = glm::vec3(e);
+  present_ = !distribution_.empty();
+}
+
+glm::vec2 Sky::to_map(const glm::vec3& d) const {
+  float phi = std::atan2(d.y, d.x) - rotation_;
+  phi -= 2.0f * kPif * std::floor(phi / (2.0f * kPif));
+  const float theta = std::acos(std::clamp(d.z, -1.0f, 1.0f));
+  return {phi / (2.0f * kPif), theta / kPif};
+}
+
+glm::vec3 Sky::from_map(glm::vec2 p) const {
+  const float phi = p.x * 2.0f * kPif + rotation_, theta = p.y * kPif;
+  return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+}
+
+glm::vec3 Sky::radiance(const glm::vec3& d) const {
+  if (!present_) return glm::vec3(0.0f);
+  const glm::vec2 p = to_map(d);
+  const int i = std::clamp(static_cast<int>(p.x * width_), 0, width_ - 1);
+  const int j = std::clamp(static_cast<int>(p.y * height_), 0, height_ - 1);
+  return map_[static_cast<size_t>(j) * width_ + i];
+}
+
+LightSample Sky::sample(glm::vec2 u) const {
+  LightSample s;
+  if (!present_) return s;
+  float pdf_map = 0.0f;
+  const glm::vec2 p = distribution_.sample(u, pdf_map);
+  s.direction = from_map(p);
+  if (pdf_map <= 0.0f) return s;
+  // The density of the direction actually returned: a point on a cell edge can round into the
+  // neighbouring cell, and MIS needs sample() and pdf() to agree exactly.
+  s.pdf = pdf(s.direction);
+  s.radiance = radiance(s.direction);
+  return s;
+}
+
+float Sky::pdf(const glm::vec3& d) const {
+  if (!present_) return 0.0f;
+  const glm::vec2 p = to_map(d);
+  const float sin_theta = std::sin(p.y * kPif);
+  if (sin_theta <= 0.0f) return 0.0f;
+  return distribution_.pdf(p) / (2.0f * kPif * kPif * sin_theta);
+}
+
+bool Sky::in_sun(const glm::vec3& d) const {
+  return sun_present_ && glm::dot(d, sun_direction_) >= sun_cos_;
+}
+
+float Sky::sun_pdf() const { return 1.0f / (2.0f * kPif * (1.0f - sun_cos_)); }
+
+LightSample Sky::sample_sun(glm::vec2 u) const {
+  LightSample s;
+  if (!sun_present_) return s;
+  // Uniform direction in the cone around the sun.
+  const float cos_t = 1.0f - u.x * (1.0f - sun_cos_);
+  const float sin_t = std::sqrt(std::max(0.0f, 1.0f - cos_t * cos_t));
+  const float phi = 2.0f * kPif * u.y;
+  const glm::vec3 w = sun_direction_;
+  const glm::vec3 a = std::fabs(w.z) < 0.9f ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0);
+  const glm::vec3 x = glm::normalize(glm::cross(a, w)), y = glm::cross(w, x);
+  s.direction = glm::normalize(x * (sin_t * std::cos(phi)) + y * (sin_t * std::sin(phi)) + w * cos_t);
+  s.radiance = sun_radiance_;
+  s.pdf = sun_pdf();
+  return s;
+}
+
+}  // namespace arbor::trace

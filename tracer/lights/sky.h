@@ -1,0 +1,87 @@
+// The lights of a scene: the sky (Preetham, constant, environment map or none) as one importance-
+// sampled lat-long radiance map, and the sun as a disk of given angular diameter and irradiance.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "formats/scene_desc.h"
+#include "imaging/color.h"
+
+namespace arbor::trace {
+
+// Piecewise-constant 2D distribution over [0,1)² (rows × columns of weights).
+class Distribution2D {
+ public:
+  Distribution2D() = default;
+  Distribution2D(const std::vector<float>& weights, int width, int height);
+  // Maps u in [0,1)² to a point distributed ∝ weights; pdf with respect to area in [0,1)².
+  glm::vec2 sample(glm::vec2 u, float& pdf) const;
+  float pdf(glm::vec2 p) const;
+  bool empty() const { return total_ <= 0.0; }
+
+ private:
+  int width_ = 0, height_ = 0;
+  std::vector<double> row_cdf_;   // height + 1
+  std::vector<double> col_cdf_;   // height × (width + 1)
+  std::vector<float> weights_;
+  double total_ = 0.0;
+};
+
+struct LightSample {
+  glm::vec3 direction{0.0f};  // towards the light
+  glm::vec3 radiance{0.0f};
+  float pdf = 0.0f;           // solid angle
+};
+
+class Sky {
+ public:
+  // Builds the map at `width` × width/2; throws InputError for an unreadable environment map.
+  // `xyz_to_scene_linear` converts the Preetham model's XYZ (ColorPipeline::xyz_to_scene_linear).
+  Sky(const SkyDesc& sky, const SunDesc& sun, const ColorTransform& xyz_to_scene_linear,
+      int width = 512);
+
+  glm::vec3 radiance(const glm::vec3& direction) const;  // sky only, not the sun
+  LightSample sample(glm::vec2 u) const;
+  float pdf(const glm::vec3& direction) const;
+  bool empty() const { return !present_; }
+  // Irradiance of the sky (without the sun) on an upward-facing horizontal plane, unoccluded:
+  // ∫ L(ω) max(0, cos θ) dω over the map. A constant sky of radiance L gives πL.
+  glm::vec3 irradiance_up() const { return irradiance_up_; }
+
+  // The sun: a disk of half-angle `sun_half_angle` around `sun_direction`.
+  bool has_sun() const { return sun_present_; }
+  glm::vec3 sun_direction() const { return sun_direction_; }
+  glm::vec3 sun_radiance() const { return sun_radiance_; }
+  float sun_irradiance() const { return sun_irradiance_; }  // on a plane facing it; 0 without a sun
+  float sun_cos_half_angle() const { return sun_cos_; }
+  LightSample sample_sun(glm::vec2 u) const;
+  float sun_pdf() const;  // uniform over the disk's cone
+  bool in_sun(const glm::vec3& direction) const;
+
+ private:
+  glm::vec2 to_map(const glm::vec3& d) const;
+  glm::vec3 from_map(glm::vec2 p) const;
+
+  int width_ = 0, height_ = 0;
+  std::vector<glm::vec3> map_;
+  Distribution2D distribution_;
+  bool present_ = false;
+  glm::vec3 irradiance_up_{0.0f};
+  float rotation_ = 0.0f;  // radians about z
+  bool sun_present_ = false;
+  glm::vec3 sun_direction_{0.0f, 0.0f, 1.0f}, sun_radiance_{0.0f};
+  float sun_irradiance_ = 0.0f;
+  float sun_cos_ = 1.0f;
+};
+
+// Preetham, Shirley & Smits 1999 sky radiance as CIE XYZ (relative to a sun of irradiance
+// `sun_irradiance`) for a view direction at zenith angle theta and angle gamma from the sun,
+// with the sun at zenith angle theta_sun.
+glm::dvec3 preetham_xyz(double turbidity, double theta, double gamma, double theta_sun,
+                        double sun_irradiance);
+
+}  // namespace arbor::trace

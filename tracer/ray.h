@@ -1,0 +1,66 @@
+// Rays and what they hit: the types the camera, the Embree world and the integrators share.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "generator/geometry/tree_geometry.h"
+#include "materials/material.h"
+
+namespace arbor::trace {
+
+struct Ray {
+  glm::vec3 origin{0.0f};
+  glm::vec3 direction{0.0f, 0.0f, 1.0f};
+  float t_min = 0.0f;
+  float t_max = std::numeric_limits<float>::infinity();
+};
+
+enum class SurfaceKind { None, Curve, Grid, Leaf };
+
+// A hit on one tree prototype, in the space of the hit (the prototype's own, or the world's).
+struct SurfaceHit {
+  SurfaceKind kind = SurfaceKind::None;
+  float t = 0.0f;
+  std::uint32_t primitive = 0;
+  float u = 0.0f, v = 0.0f;
+  glm::vec3 position{0.0f};
+  glm::vec3 geometric_normal{0.0f};  // unit, facing the side the ray came from for leaves
+  glm::vec3 shading_normal{0.0f};    // unit; follows the displaced surface on trunk grids
+  std::uint16_t material = 0;        // gen::MaterialId (leaf front or back by the side hit)
+  gen::BarkCoordinates bark;         // for curves and grids
+  glm::vec3 tangent{0.0f};           // along the limb (curves and grids), for bump mapping
+  std::int32_t leaf = -1;            // Skeleton leaf index for leaf hits
+  glm::vec2 uv{0.0f};                // over the unit leaf, for leaf hits
+  glm::vec3 color{1.0f};             // the primitive's colour (multiplies its material's albedo)
+};
+
+// A hit in the world: the surface in world space and what it is made of.
+struct WorldHit {
+  SurfaceHit surface;
+  int instance = -1;               // tree instance; -1 for the ground or a mesh
+  bool ground = false;
+  bool mesh = false;               // a [[mesh]] face
+  bool mesh_front = true;          // the side a mesh face's counter-clockwise normal faces
+  const mat::Material* material = nullptr;
+
+  // The point as the material layer sees it.
+  mat::SurfacePoint point() const {
+    mat::SurfacePoint p;
+    p.shading_normal = surface.shading_normal;
+    p.geometric_normal = surface.geometric_normal;
+    p.tangent = surface.tangent;
+    p.along = surface.bark.along;
+    p.azimuth = surface.bark.azimuth;
+    p.radius = surface.bark.radius;
+    p.uv = surface.uv;
+    p.color = surface.color;
+    p.leaf_back = mesh ? !mesh_front : surface.material == gen::kMaterialLeafBack;
+    return p;
+  }
+};
+
+}  // namespace arbor::trace
