@@ -180,4 +180,14 @@ void AtomicFile::commit() {
   slot_ = -1;
 }
 
+void refuse_overwriting(const std::string& what, const std::string& out,
+                        const std::vector<std::string>& inputs, const std::vector<std::string>& outputs) {
+  for (const std::string& in : inputs) {
+    if (same_file(out, in)) throw InputError({}, what + " " + out + " would overwrite the input " + in);
+  }
+  for (const std::string& other : outputs) {
+    if (same_file(out, other)) throw InputError({}, what + " " + out + " is also written as " + other);
+  }
+}
+
 }  // namespace arbor

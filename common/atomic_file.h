@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace arbor {
 
@@ -39,6 +40,12 @@ std::string resolve_output_path(const std::string& path);
 // True when both paths name the same file: the same device and inode when both exist, else the
 // same absolute name after symlinks (a file yet to be written).
 bool same_file(const std::string& a, const std::string& b);
+
+// InputError when writing the output `out` (`what` names it in the message) would replace one of
+// `inputs` or an earlier output (the same file after symlinks, not merely the same spelling).
+void refuse_overwriting(const std::string& what, const std::string& out,
+                        const std::vector<std::string>& inputs,
+                        const std::vector<std::string>& outputs = {});
 
 // RuntimeFailure unless the folder `path` would be written in exists and is writable.
 void check_output_folder(const std::string& path);

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/strings.h"
 #include "formats/lsystem_file.h"
 #include "formats/skeleton_file.h"
 #include "formats/treemaker_template.h"
@@ -18,13 +19,6 @@ std::string read_text_file(const std::string& path) {
   if (in.bad()) throw InputError({path, 0, 0}, "cannot read the file");
   return text.str();
 }
-
-namespace {
-bool ends_with(const std::string& s, std::string_view suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(),
-                                                suffix.data(), suffix.size()) == 0;
-}
-}  // namespace
 
 namespace {
 // A species read from a model's own file format: named after its file.

@@ -64,33 +64,28 @@ void add_geometry_stats(TreeStats& st, const GeometryStats& g, double seconds) {
 
 std::string stats_json(const TreeStats& st, const std::string& species, unsigned long long seed,
                        long long mesh_triangles) {
-  std::string out = "{\"species\": \"" + json_escape(species);
-  out += "\", \"seed\": " + std::to_string(seed) + ", \"stems_per_level\": [";
-  for (size_t i = 0; i < st.stems_per_level.size(); ++i) {
-    out += (i ? ", " : "") + std::to_string(st.stems_per_level[i]);
-  }
-  char buf[512];
-  std::snprintf(buf, sizeof buf,
-                "], \"stems\": %lld, \"leaves\": %lld, \"curve_segments\": %lld, "
-                "\"triangles\": %lld, \"leaf_triangles\": %lld, \"skeleton_segments\": %lld, "
-                "\"points\": %lld, \"height\": %.6g, \"crown_width\": %.6g, \"seconds\": %.6g",
-                st.stems(), st.leaves, st.curve_segments, st.triangles, st.leaf_triangles,
-                st.skeleton_segments, st.points, st.height, st.crown_width, st.seconds);
-  out += buf;
+  JsonObject j;
+  j.text("species", species);
+  j.integer("seed", seed);
+  j.integers("stems_per_level", st.stems_per_level);
+  j.integer("stems", st.stems()).integer("leaves", st.leaves).integer("curve_segments", st.curve_segments);
+  j.integer("triangles", st.triangles).integer("leaf_triangles", st.leaf_triangles);
+  j.integer("skeleton_segments", st.skeleton_segments).integer("points", st.points);
+  j.number("height", st.height, 6).number("crown_width", st.crown_width, 6).number("seconds", st.seconds, 6);
   if (st.has_geometry) {
     const GeometryStats& g = st.geometry;
-    std::snprintf(buf, sizeof buf,
-                  ", \"limbs\": %zu, \"grids\": %zu, \"grid_vertices\": %zu, "
-                  "\"grid_triangles\": %zu, \"tension_raised_limbs\": %zu, "
-                  "\"radius_adjusted_segments\": %zu, \"geometry_bytes\": %zu, "
-                  "\"geometry_seconds\": %.6g",
-                  g.limbs, g.grids, g.grid_vertices, g.grid_triangles, g.tension_raised_limbs,
-                  g.radius_adjusted_segments, g.bytes, st.geometry_seconds);
-    out += buf;
+    auto size = [&](const char* key, std::size_t v) { j.integer(key, static_cast<long long>(v)); };
+    size("limbs", g.limbs);
+    size("grids", g.grids);
+    size("grid_vertices", g.grid_vertices);
+    size("grid_triangles", g.grid_triangles);
+    size("tension_raised_limbs", g.tension_raised_limbs);
+    size("radius_adjusted_segments", g.radius_adjusted_segments);
+    size("geometry_bytes", g.bytes);
+    j.number("geometry_seconds", st.geometry_seconds, 6);
   }
-  if (mesh_triangles >= 0) out += ", \"mesh_triangles\": " + std::to_string(mesh_triangles);
-  out += "}\n";
-  return out;
+  if (mesh_triangles >= 0) j.integer("mesh_triangles", mesh_triangles);
+  return j.str() + "\n";
 }
 
 std::string stats_text(const TreeStats& st) {

@@ -1,0 +1,120 @@
+// `arbor compare`: read both images, measure, test, fit, draw, report.
+#include "imaging/compare_command.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include <OpenImageIO/imageio.h>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "common/json.h"
+#include "imaging/compare.h"
+#include "imaging/treemaker_channels.h"
+#include "imaging/treemaker_fit.h"
+
+namespace arbor::trace {
+
+namespace {
+
+void check_image_output(const std::string& path, const CompareRequest& a, const char* option) {
+  if (path.empty()) return;
+  refuse_overwriting(option, path, {a.a, a.b});
+  if (!OIIO::ImageOutput::create(path)) {
+    throw InputError({}, std::string(option) + " " + path +
+                                    ": no image format for this extension (use .png, .exr, .tif or .jpg)");
+  }
+  check_output_folder(path);
+}
+
+}  // namespace
+
+int compare_command(const CompareRequest& args) {
+  check_image_output(args.heatmap, args, "--heatmap");
+  check_image_output(args.side_by_side, args, "--side-by-side");
+  if (!args.heatmap.empty()) refuse_overwriting("--heatmap", args.heatmap, {}, {args.side_by_side});
+  const CompareImage a = read_compare_image(args.a);
+  const CompareImage b = read_compare_image(args.b);
+  const CompareMetrics m = compare_images(a, b);
+  ZTest z;
+  if (args.reference_test) z = reference_z_test(a, b);
+  // --fit-treemaker: whichever image carries the treemaker AOVs is the approximate render, the
+  // other the exact one.
+  TreemakerFit fit;
+  std::string exact_path, approx_path;
+  if (args.fit_treemaker) {
+    const bool a_tm = has_treemaker_aovs(args.a), b_tm = has_treemaker_aovs(args.b);
+    if (a_tm == b_tm) {
+      throw InputError({}, std::string("--fit-treemaker needs one exact render and one treemaker render "
+                                       "with the \"treemaker\" AOVs; ") +
+                               (a_tm ? "both images have them" : "neither image has them"));
+    }
+    exact_path = a_tm ? args.b : args.a;
+    approx_path = a_tm ? args.a : args.b;
+    const CompareImage& exact = a_tm ? b : a;
+    if (exact.colorspace.empty()) {
+      std::fprintf(stderr, "arbor compare: note: %s does not say its colour space (no arbor:colorspace); "
+                           "the fit takes it to be scene-linear in the treemaker render's space\n",
+                   exact_path.c_str());
+    }
+    fit = fit_treemaker(exact, read_treemaker_aovs(approx_path));
+  }
+  write_compare_pictures(a, b, {args.heatmap, args.side_by_side, args.display, args.view, args.ocio_config});
+  const auto& names = kTreemakerTermNames;
+  if (args.json) {
+    JsonObject j;
+    j.number("rmse", m.rmse).number("mean_abs", m.mean_abs).number("rel_mse", m.rel_mse);
+    j.number("max_abs", m.max_abs).integers("max_at", {m.max_x, m.max_y}).number("psnr", m.psnr);
+    if (args.reference_test) {
+      j.number("z_test_pass_fraction", z.pass_fraction).number("z_critical", z.z_critical);
+      j.integer("pixels", z.pixels).integer("failed_pixels", z.failed).boolean("passed", z.passed);
+    }
+    if (args.fit_treemaker) {
+      JsonObject weights, f;
+      for (int i = 0; i < 5; ++i) weights.number(names[i], fit.weights[static_cast<size_t>(i)]);
+      f.text("exact", exact_path).text("approximate", approx_path).object("weights", weights);
+      f.integer("pixels", fit.pixels).number("rmse", fit.rmse).number("rel_mse", fit.rel_mse);
+      f.number("render_rmse", fit.render_rmse).number("render_rel_mse", fit.render_rel_mse);
+      f.text("render_weights", fit.render_weights);
+      j.object("treemaker_fit", f);
+    }
+    std::printf("%s\n", j.str().c_str());
+  } else {
+    std::printf("rmse      %.6g\nmean_abs  %.6g\nrel_mse   %.6g\nmax_abs   %.6g at (%d, %d)\n",
+                m.rmse, m.mean_abs, m.rel_mse, m.max_abs, m.max_x, m.max_y);
+    if (std::isfinite(m.psnr)) {
+      std::printf("psnr      %.2f dB\n", m.psnr);
+    } else {
+      std::printf("psnr      inf (identical)\n");
+    }
+    if (args.reference_test) {
+      std::printf("z-test    %.3f %% of %lld pixels pass (|z| <= %.2f: alpha 0.01, Sidak-corrected); "
+                  "needs %.1f %%: %s\n",
+                  100.0 * z.pass_fraction, z.pixels, z.z_critical, 100.0 * z.required,
+                  z.passed ? "PASS" : "FAIL");
+    }
+    if (args.fit_treemaker) {
+      std::printf("treemaker fit of %s to the exact %s, over the %lld pixels that show a tree:\n",
+                  approx_path.c_str(), exact_path.c_str(), fit.pixels);
+      std::printf("  fitted weights  ");
+      for (int i = 0; i < 5; ++i) std::printf(" %s=%.4g", names[i], fit.weights[static_cast<size_t>(i)]);
+      std::printf("\n  fitted          rmse %.6g  rel_mse %.6g\n", fit.rmse, fit.rel_mse);
+      std::printf("  as rendered     rmse %.6g  rel_mse %.6g  (%s)\n", fit.render_rmse,
+                  fit.render_rel_mse, fit.render_weights.empty() ? "weights unknown" : fit.render_weights.c_str());
+      for (int i = 0; i < 5; ++i) {
+        if (!fit.determined[static_cast<size_t>(i)]) {
+          std::printf("  note: the %s factor is 0 wherever a tree is seen, so its weight is not determined\n", names[i]);
+        }
+      }
+      std::printf("  as a scene table:\n  [tree.treemaker]\n");
+      for (int i = 0; i < 5; ++i) std::printf("  %s = %.4f\n", names[i], fit.weights[static_cast<size_t>(i)]);
+    }
+  }
+  if (args.reference_test && !z.a_has_variance) {
+    std::fprintf(stderr, "arbor compare: note: %s has no variance channels; the test used the "
+                         "reference's variance alone\n", args.a.c_str());
+  }
+  return args.reference_test && !z.passed ? 1 : 0;
+}
+
+}  // namespace arbor::trace

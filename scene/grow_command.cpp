@@ -1,0 +1,81 @@
+// `arbor grow`: load, grow, measure, export.
+#include "scene/grow_command.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "common/progress.h"
+#include "common/strings.h"
+#include "formats/species_file.h"
+#include "generator/export/export_mesh.h"
+#include "generator/export/export_pbrt.h"
+#include "generator/export/skeleton_file.h"
+#include "generator/export/tree_stats.h"
+#include "generator/geometry/tree_geometry.h"
+#include "generator/geometry/tree_mesh.h"
+#include "generator/grow.h"
+
+namespace arbor::trace {
+
+int grow_command(const GrowRequest& a) {
+  if (!a.out.empty() && !ends_with(a.out, ".obj") && !ends_with(a.out, ".ply") &&
+      !ends_with(a.out, ".pbrt") && !ends_with(a.out, ".skel")) {
+    throw InputError({}, "-o " + a.out + ": the output must be .obj, .ply, .pbrt or .skel");
+  }
+  if (!a.out.empty()) {
+    refuse_overwriting("-o", a.out, {a.species});
+    check_output_folder(a.out);
+  }
+  gen::Species species = gen::load_species(a.species);
+  for (const std::string& w : species.warnings) std::fprintf(stderr, "%s\n", w.c_str());
+
+  Progress progress("grow", 1);
+  gen::GrowOptions options;
+  options.seed = a.seed;
+  options.time = a.time;
+  options.quality = a.quality;
+  options.force = a.force;
+  options.progress = &progress;
+  const auto start = std::chrono::steady_clock::now();
+  gen::Skeleton skeleton;
+  try {
+    skeleton = gen::grow_tree(species, options);
+  } catch (const RuntimeFailure& e) {
+    // Refusing an absurd size is about the input: report it against the species file.
+    throw InputError({a.species, 0, 0}, e.what());
+  }
+  progress.finish();
+  gen::TreeStats stats = gen::compute_stats(skeleton);
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  long long mesh_triangles = -1;
+  if (!a.out.empty() || a.stats || a.json) {
+    const auto geometry_start = std::chrono::steady_clock::now();
+    const gen::TreeGeometry geometry =
+        gen::build_tree_geometry(skeleton, gen::geometry_options_for(species.leaf));
+    gen::add_geometry_stats(
+        stats, geometry.stats,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - geometry_start).count());
+    if (ends_with(a.out, ".skel")) {
+      gen::write_skeleton_file(skeleton, a.out);
+    } else if (ends_with(a.out, ".pbrt")) {
+      gen::write_pbrt(geometry, species.bark, species.leaf, a.out);
+    } else if (!a.out.empty()) {
+      const gen::TreeMesh mesh = gen::tessellate(geometry);
+      mesh_triangles = static_cast<long long>(mesh.triangle_count());
+      if (ends_with(a.out, ".obj")) gen::write_obj(mesh, a.out);
+      else gen::write_ply(mesh, a.out);
+    }
+  }
+  if (a.json) {
+    std::fputs(gen::stats_json(stats, species.name, a.seed, mesh_triangles).c_str(), stdout);
+  } else if (a.stats) {
+    std::printf("%s (seed %llu)\n%s", species.name.c_str(), static_cast<unsigned long long>(a.seed), gen::stats_text(stats).c_str());
+  }
+  if (!a.out.empty() && !a.json) std::fprintf(stderr, "arbor: wrote %s\n", a.out.c_str());
+  return 0;
+}
+
+}  // namespace arbor::trace

@@ -1,0 +1,24 @@
+// `arbor grow`: a species file to a tree, its statistics and its exports.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace arbor::trace {
+
+struct GrowRequest {
+  std::string species;
+  std::uint64_t seed = 1;
+  double time = 0.0;
+  double quality = 1.0;
+  std::string out;     // .obj, .ply, .pbrt or .skel; empty: none
+  bool stats = false;  // print the statistics as text
+  bool json = false;   // print them as one JSON object
+  bool force = false;  // grow even past the size limits
+};
+
+// Grows and writes; returns the exit status (0). InputError for bad input, RuntimeFailure when
+// the work fails.
+int grow_command(const GrowRequest& request);
+
+}  // namespace arbor::trace

@@ -1,0 +1,24 @@
+// `arbor render`: a scene file, with the command line's overrides, rendered to its outputs.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace arbor::trace {
+
+struct RenderRequest {
+  std::string scene;
+  std::string exr, png, integrator;  // empty: the scene's
+  int spp = 0, threads = 0, width = 0, height = 0;  // 0: the scene's (threads 0: all cores)
+  std::optional<std::uint64_t> seed;
+  std::optional<double> time;  // seconds of wind for every [[tree]]
+  bool force = false;          // render past the memory estimate
+  std::string ocio_config;     // the run's OCIO config (default_ocio_config())
+};
+
+// Renders and writes; returns the exit status (0). InputError for bad input, RuntimeFailure when
+// the work fails.
+int render_command(const RenderRequest& request);
+
+}  // namespace arbor::trace
