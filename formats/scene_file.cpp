@@ -6,6 +6,8 @@
 
 #include <toml++/toml.h>
 
+#include "formats/toml_reader.h"
+
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
@@ -21,20 +23,15 @@ std::string folder_of(const std::string& path) {
   return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
 }
 
-class SceneReader {
+class SceneReader : TomlReader {
  public:
-  explicit SceneReader(std::string path) : path_(std::move(path)), folder_(folder_of(path_)) {}
+  explicit SceneReader(const std::string& path) : TomlReader(path), folder_(folder_of(path)) {}
 
   SceneDesc read(const std::string& text) {
-    toml::table root;
-    try {
-      root = toml::parse(text, path_);
-    } catch (const toml::parse_error& e) {
-      throw InputError(at(e.source()), std::string(e.description()));
-    }
+    const toml::table root = parse(text);
     SceneDesc s;
-    s.path = path_;
-    const SourceLocation file{path_, 0, 0};
+    s.path = path();
+    const SourceLocation file{path(), 0, 0};
     s.camera.look_at_where = s.camera.up_where = file;
     s.output.colorspace_where = s.output.display_where = s.output.view_where = file;
     for (auto&& [key, node] : root) {
@@ -61,18 +58,6 @@ class SceneReader {
   }
 
  private:
-  SourceLocation at(const toml::source_region& r) const {
-    return {path_, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
-  }
-  [[noreturn]] void fail(const toml::node& n, const std::string& message) const {
-    throw InputError(at(n.source()), message);
-  }
-
-  const toml::table& table(const toml::node& n, const std::string& name) const {
-    if (const toml::table* t = n.as_table()) return *t;
-    fail(n, "'" + name + "' must be a table");
-  }
-
   template <typename F>
   void for_each_table(const toml::node& n, const std::string& name, F&& f) const {
     const toml::array* a = n.as_array();
@@ -80,45 +65,6 @@ class SceneReader {
     for (const toml::node& e : *a) f(table(e, name));
   }
 
-  double number(const toml::node& n, const std::string& name, double lo, double hi) const {
-    std::optional<double> v;
-    if (n.is_floating_point() || n.is_integer()) v = n.value<double>();
-    if (!v) fail(n, name + " must be a number");
-    if (!std::isfinite(*v)) fail(n, name + " must be a finite number");
-    if (*v < lo || *v > hi) {
-      fail(n, name + " = " + std::to_string(*v) + " is out of range [" + std::to_string(lo) +
-                  ", " + std::to_string(hi) + "]");
-    }
-    return *v;
-  }
-  std::int64_t integer(const toml::node& n, const std::string& name, std::int64_t lo,
-                       std::int64_t hi) const {
-    if (!n.is_integer()) fail(n, name + " must be a whole number");
-    const std::int64_t v = *n.value<std::int64_t>();
-    if (v < lo || v > hi) {
-      fail(n, name + " = " + std::to_string(v) + " is out of range [" + std::to_string(lo) + ", " +
-                  std::to_string(hi) + "]");
-    }
-    return v;
-  }
-  std::string text(const toml::node& n, const std::string& name) const {
-    if (!n.is_string()) fail(n, name + " must be a string");
-    return *n.value<std::string>();
-  }
-  std::string choice(const toml::node& n, const std::string& name,
-                     std::initializer_list<const char*> options) const {
-    const std::string v = text(n, name);
-    std::string list;
-    for (const char* o : options) {
-      if (v == o) return v;
-      list += std::string(list.empty() ? "" : ", ") + "\"" + o + "\"";
-    }
-    fail(n, name + " must be one of " + list + ", not \"" + v + "\"");
-  }
-  bool boolean(const toml::node& n, const std::string& name) const {
-    if (!n.is_boolean()) fail(n, name + " must be true or false");
-    return *n.value<bool>();
-  }
   std::array<double, 3> triple(const toml::node& n, const std::string& name, double lo,
                                double hi) const {
     const toml::array* a = n.as_array();
@@ -367,7 +313,6 @@ class SceneReader {
     }
   }
 
-  std::string path_;
   std::string folder_;
 };
 

@@ -6,6 +6,8 @@
 
 #include <toml++/toml.h>
 
+#include "formats/toml_reader.h"
+
 #include "generator/species.h"
 #include "formats/species_file.h"
 
@@ -13,31 +15,9 @@ namespace arbor::gen {
 
 namespace {
 
-class TomlSpecies {
+class TomlSpecies : TomlReader {
  public:
-  TomlSpecies(const std::string& path) : path_(path) {}
-
-  SourceLocation at(const toml::source_region& r) const {
-    return {path_, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
-  }
-
-  double number(const toml::node& node, std::string_view name) const {
-    if (auto v = node.value<double>(); v && (node.is_floating_point() || node.is_integer())) {
-      if (!std::isfinite(*v)) throw InputError(at(node.source()), std::string(name) + " must be a finite number");
-      return *v;
-    }
-    throw InputError(at(node.source()), std::string(name) + " must be a number");
-  }
-
-  std::string text(const toml::node& node, std::string_view name) const {
-    if (auto v = node.value<std::string>(); v && node.is_string()) return *v;
-    throw InputError(at(node.source()), std::string(name) + " must be a string");
-  }
-
-  const toml::table& table(const toml::node& node, std::string_view name) const {
-    if (const toml::table* t = node.as_table()) return *t;
-    throw InputError(at(node.source()), std::string(name) + " must be a table");
-  }
+  explicit TomlSpecies(const std::string& path) : TomlReader(path) {}
 
   Rgb colour(const toml::node& node, std::string_view name) const {
     const toml::array* a = node.as_array();
@@ -179,14 +159,9 @@ class TomlSpecies {
   }
 
   Species read(std::string_view source) {
-    toml::table root;
-    try {
-      root = toml::parse(source, path_);
-    } catch (const toml::parse_error& e) {
-      throw InputError(at(e.source()), std::string(e.description()));
-    }
+    const toml::table root = parse(source);
     Species sp;
-    sp.path = path_;
+    sp.path = path();
     bool has_model = false;
     if (const toml::node* m = root.get("model")) {
       const std::string model = text(*m, "model");
@@ -220,14 +195,13 @@ class TomlSpecies {
       }
     }
     if (!has_model) {
-      throw InputError({path_, 1, 1}, "missing key 'model' (for example model = \"weber-penn\")");
+      throw InputError({path(), 1, 1}, "missing key 'model' (for example model = \"weber-penn\")");
     }
     finish_species(sp, positions_);
     return sp;
   }
 
  private:
-  std::string path_;
   std::map<std::string, SourceLocation> positions_;
 };
 

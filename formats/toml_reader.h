@@ -1,0 +1,93 @@
+// Internal to formats/: the checked reading of TOML values that the species and scene readers
+// share. Every failure is an InputError at the value's file, line and column.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <initializer_list>
+#include <string>
+#include <string_view>
+
+#include <toml++/toml.h>
+
+#include "common/error.h"
+
+namespace arbor {
+
+class TomlReader {
+ public:
+  explicit TomlReader(std::string path) : path_(std::move(path)) {}
+
+  const std::string& path() const { return path_; }
+
+  // The whole document; a syntax error is reported where toml++ found it.
+  toml::table parse(std::string_view text) const {
+    try {
+      return toml::parse(text, path_);
+    } catch (const toml::parse_error& e) {
+      throw InputError(at(e.source()), std::string(e.description()));
+    }
+  }
+
+  SourceLocation at(const toml::source_region& r) const {
+    return {path_, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
+  }
+  [[noreturn]] void fail(const toml::node& n, const std::string& message) const {
+    throw InputError(at(n.source()), message);
+  }
+
+  // A finite number (an integer is accepted).
+  double number(const toml::node& n, std::string_view name) const {
+    std::optional<double> v;
+    if (n.is_floating_point() || n.is_integer()) v = n.value<double>();
+    if (!v) fail(n, std::string(name) + " must be a number");
+    if (!std::isfinite(*v)) fail(n, std::string(name) + " must be a finite number");
+    return *v;
+  }
+  // A finite number in [lo, hi].
+  double number(const toml::node& n, std::string_view name, double lo, double hi) const {
+    const double v = number(n, name);
+    if (v < lo || v > hi) {
+      fail(n, std::string(name) + " = " + std::to_string(v) + " is out of range [" + std::to_string(lo) +
+                  ", " + std::to_string(hi) + "]");
+    }
+    return v;
+  }
+  std::int64_t integer(const toml::node& n, std::string_view name, std::int64_t lo, std::int64_t hi) const {
+    if (!n.is_integer()) fail(n, std::string(name) + " must be a whole number");
+    const std::int64_t v = *n.value<std::int64_t>();
+    if (v < lo || v > hi) {
+      fail(n, std::string(name) + " = " + std::to_string(v) + " is out of range [" + std::to_string(lo) +
+                  ", " + std::to_string(hi) + "]");
+    }
+    return v;
+  }
+  std::string text(const toml::node& n, std::string_view name) const {
+    if (!n.is_string()) fail(n, std::string(name) + " must be a string");
+    return *n.value<std::string>();
+  }
+  // One of `options`; the message lists them.
+  std::string choice(const toml::node& n, std::string_view name,
+                     std::initializer_list<const char*> options) const {
+    const std::string v = text(n, name);
+    std::string list;
+    for (const char* o : options) {
+      if (v == o) return v;
+      list += std::string(list.empty() ? "" : ", ") + "\"" + o + "\"";
+    }
+    fail(n, std::string(name) + " must be one of " + list + ", not \"" + v + "\"");
+  }
+  bool boolean(const toml::node& n, std::string_view name) const {
+    if (!n.is_boolean()) fail(n, std::string(name) + " must be true or false");
+    return *n.value<bool>();
+  }
+  const toml::table& table(const toml::node& n, std::string_view name) const {
+    if (const toml::table* t = n.as_table()) return *t;
+    fail(n, "'" + std::string(name) + "' must be a table");
+  }
+
+ private:
+  std::string path_;
+};
+
+}  // namespace arbor
