@@ -19,7 +19,7 @@ arbor::gen::Skeleton grow(const char* file) {
       arbor::gen::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + file);
   arbor::gen::GrowOptions options;
   options.seed = 1;
-  return arbor::gen::grow_weber_penn(species.weber_penn, options);
+  return arbor::gen::grow_weber_penn(species.weber_penn(), options);
 }
 
 void build_geometry(benchmark::State& state, const char* file) {

@@ -148,7 +148,7 @@ Species parse_arbaro_xml(std::string_view text, const std::string& path) {
     if (!parse_number(value, v)) {
       throw InputError(at, "the value of '" + name + "' is not a number: '" + value + "'");
     }
-    const std::string problem = set_param(sp.weber_penn, *info, std::max(level, 0), v);
+    const std::string problem = set_param(sp.weber_penn(), *info, std::max(level, 0), v);
     if (!problem.empty()) throw InputError(at, (level >= 0 ? std::string(1, name[0]) : "") + problem);
     positions[name] = at;
   }

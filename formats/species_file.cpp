@@ -22,11 +22,11 @@ std::string read_text_file(const std::string& path) {
 
 namespace {
 // A species read from a model's own file format: named after its file.
-Species from_file(const std::string& path, Model model) {
+Species from_file(const std::string& path, ModelParams params) {
   Species sp;
   sp.path = path;
   sp.name = path;
-  sp.model = model;
+  sp.params = std::move(params);
   return sp;
 }
 }  // namespace
@@ -35,19 +35,14 @@ Species load_species(const std::string& path) {
   if (ends_with(path, ".toml")) return parse_species_toml(read_text_file(path), path);
   if (ends_with(path, ".xml")) return parse_arbaro_xml(read_text_file(path), path);
   if (ends_with(path, ".lsys")) {
-    Species sp = from_file(path, Model::LSystem);
-    sp.lsystem = parse_lsystem(read_text_file(path), path);
-    return sp;
+    return from_file(path, parse_lsystem(read_text_file(path), path));
   }
   if (ends_with(path, ".skel")) {
-    Species sp = from_file(path, Model::SkeletonFile);
-    sp.skeleton = parse_skeleton_file(read_text_file(path), path);
-    return sp;
+    return from_file(path, parse_skeleton_file(read_text_file(path), path));
   }
   if (ends_with(path, ".tmpl")) {
-    Species sp = from_file(path, Model::TreeMaker);
-    sp.treemaker = parse_treemaker_template(read_text_file(path), path);
-    if (sp.treemaker.has_light) sp.treemaker_weights = sp.treemaker.light;
+    Species sp = from_file(path, parse_treemaker_template(read_text_file(path), path));
+    if (sp.treemaker().has_light) sp.treemaker_weights = sp.treemaker().light;
     // Colours come from the template: the looks only scale them.
     sp.bark.albedo = {1.0, 1.0, 1.0};
     sp.bark.bump_height = 0.0;

@@ -40,7 +40,7 @@ class TomlSpecies : TomlReader {
     if (info.integer && !node.is_integer()) {
       throw InputError(at(node.source()), paper_name + " must be a whole number");
     }
-    const std::string problem = set_param(sp.weber_penn, info, level, number(node, paper_name));
+    const std::string problem = set_param(sp.weber_penn(), info, level, number(node, paper_name));
     if (!problem.empty()) {
       throw InputError(at(node.source()), (level >= 0 && !info.real && !info.whole ? std::to_string(level) : "") + problem);
     }
@@ -118,7 +118,7 @@ class TomlSpecies : TomlReader {
 
   // model = "fractal": Ünal's parameters (docs/fractal-format.md).
   void fractal_key(Species& sp, const std::string& k, const toml::node& node, const toml::key& key) {
-    FractalParams& f = sp.fractal;
+    FractalParams& f = sp.fractal();
     struct Real { const char* name; double lo, hi; double FractalParams::*field; };
     struct Whole { const char* name; int lo, hi; int FractalParams::*field; };
     static const Real reals[] = {
@@ -165,7 +165,7 @@ class TomlSpecies : TomlReader {
     bool has_model = false;
     if (const toml::node* m = root.get("model")) {
       const std::string model = text(*m, "model");
-      if (model == "fractal") sp.model = Model::Fractal;
+      if (model == "fractal") sp.params = FractalParams{};
       else if (model != "weber-penn") {
         throw InputError(at(m->source()),
                          "model '" + model + "' is not known; known: weber-penn, fractal");
@@ -175,7 +175,7 @@ class TomlSpecies : TomlReader {
       const std::string k(key.str());
       if (k == "model") {
         has_model = true;
-      } else if (sp.model == Model::Fractal && k != "name" && k != "bark" && k != "leaf") {
+      } else if (sp.model() == Model::Fractal && k != "name" && k != "bark" && k != "leaf") {
         fractal_key(sp, k, node, key);
       } else if (k == "name") {
         sp.name = text(node, "name");

@@ -12,13 +12,13 @@ namespace arbor::gen {
 namespace {
 
 Skeleton grow_model(const Species& species, const GrowOptions& options) {
-  switch (species.model) {
+  switch (species.model()) {
     case Model::LSystem: {
       LSystemOptions o;
       o.seed = options.seed;
       o.force = options.force;
       o.max_segments = options.max_stems;
-      return grow_lsystem(species.lsystem, o);
+      return grow_lsystem(species.lsystem(), o);
     }
     case Model::Fractal: {
       FractalOptions o;
@@ -26,20 +26,20 @@ Skeleton grow_model(const Species& species, const GrowOptions& options) {
       o.time = options.time;
       o.force = options.force;
       o.max_stems = options.max_stems;
-      return grow_fractal(species.fractal, o);
+      return grow_fractal(species.fractal(), o);
     }
     case Model::TreeMaker: {
       TreeMakerOptions o;
       o.seed = options.seed;
       o.force = options.force;
       o.max_stems = options.max_stems;
-      return grow_treemaker(species.treemaker, o);
+      return grow_treemaker(species.treemaker(), o);
     }
     case Model::SkeletonFile:
-      return species.skeleton;  // a skeleton file is the tree itself: seed and time do nothing
+      return species.skeleton();  // a skeleton file is the tree itself: seed and time do nothing
     case Model::WeberPenn:
     default:
-      return grow_weber_penn(species.weber_penn, options);
+      return grow_weber_penn(species.weber_penn(), options);
   }
 }
 

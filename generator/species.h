@@ -1,10 +1,12 @@
-// A species: which tree model grows it, its parameters, and its default bark and leaf looks.
+// A species: which tree model grows it (a variant over the models' parameters), and its default
+// bark and leaf looks.
 #pragma once
 
 #include <map>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "common/error.h"
@@ -21,17 +23,27 @@ namespace arbor::gen {
 using mat::BarkLook;
 using mat::LeafLook;
 
+// The models, in the order of ModelParams' alternatives.
 enum class Model { WeberPenn, LSystem, SkeletonFile, Fractal, TreeMaker };
+
+// Which model grows a species, with that model's parameters.
+using ModelParams = std::variant<WeberPennParams, LSystem, Skeleton, FractalParams, TreeMakerTemplate>;
 
 struct Species {
   std::string name;
   std::string path;
-  Model model = Model::WeberPenn;
-  WeberPennParams weber_penn;  // for Model::WeberPenn
-  LSystem lsystem;             // for Model::LSystem
-  Skeleton skeleton;           // for Model::SkeletonFile
-  FractalParams fractal;       // for Model::Fractal
-  TreeMakerTemplate treemaker; // for Model::TreeMaker
+  ModelParams params;  // Weber & Penn unless a reader says otherwise
+
+  Model model() const { return static_cast<Model>(params.index()); }
+  // The parameters of the species' model; std::bad_variant_access for another model's.
+  const WeberPennParams& weber_penn() const { return std::get<WeberPennParams>(params); }
+  WeberPennParams& weber_penn() { return std::get<WeberPennParams>(params); }
+  const LSystem& lsystem() const { return std::get<LSystem>(params); }
+  const Skeleton& skeleton() const { return std::get<Skeleton>(params); }
+  const FractalParams& fractal() const { return std::get<FractalParams>(params); }
+  FractalParams& fractal() { return std::get<FractalParams>(params); }
+  const TreeMakerTemplate& treemaker() const { return std::get<TreeMakerTemplate>(params); }
+
   BarkLook bark;
   LeafLook leaf;
   // The species' own TREE-MAKER shading weights (a template's `light {}`); unset: arbor's defaults.

@@ -4,6 +4,6 @@
 
 ARBOR_FUZZ_TARGET({
   const arbor::gen::Species s = arbor::gen::parse_species_toml(text, "fuzz.toml");
-  if (s.model != arbor::gen::Model::Fractal) return 0;
+  if (s.model() != arbor::gen::Model::Fractal) return 0;
   arbor::fuzz::grow_and_check(s);
 })

@@ -6,7 +6,6 @@
 ARBOR_FUZZ_TARGET({
   arbor::gen::Species s;
   s.path = "fuzz.lsys";
-  s.model = arbor::gen::Model::LSystem;
-  s.lsystem = arbor::gen::parse_lsystem(text, s.path);
+  s.params = arbor::gen::parse_lsystem(text, s.path);
   arbor::fuzz::grow_and_check(s);
 })

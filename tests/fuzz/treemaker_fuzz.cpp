@@ -6,7 +6,6 @@
 ARBOR_FUZZ_TARGET({
   arbor::gen::Species s;
   s.path = "fuzz.tmpl";
-  s.model = arbor::gen::Model::TreeMaker;
-  s.treemaker = arbor::gen::parse_treemaker_template(text, s.path);
+  s.params = arbor::gen::parse_treemaker_template(text, s.path);
   arbor::fuzz::grow_and_check(s);
 })

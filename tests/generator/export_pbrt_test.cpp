@@ -32,7 +32,7 @@ TEST(ExportPbrt, WritesEveryCurveAsABezierCylinderAndTheMeshes) {
   const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
   GrowOptions o;
   o.quality = 0.1;
-  const TreeGeometry g = build_tree_geometry(grow_weber_penn(s.weber_penn, o));
+  const TreeGeometry g = build_tree_geometry(grow_weber_penn(s.weber_penn(), o));
   const std::string path = ::testing::TempDir() + "tree.pbrt";
   write_pbrt(g, s.bark, s.leaf, path);
   const std::string text = slurp(path);

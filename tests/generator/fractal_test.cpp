@@ -157,8 +157,8 @@ TEST(Fractal, ConeWidensAsChildrenGrow) {
 
 TEST(Fractal, SpeciesFilesLoadAndBadKeysAreErrors) {
   const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/fractal_broadleaf.toml");
-  EXPECT_EQ(s.model, Model::Fractal);
-  EXPECT_EQ(s.fractal.depth, 6);
+  EXPECT_EQ(s.model(), Model::Fractal);
+  EXPECT_EQ(s.fractal().depth, 6);
   try {
     parse_species_toml("model = \"fractal\"\nbranches = 2.5\n", "f.toml");
     FAIL();

@@ -26,7 +26,7 @@ Skeleton grow_species(const char* name, std::uint64_t seed = 1) {
   GrowOptions o;
   o.seed = seed;
   o.quality = 0.2;
-  return grow_weber_penn(s.weber_penn, o);
+  return grow_weber_penn(s.weber_penn(), o);
 }
 
 }  // namespace

@@ -38,7 +38,7 @@ void expect_xml_error(const std::string& text, int line, const std::string& frag
 TEST(SpeciesToml, ShippedSpeciesLoad) {
   const Species aspen = load_species(species_dir() + "quaking_aspen.toml");
   EXPECT_EQ(aspen.name, "Quaking Aspen");
-  const WeberPennParams& p = aspen.weber_penn;
+  const WeberPennParams& p = aspen.weber_penn();
   EXPECT_EQ(p.shape, 7);
   EXPECT_DOUBLE_EQ(p.base_size, 0.4);
   EXPECT_DOUBLE_EQ(p.level[1].down_angle_v, -50.0);
@@ -47,15 +47,15 @@ TEST(SpeciesToml, ShippedSpeciesLoad) {
   EXPECT_DOUBLE_EQ(p.leaf_scale, 0.17);
   EXPECT_DOUBLE_EQ(aspen.bark.albedo[0], 0.58);
   const Species willow = load_species(species_dir() + "weeping_willow.toml");
-  EXPECT_EQ(willow.weber_penn.level[0].base_splits, 2);
-  EXPECT_DOUBLE_EQ(willow.weber_penn.level[1].rotate, -120.0);
-  EXPECT_DOUBLE_EQ(willow.weber_penn.prune_power_low, 0.001);
-  EXPECT_DOUBLE_EQ(willow.weber_penn.level[3].branches, 300.0);
+  EXPECT_EQ(willow.weber_penn().level[0].base_splits, 2);
+  EXPECT_DOUBLE_EQ(willow.weber_penn().level[1].rotate, -120.0);
+  EXPECT_DOUBLE_EQ(willow.weber_penn().prune_power_low, 0.001);
+  EXPECT_DOUBLE_EQ(willow.weber_penn().level[3].branches, 300.0);
 }
 
 TEST(SpeciesToml, MinimalFileGetsDefaults) {
   const Species s = parse_species_toml(kMinimal, "m.toml");
-  EXPECT_EQ(s.weber_penn.levels, 1);
+  EXPECT_EQ(s.weber_penn().levels, 1);
   EXPECT_EQ(s.name, "m.toml");
 }
 
@@ -142,11 +142,11 @@ TEST(ArbaroXml, ReadsParametersWithLevelPrefixes) {
       "</species>\n</arbaro>\n",
       "t.xml");
   EXPECT_EQ(s.name, "test");
-  EXPECT_EQ(s.weber_penn.shape, 4);
-  EXPECT_DOUBLE_EQ(s.weber_penn.level[1].down_angle, 60.0);
-  EXPECT_EQ(s.weber_penn.level[0].base_splits, 2);
-  EXPECT_DOUBLE_EQ(s.weber_penn.level[3].branches, 12.0);
-  EXPECT_DOUBLE_EQ(s.weber_penn.level[0].scale, 1.2);
+  EXPECT_EQ(s.weber_penn().shape, 4);
+  EXPECT_DOUBLE_EQ(s.weber_penn().level[1].down_angle, 60.0);
+  EXPECT_EQ(s.weber_penn().level[0].base_splits, 2);
+  EXPECT_DOUBLE_EQ(s.weber_penn().level[3].branches, 12.0);
+  EXPECT_DOUBLE_EQ(s.weber_penn().level[0].scale, 1.2);
   EXPECT_TRUE(s.warnings.empty());
 }
 

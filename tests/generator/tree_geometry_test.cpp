@@ -22,7 +22,7 @@ Skeleton grow_species(const char* name, std::uint64_t seed = 1, double quality =
   GrowOptions o;
   o.seed = seed;
   o.quality = quality;
-  return grow_weber_penn(s.weber_penn, o);
+  return grow_weber_penn(s.weber_penn(), o);
 }
 
 TEST(TreeGeometry, SecondDerivativeMatchesFiniteDifferences) {

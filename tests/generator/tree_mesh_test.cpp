@@ -26,7 +26,7 @@ Skeleton small_tree() {
   const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
   GrowOptions o;
   o.quality = 0.2;
-  return grow_weber_penn(s.weber_penn, o);
+  return grow_weber_penn(s.weber_penn(), o);
 }
 std::string temp_path(const char* name) { return ::testing::TempDir() + name; }
 }  // namespace

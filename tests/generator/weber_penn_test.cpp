@@ -26,7 +26,7 @@ std::string species_path(const std::string& name) {
 }
 
 WeberPennParams paper_species(const std::string& name) {
-  return load_species(species_path(name)).weber_penn;
+  return load_species(species_path(name)).weber_penn();
 }
 
 // A straight trunk of 10 m with `branches` children at 90°, no variation anywhere.

@@ -85,7 +85,7 @@ TEST(TreePrototype, RaysFindTheTrunkLobesAndFlare) {
                                                "/species/quaking_aspen.toml");
   gen::GrowOptions o;
   o.quality = 0.1;
-  const gen::Skeleton sk = gen::grow_weber_penn(aspen.weber_penn, o);
+  const gen::Skeleton sk = gen::grow_weber_penn(aspen.weber_penn(), o);
   const gen::TreeGeometry g = gen::build_tree_geometry(sk);
   EmbreeDevice device("threads=1");
   const TreePrototype tree(device, g);
@@ -175,7 +175,7 @@ TEST(TreePrototype, RaysLeavingLimbsAndLeavesDoNotHitThemAgain) {
                                                 "/species/black_tupelo.toml");
   gen::GrowOptions o;
   o.quality = 0.3;
-  const gen::TreeGeometry g = gen::build_tree_geometry(gen::grow_weber_penn(tupelo.weber_penn, o));
+  const gen::TreeGeometry g = gen::build_tree_geometry(gen::grow_weber_penn(tupelo.weber_penn(), o));
   EmbreeDevice device("threads=1");
   const TreePrototype tree(device, g);
   Rng rng(5);
