@@ -18,6 +18,7 @@
 #include "common/math.h"
 #include "common/rng.h"
 #include "tracer/film.h"
+#include "tracer/render.h"
 #include "formats/scene_desc.h"
 #include "tracer/lights/sky.h"
 #include "imaging/color.h"

@@ -1,6 +1,9 @@
 // Model dispatch.
 #include "generator/grow.h"
 
+#include <cmath>
+#include <cstdio>
+
 #include "common/error.h"
 #include "generator/models/fractal/fractal.h"
 #include "generator/models/lsystem/lsystem.h"
@@ -8,6 +11,26 @@
 #include "generator/models/weber_penn/weber_penn.h"
 
 namespace arbor::gen {
+
+void refuse_estimate(bool force, double estimate, double limit, const char* subject, const char* things) {
+  if (force || !(estimate > limit)) return;
+  char buf[256];
+  if (std::isfinite(estimate)) {
+    std::snprintf(buf, sizeof buf, "%s about %.3g %s (limit %.3g); use --force to grow it anyway",
+                  subject, estimate, things, limit);
+  } else {
+    std::snprintf(buf, sizeof buf, "%s more than 1e308 %s (limit %.3g); use --force to grow it anyway",
+                  subject, things, limit);
+  }
+  throw RuntimeFailure(buf);
+}
+
+void refuse_growth(bool force, double count, double limit, const char* subject, const char* things) {
+  if (force || !(count > 2.0 * limit)) return;
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%s %.0f %s; use --force to grow it anyway", subject, count, things);
+  throw RuntimeFailure(buf);
+}
 
 namespace {
 

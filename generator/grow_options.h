@@ -19,4 +19,12 @@ struct GrowOptions {
   Progress* progress = nullptr;
 };
 
+// The size limits every model enforces (unless GrowOptions::force), with the same words:
+// - before growing: RuntimeFailure "<subject> about N <things> (limit L); use --force to grow it
+//   anyway" when the model's estimate is over the limit ("more than 1e308" when it overflows);
+// - while growing, in case an estimate was low: RuntimeFailure "<subject> N <things>; use --force
+//   to grow it anyway" once the count passes twice the limit.
+void refuse_estimate(bool force, double estimate, double limit, const char* subject, const char* things);
+void refuse_growth(bool force, double count, double limit, const char* subject, const char* things);
+
 }  // namespace arbor::gen

@@ -2,6 +2,7 @@
 #include "imaging/image_output.h"
 
 #include <cstdio>
+#include <stdexcept>
 
 #include <OpenImageIO/color.h>
 #include <OpenImageIO/imagebuf.h>
@@ -35,7 +36,8 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta,
   if (variance) for (const char* c : {"variance.R", "variance.G", "variance.B"}) { names.emplace_back(c); formats.push_back(OIIO::TypeDesc::FLOAT); }
   const bool treemaker = wants("treemaker");
   if (treemaker && img.extra_names.empty()) {
-    throw InputError({}, "output.aovs \"treemaker\" needs the treemaker integrator (--integrator treemaker)");
+    // render_command refuses this scene (at its key) before rendering; reaching here is a bug.
+    throw std::logic_error("write_exr: \"treemaker\" AOVs asked of an image without them");
   }
   // The factors and contributions stay float: compare --fit-treemaker solves with them.
   if (treemaker) for (const std::string& c : img.extra_names) { names.push_back(c); formats.push_back(OIIO::TypeDesc::FLOAT); }

@@ -23,8 +23,8 @@ struct ExrMetadata {
 
 // Writes the EXR atomically (a temporary beside it, renamed when complete). Channels: R G B,
 // then the requested AOVs: albedo.{R,G,B}, N.{X,Y,Z}, Z, variance.{R,G,B}, and for "treemaker"
-// the image's extra channels (float). Throws InputError when "treemaker" is asked of an image
-// that has none (rendered by the path integrator).
+// the image's extra channels (float). "treemaker" must only be asked of an image that has them
+// (the treemaker integrator's; std::logic_error otherwise).
 void write_exr(const Image& image, const OutputDesc& output, const ExrMetadata& meta,
                const std::string& path);
 

@@ -17,7 +17,7 @@
 #include "scene/scene.h"
 #include "tracer/embree/embree_device.h"
 #include "tracer/embree/world.h"
-#include "tracer/film.h"
+#include "tracer/render.h"
 #include "tracer/lights/sky.h"
 
 namespace arbor::trace {

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "tracer/film.h"
+#include "tracer/render.h"
 #include "tracer/integrators/treemaker.h"
 #include "tracer/lights/sky.h"
 #include "tracer/embree/world.h"

@@ -7,17 +7,6 @@
 
 namespace arbor::trace {
 
-namespace {
-// Embree calls back inside its own code, where throwing is not allowed: keep the message for
-// check(), which turns it into an exception on the caller's side.
-thread_local std::string last_error;
-
-void on_embree_error(void*, RTCError code, const char* message) {
-  if (code == RTC_ERROR_NONE) return;
-  last_error = message ? message : "unknown Embree error";
-}
-}  // namespace
-
 EmbreeDevice::EmbreeDevice(const std::string& config) {
   device_ = rtcNewDevice(config.empty() ? nullptr : config.c_str());
   if (!device_) {
@@ -25,14 +14,29 @@ EmbreeDevice::EmbreeDevice(const std::string& config) {
     throw RuntimeFailure("cannot create the Embree device (error " +
                          std::to_string(static_cast<int>(code)) + ")");
   }
-  rtcSetDeviceErrorFunction(device_, on_embree_error, nullptr);
+  rtcSetDeviceErrorFunction(
+      device_, [](void* self, RTCError code, const char* message) {
+        EmbreeDevice::on_error(self, static_cast<int>(code), message);
+      },
+      this);
+}
+
+void EmbreeDevice::on_error(void* device, int code, const char* message) {
+  if (code == RTC_ERROR_NONE) return;
+  auto* self = static_cast<EmbreeDevice*>(device);
+  const std::lock_guard<std::mutex> lock(self->error_mutex_);
+  self->last_error_ = message ? message : "unknown Embree error";
 }
 
 void EmbreeDevice::check(const char* doing) const {
   const RTCError code = rtcGetDeviceError(device_);
   if (code == RTC_ERROR_NONE) return;
-  std::string message = last_error.empty() ? "error " + std::to_string(int(code)) : last_error;
-  last_error.clear();
+  std::string message;
+  {
+    const std::lock_guard<std::mutex> lock(error_mutex_);
+    message = last_error_.empty() ? "error " + std::to_string(int(code)) : last_error_;
+    last_error_.clear();
+  }
   throw RuntimeFailure(std::string("Embree failed while ") + doing + ": " + message);
 }
 

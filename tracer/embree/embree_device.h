@@ -2,9 +2,9 @@
 // This folder is the only place that includes <embree3/rtcore.h>.
 #pragma once
 
-#include <string>
-
 #include <memory>
+#include <mutex>
+#include <string>
 
 struct RTCDeviceTy;
 struct RTCSceneTy;
@@ -26,7 +26,12 @@ class EmbreeDevice {
   static std::string version();
 
  private:
+  static void on_error(void* device, int code, const char* message);
   RTCDeviceTy* device_ = nullptr;
+  // Embree reports errors through a callback, inside its own code where throwing is not allowed:
+  // the message is kept here for check(), which throws it on the caller's side.
+  mutable std::mutex error_mutex_;
+  mutable std::string last_error_;
 };
 
 // Owns an Embree scene from its creation, so a constructor that throws half-way releases it.

@@ -40,6 +40,18 @@ float treemaker_shade(const mat::TreemakerWeights& w, const TreemakerTerms& t) {
                             w.radius * t[3] + w.angle * t[4]);
 }
 
+void TreemakerSample::write_aovs(float exposure, const ColorTransform& to_output, float* out) const {
+  std::size_t k = 0;
+  for (float term : terms) out[k++] = term;
+  auto put = [&](const glm::vec3& c) {
+    float rgb[3] = {c.x * exposure, c.y * exposure, c.z * exposure};
+    to_output(rgb);
+    for (float v : rgb) out[k++] = v;
+  };
+  for (const glm::vec3& c : contribution) put(c);
+  put(rest);
+}
+
 TreemakerIntegrator::TreemakerIntegrator(const World& world, const Sky& sky)
     : world_(world), sky_(sky) {
   if (sky.has_sun()) {

@@ -11,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "materials/looks.h"
+#include "imaging/color.h"
 #include "imaging/treemaker_channels.h"
 #include "tracer/integrators/path.h"
 #include "tracer/sampler.h"
@@ -51,6 +52,11 @@ struct TreemakerSample {
   TreemakerTerms terms{};
   std::array<glm::vec3, 5> contribution{};
   glm::vec3 rest{0.0f};
+
+  // Writes the "treemaker" AOV channels (treemaker_channel_names() order) to `out`: the factors
+  // as they are, the colours exposed and converted like the beauty, so that beauty = tm_rest +
+  // Σ weight_i × tm_i holds for the written pixels too.
+  void write_aovs(float exposure, const ColorTransform& to_output, float* out) const;
 };
 
 class TreemakerIntegrator {

@@ -10,6 +10,7 @@
 #include "common/error.h"
 #include "common/frame.h"
 #include "common/rng.h"
+#include "generator/grow_options.h"
 
 namespace arbor::gen {
 
@@ -49,9 +50,8 @@ class Grower {
               double full_bottom_radius, std::uint64_t key) {
     const double s = growth(level);
     if (s <= 0.0) return;
-    if (!o_.force && static_cast<double>(stems_.size()) > 2.0 * o_.max_stems) {
-      throw RuntimeFailure("the fractal tree grew past " + std::to_string(stems_.size()) + " branches");
-    }
+    refuse_growth(o_.force, static_cast<double>(stems_.size()), o_.max_stems, "the fractal tree grew past",
+                  "branches");
     Rng length_rng(derive_key(key, kLength)), wiggle_rng(derive_key(key, kWiggle)),
         radius_rng(derive_key(key, kRadius));
     const double length = full_length * length_rng.vary(1.0, p_.length_variation) * s;
@@ -191,14 +191,7 @@ double fractal_estimate(const FractalParams& p) {
 
 Skeleton grow_fractal(const FractalParams& p, const FractalOptions& o) {
   const double estimate = fractal_estimate(p);
-  if (!o.force && estimate > o.max_stems) {
-    char buf[200];
-    std::snprintf(buf, sizeof buf,
-                  "the fractal tree would have about %.3g branches (limit %.3g); use --force to "
-                  "grow it anyway",
-                  estimate, o.max_stems);
-    throw RuntimeFailure(buf);
-  }
+  refuse_estimate(o.force, estimate, o.max_stems, "the fractal tree would have", "branches");
   const double age = o.time > 0.0 ? o.time : (p.age > 0.0 ? p.age : fractal_full_age(p));
   return Grower(p, o, age).run();
 }

@@ -13,6 +13,7 @@
 #include "common/frame.h"
 #include "common/rng.h"
 #include "common/text_cursor.h"
+#include "generator/grow_options.h"
 
 namespace arbor::gen {
 
@@ -105,10 +106,8 @@ class Interpreter {
   }
 
   void forward(const LAction& a, Turtle& t) {
-    if (++segments_ > 2.0 * o_.max_segments && !o_.force) {
-      throw RuntimeFailure("the L-system drew more than " + std::to_string(segments_) +
-                           " segments; use --force to grow it anyway");
-    }
+    refuse_growth(o_.force, static_cast<double>(++segments_), o_.max_segments, "the L-system drew more than",
+                  "segments");
     if (t.stem < 0) {
       if (t.parent_stem < 0 && !stems_.empty()) {
         throw InputError(a.where, "a second trunk starts here: a tree has one root, so every "
@@ -279,23 +278,9 @@ double estimate_segments(const LSystem& sys) { return axiom_cost(sys, false); }
 
 Skeleton grow_lsystem(const LSystem& sys, const LSystemOptions& o) {
   const double estimate = estimate_segments(sys);
-  if (!o.force && estimate > o.max_segments) {
-    char buf[200];
-    std::snprintf(buf, sizeof buf,
-                  "the L-system would draw about %.3g segments (limit %.3g); use --force to grow "
-                  "it anyway",
-                  estimate, o.max_segments);
-    throw RuntimeFailure(buf);
-  }
-  const double work = axiom_cost(sys, true);
-  if (!o.force && work > 50.0 * o.max_segments) {
-    char buf[200];
-    std::snprintf(buf, sizeof buf,
-                  "the L-system would interpret about %.3g actions (limit %.3g); use --force to "
-                  "grow it anyway",
-                  work, 50.0 * o.max_segments);
-    throw RuntimeFailure(buf);
-  }
+  refuse_estimate(o.force, estimate, o.max_segments, "the L-system would draw", "segments");
+  refuse_estimate(o.force, axiom_cost(sys, true), 50.0 * o.max_segments, "the L-system would interpret",
+                  "actions");
   return Interpreter(sys, o).run();
 }
 

@@ -12,6 +12,7 @@
 #include "common/error.h"
 #include "common/frame.h"
 #include "common/rng.h"
+#include "generator/grow_options.h"
 
 namespace arbor::gen {
 
@@ -124,9 +125,8 @@ class Grower {
     b.color = p.color;
     branches_.push_back(b);
     p.stem = static_cast<int>(branches_.size()) - 1;
-    if (!o_.force && static_cast<double>(branches_.size()) > 2.0 * o_.max_stems) {
-      throw RuntimeFailure("the template grew past " + std::to_string(branches_.size()) + " branches");
-    }
+    refuse_growth(o_.force, static_cast<double>(branches_.size()), o_.max_stems, "the template grew past",
+                  "branches");
   }
 
   // One iteration (§II): every particle stores its position, widens its limb, branches by the
@@ -375,21 +375,7 @@ double treemaker_estimate(const TreeMakerTemplate& t) {
 
 Skeleton grow_treemaker(const TreeMakerTemplate& t, const TreeMakerOptions& o) {
   const double estimate = treemaker_estimate(t);
-  if (!o.force && estimate > o.max_stems) {
-    char buf[200];
-    if (std::isfinite(estimate)) {
-      std::snprintf(buf, sizeof buf,
-                    "the template could grow about %.3g branches (limit %.3g); use --force to grow "
-                    "it anyway",
-                    estimate, o.max_stems);
-    } else {
-      std::snprintf(buf, sizeof buf,
-                    "the template could grow more than 1e308 branches (limit %.3g); use --force to "
-                    "grow it anyway",
-                    o.max_stems);
-    }
-    throw RuntimeFailure(buf);
-  }
+  refuse_estimate(o.force, estimate, o.max_stems, "the template could grow", "branches");
   return Grower(t, o).run();
 }
 

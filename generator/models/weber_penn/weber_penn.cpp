@@ -315,10 +315,8 @@ class Grower {
       points.reserve(static_cast<size_t>(n - s.first_segment + 1));
       points.push_back({glm::vec3(s.position), static_cast<float>(radius_at(s, st.z_start))});
       if (o_.progress && (out_.stems.size() & 1023u) == 0) o_.progress->update(out_.stems.size());
-      if (!o_.force && static_cast<double>(out_.stems.size()) > 2.0 * o_.max_stems) {
-        throw RuntimeFailure("the tree grew past " + std::to_string(out_.stems.size()) +
-                             " stems; use --force to grow it anyway");
-      }
+      refuse_growth(o_.force, static_cast<double>(out_.stems.size()), o_.max_stems, "the tree grew past",
+                    "stems");
     }
     Rng child_rng(derive_key(s.key, kChildPlacement + 7));
     Rng leaf_rng(derive_key(s.key, kLeafPlacement + 7));
