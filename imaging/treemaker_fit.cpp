@@ -8,7 +8,7 @@
 
 #include "common/error.h"
 #include "imaging/image_file.h"
-#include "tracer/integrators/treemaker.h"
+#include "imaging/treemaker_channels.h"
 
 namespace arbor::trace {
 
