@@ -1,6 +1,11 @@
-// Tracer-side tests of tree geometry in Embree: rays find the trunk's lobes and flare, curves
-// are hit at their radius with radial normals and bark coordinates, leaves report their side.
-#include "tracer/embree/embree_scene.h"
+// Tracer-side tests of tree geometry in Embree, through the world's instanced intersection (as the
+// integrators see it): rays find the trunk's lobes and flare, curves are hit at their radius with
+// radial normals and bark coordinates, leaves report their side, and rays leaving a placed tree
+// (translated, rotated, scaled) do not hit it again.
+#include "tracer/embree/world.h"
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
 #include <vector>
@@ -11,6 +16,7 @@
 #include "generator/species.h"
 #include "common/rng.h"
 #include "generator/models/weber_penn/weber_penn.h"
+#include "scene/scene.h"
 #include "tracer/integrators/path.h"
 #include "formats/species_file.h"
 #include "common/math.h"
@@ -18,6 +24,39 @@
 namespace arbor::trace {
 
 namespace {
+
+// One tree geometry as a scene of one prototype and one instance at `placement`, in Embree.
+class GeometryWorld {
+ public:
+  GeometryWorld(const gen::TreeGeometry& g, const EmbreeDevice& device, const Placement& placement = {})
+      : scene_(make_scene(g, placement)), world_(*scene_, device) {}
+  // The closest hit in world space; false when the ray escapes.
+  bool intersect(const Ray& ray, SurfaceHit& hit) const {
+    WorldHit w;
+    if (!world_.intersect(ray, w)) return false;
+    EXPECT_EQ(w.instance, 0);
+    EXPECT_NE(w.material, nullptr);
+    hit = w.surface;
+    return true;
+  }
+  const World& world() const { return world_; }
+
+ private:
+  static std::unique_ptr<Scene> make_scene(const gen::TreeGeometry& g, const Placement& placement) {
+    auto scene = std::make_unique<Scene>();
+    TreePrototypeData p;
+    p.geometry = std::make_unique<gen::TreeGeometry>(g);
+    scene->prototypes.push_back(std::move(p));
+    TreeInstance inst;
+    inst.to_world = placement_matrix(placement);
+    inst.to_object = glm::inverse(inst.to_world);
+    inst.normal_to_world = glm::inverseTranspose(glm::mat3(inst.to_world));
+    scene->instances.push_back(inst);
+    return scene;
+  }
+  std::unique_ptr<Scene> scene_;
+  World world_;
+};
 
 
 // Centre of the trunk grid's ring nearest height z (lobes cancel in the mean of a full ring).
@@ -38,7 +77,7 @@ glm::vec2 ring_centre(const gen::TreeGeometry& g, float z) {
 }
 
 // Radii of the trunk at height z seen by `n` horizontal rays aimed at the axis from all round.
-std::vector<double> radii_at(const TreePrototype& tree, glm::vec2 axis, float z, int n) {
+std::vector<double> radii_at(const GeometryWorld& tree, glm::vec2 axis, float z, int n) {
   std::vector<glm::vec3> hits;
   for (int k = 0; k < n; ++k) {
     const double a = 2.0 * kPi * k / n;
@@ -88,7 +127,7 @@ TEST(TreePrototype, RaysFindTheTrunkLobesAndFlare) {
   const gen::Skeleton sk = gen::grow_weber_penn(aspen.weber_penn(), o);
   const gen::TreeGeometry g = gen::build_tree_geometry(sk);
   EmbreeDevice device("threads=1");
-  const TreePrototype tree(device, g);
+  const GeometryWorld tree(g, device);
   const float r0 = sk.stems[0].base_radius;
   double mean_low = 0.0, mean_high = 0.0;
   for (float z : {1.0f, 2.0f, 3.0f}) {
@@ -103,7 +142,7 @@ TEST(TreePrototype, RaysFindTheTrunkLobesAndFlare) {
   // Flare 0.6 near the ground: 1 + 0.6 (100^(1 - 8z) - 1) / 100 at z = 0.02 / 12 m.
   EXPECT_GT(mean_low / mean_high, 1.4);
   EXPECT_GT(mean_low, r0 * 1.4);
-  EXPECT_GT(tree.build_seconds(), 0.0);
+  EXPECT_GT(tree.world().build_seconds(), 0.0);
 }
 
 TEST(TreePrototype, CurvesAreHitAtTheirRadiusWithBarkCoordinates) {
@@ -111,7 +150,7 @@ TEST(TreePrototype, CurvesAreHitAtTheirRadiusWithBarkCoordinates) {
   const gen::TreeGeometry g = gen::build_tree_geometry(sk);
   ASSERT_TRUE(g.grids.grids.empty());
   EmbreeDevice device("threads=1");
-  const TreePrototype tree(device, g);
+  const GeometryWorld tree(g, device);
   const glm::vec3 frame_normal = g.curves.segments[0].normal0;
   const glm::vec3 frame_binormal = glm::cross(glm::vec3(0, 0, 1), frame_normal);
   for (float z : {0.3f, 1.5f, 2.7f}) {
@@ -145,7 +184,7 @@ TEST(TreePrototype, LeavesReportTheSideTheRayCameFrom) {
   sk.leaves.push_back(leaf);
   const gen::TreeGeometry g = gen::build_tree_geometry(sk);
   EmbreeDevice device("threads=1");
-  const TreePrototype tree(device, g);
+  const GeometryWorld tree(g, device);
   SurfaceHit hit;
   Ray down;
   down.origin = glm::vec3(1.1f, 0.0f, 2.0f);
@@ -170,40 +209,50 @@ TEST(TreePrototype, RaysLeavingLimbsAndLeavesDoNotHitThemAgain) {
   // Shadow acne check on the thinnest geometry: a whole Black Tupelo (twigs of a few mm), rays
   // from all round; from every hit a ray leaves into the hemisphere it came from (and through
   // leaves, behind them) with the integrator's offset rule. None may hit the same primitive at
-  // once, and a ray leaving an opaque limb outward must not hit that limb at all.
+  // once. Once with the tree where it grew, once placed as a forest places trees (moved far from
+  // the origin, turned, scaled), where the hit is carried back from the instance's space.
   const gen::Species tupelo = gen::load_species(std::string(ARBOR_SOURCE_DIR) +
                                                 "/species/black_tupelo.toml");
   gen::GrowOptions o;
   o.quality = 0.3;
   const gen::TreeGeometry g = gen::build_tree_geometry(gen::grow_weber_penn(tupelo.weber_penn(), o));
   EmbreeDevice device("threads=1");
-  const TreePrototype tree(device, g);
-  Rng rng(5);
-  int hits = 0, curve_hits = 0, acne = 0;
-  for (int i = 0; i < 20000; ++i) {
-    const double a = 2 * kPi * rng.uniform(), z = 4.0 + 16.0 * rng.uniform();
-    Ray ray;
-    ray.origin = glm::vec3(30.0 * std::cos(a), 30.0 * std::sin(a), z);
-    const glm::vec3 target(4.0 * rng.symmetric(), 4.0 * rng.symmetric(), 4.0 + 16.0 * rng.uniform());
-    ray.direction = glm::normalize(target - ray.origin);
-    SurfaceHit hit;
-    if (!tree.intersect(ray, hit)) continue;
-    ++hits;
-    curve_hits += hit.kind == SurfaceKind::Curve ? 1 : 0;
-    // A random direction on the side the ray came from (and, for leaves, also behind).
-    glm::vec3 d(rng.symmetric(), rng.symmetric(), rng.symmetric());
-    d = glm::normalize(d);
-    if (glm::dot(d, hit.geometric_normal) < 0.0f && hit.kind != SurfaceKind::Leaf) d = -d;
-    const Ray out = spawn_ray(hit.position, hit.geometric_normal, d);
-    SurfaceHit again;
-    if (tree.intersect(out, again) && again.kind == hit.kind && again.primitive == hit.primitive &&
-        again.t < 1e-3f) {
-      ++acne;
+  Placement placed;
+  placed.position = {180.0, -140.0, 0.5};
+  placed.rotation = 37.0;
+  placed.scale = 1.3;
+  for (const Placement& placement : {Placement{}, placed}) {
+    const GeometryWorld tree(g, device, placement);
+    const glm::mat4 m = placement_matrix(placement);
+    auto world = [&](const glm::vec3& p) { return glm::vec3(m * glm::vec4(p, 1.0f)); };
+    Rng rng(5);
+    int hits = 0, curve_hits = 0, acne = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const double a = 2 * kPi * rng.uniform(), z = 4.0 + 16.0 * rng.uniform();
+      Ray ray;
+      ray.origin = world(glm::vec3(30.0 * std::cos(a), 30.0 * std::sin(a), z));
+      const glm::vec3 target =
+          world(glm::vec3(4.0 * rng.symmetric(), 4.0 * rng.symmetric(), 4.0 + 16.0 * rng.uniform()));
+      ray.direction = glm::normalize(target - ray.origin);
+      SurfaceHit hit;
+      if (!tree.intersect(ray, hit)) continue;
+      ++hits;
+      curve_hits += hit.kind == SurfaceKind::Curve ? 1 : 0;
+      // A random direction on the side the ray came from (and, for leaves, also behind).
+      glm::vec3 d(rng.symmetric(), rng.symmetric(), rng.symmetric());
+      d = glm::normalize(d);
+      if (glm::dot(d, hit.geometric_normal) < 0.0f && hit.kind != SurfaceKind::Leaf) d = -d;
+      const Ray out = spawn_ray(hit.position, hit.geometric_normal, d);
+      SurfaceHit again;
+      if (tree.intersect(out, again) && again.kind == hit.kind && again.primitive == hit.primitive &&
+          again.t < 1e-3f) {
+        ++acne;
+      }
     }
+    EXPECT_GT(hits, 5000) << "scale " << placement.scale;
+    EXPECT_GT(curve_hits, 500) << "scale " << placement.scale;
+    EXPECT_EQ(acne, 0) << "of " << hits << " hits, scale " << placement.scale;
   }
-  EXPECT_GT(hits, 5000);
-  EXPECT_GT(curve_hits, 500);
-  EXPECT_EQ(acne, 0) << "of " << hits << " hits";
 }
 
 }  // namespace arbor::trace

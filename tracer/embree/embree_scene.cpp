@@ -64,18 +64,6 @@ TreePrototype::TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry
 
 TreePrototype::~TreePrototype() = default;
 
-bool TreePrototype::intersect(const Ray& ray, SurfaceHit& hit) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  RTCRayHit rh = embree_ray_hit(ray);
-  rtcIntersect1(scene_.get(), &context, &rh);
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-
-  describe_hit(ray, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar,
-               glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z), hit);
-  return true;
-}
-
 void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned primitive, float u,
                                  float v, float t, const glm::vec3& embree_ng,
                                  SurfaceHit& hit) const {

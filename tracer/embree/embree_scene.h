@@ -25,11 +25,8 @@ class TreePrototype {
   const gen::TreeGeometry& geometry() const { return geometry_; }
   double build_seconds() const { return build_seconds_; }
 
-  // Closest hit along the ray; false when nothing is hit.
-  bool intersect(const Ray& ray, SurfaceHit& hit) const;
-
-  // Fills `hit` from Embree's answer for a ray in this prototype's own space (also used for
-  // instanced hits, with the ray taken to object space).
+  // Fills `hit` from Embree's answer for an instanced hit, the ray taken to this prototype's
+  // own space (World::intersect carries it back to the world).
   void describe_hit(const Ray& ray, unsigned geom_id, unsigned primitive, float u, float v,
                     float t, const glm::vec3& embree_ng, SurfaceHit& hit) const;
 
