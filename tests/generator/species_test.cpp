@@ -2,12 +2,14 @@
 // InputError naming the file, line and column.
 #include "generator/species.h"
 
+#include <filesystem>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "expect_input_error.h"
 #include "formats/species_file.h"
+#include "generator/grow.h"
 
 namespace arbor::gen {
 
@@ -196,6 +198,33 @@ TEST(ArbaroXml, TextOutsideTheElementsIsRefused) {
   expect_xml_error(body + "<arbaro/>\n", 4, "a second root element");
   // Declarations, comments and white space stay allowed.
   EXPECT_NO_THROW(parse_arbaro_xml("<?xml version='1.0'?>\n<!-- a tree -->\n" + body + "  \n", "t.xml"));
+}
+
+}  // namespace arbor::gen
+
+namespace arbor::gen {
+
+// Every shipped species, whatever its model, grows a skeleton that satisfies the invariants the
+// geometry relies on (one root, parents before children, finite points, children no thicker
+// than their parents where they start, leaves on stems) and has a sane scale.
+TEST(Species, EveryShippedSpeciesGrowsAValidSkeleton) {
+  const std::string folder = std::string(ARBOR_SOURCE_DIR) + "/species";
+  int grown = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    const Species species = load_species(entry.path().string());
+    for (std::uint64_t seed : {1u, 8u}) {
+      GrowOptions options;
+      options.seed = seed;
+      options.quality = 0.5;  // half the leaves: the invariants do not depend on their number
+      const Skeleton sk = grow_tree(species, options);
+      const std::string name = entry.path().filename().string() + " seed " + std::to_string(seed);
+      EXPECT_EQ(validate(sk), "") << name;
+      EXPECT_EQ(scale_problem(sk), "") << name;
+      EXPECT_GE(sk.stems.size(), 1u) << name;
+    }
+    ++grown;
+  }
+  EXPECT_GE(grown, 20);  // the shipped species of every model
 }
 
 }  // namespace arbor::gen
