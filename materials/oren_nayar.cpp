@@ -8,9 +8,6 @@
 
 namespace arbor::mat {
 
-namespace {
-}
-
 Rgb OrenNayar::eval(const Dir& wo, const Dir& wi) const {
   if (!same_hemisphere(wo, wi)) return Rgb(0.0);
   const double s2 = sigma * sigma;

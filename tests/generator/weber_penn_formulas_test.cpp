@@ -9,9 +9,6 @@
 
 namespace arbor::gen::wp {
 
-namespace {
-}
-
 TEST(ShapeRatio, MatchesThePaperTable) {
   EXPECT_DOUBLE_EQ(shape_ratio(0, 0.5), 0.6);                          // conical: 0.2 + 0.8 r
   EXPECT_DOUBLE_EQ(shape_ratio(1, 0.5), 1.0);                          // spherical

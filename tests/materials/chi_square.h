@@ -59,6 +59,20 @@ inline ChiSquareResult chi_square(const std::function<BsdfSample(Rng&)>& sample,
   return result;
 }
 
+// ∫ f dω over the upper hemisphere (z > 0) by the midpoint rule on an n × 4n grid in (cos θ, φ),
+// independent of any BSDF's sampling.
+inline double hemisphere_integral(const std::function<double(const Dir&)>& f, int n = 400) {
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double z = (i + 0.5) / n, r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    for (int j = 0; j < 4 * n; ++j) {
+      const double phi = 2.0 * kPi * (j + 0.5) / (4 * n);
+      sum += f(Dir(r * std::cos(phi), r * std::sin(phi), z));
+    }
+  }
+  return sum * (1.0 / n) * (2.0 * kPi / (4 * n));
+}
+
 // The 99.9th percentile of χ² with k degrees of freedom (Wilson–Hilferty).
 inline double chi_square_critical(int k) {
   const double z = 3.0902;  // standard normal 99.9 %

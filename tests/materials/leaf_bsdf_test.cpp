@@ -14,9 +14,6 @@
 
 namespace arbor::mat {
 
-namespace {
-}
-
 TEST(LeafBsdf, SamplingMatchesPdfChiSquare) {
   const LeafBsdf bsdf{Rgb(0.3, 0.5, 0.1), Rgb(0.6, 0.3, 0.2)};
   const Dir wo = glm::normalize(Dir(0.2, 0.1, 0.8));

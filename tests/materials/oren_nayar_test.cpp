@@ -30,6 +30,32 @@ TEST(OrenNayar, SamplingMatchesPdfChiSquare) {
   }
 }
 
+TEST(OrenNayar, EvalIsTheQualitativeModelOfThePaper) {
+  // Oren & Nayar 1994, eq. 30 in angles: f = ρ/π (A + B max(0, cos(φi − φo)) sin α tan β),
+  // A = 1 − 0.5 σ²/(σ² + 0.33), B = 0.45 σ²/(σ² + 0.09), α = max(θi, θo), β = min(θi, θo).
+  const double rho = 0.6;
+  for (double sigma : {0.2, 0.5, 1.0}) {
+    const OrenNayar on{Rgb(rho), sigma};
+    const double s2 = sigma * sigma, A = 1.0 - 0.5 * s2 / (s2 + 0.33), B = 0.45 * s2 / (s2 + 0.09);
+    for (double ti : {0.2, 0.8, 1.3}) {
+      for (double to : {0.1, 0.6, 1.2}) {
+        for (double dphi : {0.0, 1.0, 2.5}) {
+          const Dir wi(std::sin(ti), 0.0, std::cos(ti));
+          const Dir wo(std::sin(to) * std::cos(dphi), std::sin(to) * std::sin(dphi), std::cos(to));
+          const double expected = rho / kPi *
+              (A + B * std::max(0.0, std::cos(dphi)) * std::sin(std::max(ti, to)) * std::tan(std::min(ti, to)));
+          EXPECT_NEAR(on.eval(wo, wi).x, expected, 1e-12)
+              << "sigma " << sigma << " theta_i " << ti << " theta_o " << to << " dphi " << dphi;
+        }
+      }
+    }
+    // Seen from the normal (θo = 0, so tan β = 0) the directional albedo is exactly ρ A.
+    const double albedo = testing::hemisphere_integral(
+        [&](const Dir& wi) { return on.eval(Dir(0.0, 0.0, 1.0), wi).x * wi.z; });
+    EXPECT_NEAR(albedo, rho * A, 1e-5) << "sigma " << sigma;
+  }
+}
+
 TEST(OrenNayar, ZeroRoughnessIsLambert) {
   const OrenNayar on{Rgb(0.4), 0.0};
   const Lambert l{Rgb(0.4)};

@@ -8,9 +8,6 @@
 
 namespace arbor::gen::wp {
 
-namespace {
-}
-
 double envelope_ratio(double ratio, const Envelope& e) {
   // §4.6: ShapeRatio(8, ratio) is 0 outside [0, 1].
   if (!(ratio >= 0.0 && ratio <= 1.0)) return 0.0;
