@@ -132,9 +132,64 @@ TEST(Treemaker, WeightsComeFromTheTemplateThenTheScene) {
   EXPECT_DOUBLE_EQ(dogwood.angle, 0.2);
   EXPECT_DOUBLE_EQ(world.instance(1).treemaker.angle, 0.7);
   EXPECT_DOUBLE_EQ(world.instance(1).treemaker.height, 0.4);
-  const mat::TreemakerWeights defaults;
-  EXPECT_DOUBLE_EQ(world.instance(2).treemaker.lambert, defaults.lambert);
-  EXPECT_DOUBLE_EQ(world.instance(2).treemaker.angle, defaults.angle);
+  // A tree of another model gets arbor's documented defaults (docs/treemaker-format.md).
+  const mat::TreemakerWeights& other = world.instance(2).treemaker;
+  EXPECT_DOUBLE_EQ(other.ambient, 0.1);
+  EXPECT_DOUBLE_EQ(other.lambert, 0.4);
+  EXPECT_DOUBLE_EQ(other.height, 0.2);
+  EXPECT_DOUBLE_EQ(other.radius, 0.2);
+  EXPECT_DOUBLE_EQ(other.angle, 0.1);
+}
+
+// The shade worked out from the view alone, without the integrator's AOVs: a vertical trunk
+// (T = z) under a sun 30° up has N·L = sqrt(1 − (T·L)²) = cos 30° everywhere, and h/h0 is the
+// hit's height over the trunk's 10 m, which a horizontal camera sees row by row.
+TEST(Treemaker, ShadeOfAVerticalTrunkIsWorkedOutFromTheView) {
+  SceneDesc s;
+  s.render.width = 16;
+  s.render.height = 64;
+  s.render.treemaker_spp = 1;
+  s.camera.position = {0.0, -20.0, 5.0};
+  s.camera.look_at = {0.0, 0.0, 5.0};
+  s.camera.fov = 40.0;
+  s.sun.elevation = 30.0;
+  s.sun.azimuth = 0.0;
+  s.sun.irradiance = 2.0;
+  s.sky.model = "none";
+  s.ground.enabled = false;
+  TreeDesc t = tree_of(write_file("tm_pole.skel", "point 1 0 0 0 0.3\npoint 2 0 0 10 0.3\nconnect 1 2\n"));
+  t.bark.albedo = Rgb{0.5, 0.5, 0.5};
+  t.treemaker = {0.0, 1.0, 0.0, 0.0, 0.0};  // N·L alone
+  s.trees.push_back(t);
+  const double max_intensity = 2.0 / kPi;  // (E_sun + E_sky) / π with no sky
+  const double tan_half = std::tan(20.0 * kPi / 180.0);
+  const EmbreeDevice device("");
+  for (int part = 0; part < 2; ++part) {
+    if (part == 1) s.trees[0].treemaker = {0.0, 0.0, 1.0, 0.0, 0.0};  // h/h0 alone
+    const TestWorld test_world(s, device);
+    const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 64);
+    RenderStats stats;
+    const Image img = render_treemaker(s, test_world.world, sky, kIdentity, nullptr, stats);
+    int trunk = 0;
+    for (int y = 0; y < s.render.height; ++y) {
+      // The height the row's centre sees on the trunk's front (19.7 m away), and what one pixel
+      // of the tent filter's reach spans there.
+      const double slope = tan_half * (1.0 - 2.0 * (y + 0.5) / s.render.height);
+      const double z = 5.0 + 19.7 * slope, z_pixel = 19.7 * 2.0 * tan_half / s.render.height;
+      for (int x = 6; x < 10; ++x) {  // the trunk's middle columns
+        const std::size_t p = static_cast<std::size_t>(y) * s.render.width + x;
+        if (img.depth[p] <= 0.0f || z < 0.3 || z > 9.7) continue;
+        ++trunk;
+        if (part == 0) {
+          EXPECT_NEAR(img.beauty[p].x, 0.5 * max_intensity * std::cos(kPi / 6.0), 1e-5) << "row " << y;
+        } else {
+          EXPECT_NEAR(img.beauty[p].x, 0.5 * max_intensity * z / 10.0, 0.5 * max_intensity * 1.5 * z_pixel / 10.0)
+              << "row " << y;
+        }
+      }
+    }
+    EXPECT_GT(trunk, 60) << "part " << part;  // the 0.6 m trunk is three pixels wide
+  }
 }
 
 // Every pixel of a tree is albedo × MAX_INTENSITY × Σ w·factor with MAX_INTENSITY = (E_sun + E_sky)/π;
