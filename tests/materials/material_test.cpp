@@ -1,0 +1,125 @@
+// The material layer: bark bump mapping tilts the normal by the height gradient (worked out for
+// a ramp image), bark images tile whole times round a limb, leaves take their side's reflectance
+// and their tint, and one dispatch gives both the BSDF and the albedo AOV.
+#include "materials/material.h"
+
+#include <cmath>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "common/math.h"
+
+namespace arbor::mat {
+
+namespace {
+
+// A point on a limb of radius 0.1 m: normal +x, the limb along +z.
+SurfacePoint limb_point(float along, float azimuth) {
+  SurfacePoint p;
+  p.shading_normal = p.geometric_normal = glm::vec3(1, 0, 0);
+  p.tangent = glm::vec3(0, 0, 1);
+  p.along = along;
+  p.azimuth = azimuth;
+  p.radius = 0.1f;
+  return p;
+}
+
+}  // namespace
+
+TEST(BarkMaterial, ABumpRampTiltsTheNormalByItsSlope) {
+  // Height rising linearly along the limb, 0 → 1 over the image (rows are v): with a tile of
+  // 0.25 m the slope is 4 per metre, so a relief of h metres tilts the normal by atan(4 h)
+  // against the slope (towards −tangent). Away from the ramp's wrap-around row.
+  std::vector<float> ramp;
+  const int n = 64;
+  for (int y = 0; y < n; ++y) {
+    for (int x = 0; x < 4; ++x) ramp.push_back((y + 0.5f) / n);
+  }
+  const HeightMap map(ramp, 4, n);
+  BarkMaterial bark;
+  bark.bump_map = &map;
+  bark.bump_tile = 0.25f;
+  bark.bump_height = 0.01f;
+  const glm::vec3 bumped = bark.bumped_normal(limb_point(0.1f, 1.0f));
+  const double tilt = std::atan2(-bumped.z, bumped.x);
+  EXPECT_NEAR(tilt, std::atan(4.0 * 0.01), 1e-3);
+  EXPECT_NEAR(bumped.y, 0.0f, 1e-4f);
+  EXPECT_NEAR(glm::length(bumped), 1.0f, 1e-6f);
+  // No relief, or no limb radius: the normal is left alone.
+  bark.bump_height = 0.0f;
+  EXPECT_EQ(bark.bumped_normal(limb_point(0.1f, 1.0f)), glm::vec3(1, 0, 0));
+}
+
+TEST(BarkMaterial, ABumpRampRoundTheLimbTiltsTheNormalSideways) {
+  // Height rising with azimuth, one ramp per repeat: a limb of radius 0.1 m has round(2π 0.1 /
+  // 0.25) = 3 repeats round it, so the slope is 3 / (2π 0.1) per metre of arc, and the normal
+  // tilts against it, towards −(tangent × normal) = −y.
+  std::vector<float> ramp;
+  const int n = 64;
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < n; ++x) ramp.push_back((x + 0.5f) / n);
+  }
+  const HeightMap map(ramp, n, 4);
+  BarkMaterial bark;
+  bark.bump_map = &map;
+  bark.bump_height = 0.01f;
+  const glm::vec3 bumped = bark.bumped_normal(limb_point(0.1f, 1.0f));
+  const double slope = 3.0 / (2.0 * kPi * 0.1);
+  EXPECT_NEAR(std::atan2(-bumped.y, bumped.x), std::atan(slope * 0.01), 1e-3);
+  EXPECT_NEAR(bumped.z, 0.0f, 1e-4f);
+}
+
+TEST(BarkMaterial, ThePrimitivesColourMultipliesTheAlbedo) {
+  BarkMaterial bark;
+  bark.albedo = glm::vec3(0.5f);
+  SurfacePoint p = limb_point(0.0f, 0.0f);
+  p.color = glm::vec3(0.8f, 1.0f, 1.0f);
+  EXPECT_NEAR(bark.albedo_at(p).x, 0.4f, 1e-6f);
+  EXPECT_NEAR(bark.albedo_at(p).y, 0.5f, 1e-6f);
+}
+
+TEST(LeafMaterial, TheSideHitAndTheTintChooseTheReflectance) {
+  LeafMaterial leaf;
+  leaf.front = glm::vec3(0.1f, 0.2f, 0.3f);
+  leaf.back = glm::vec3(0.3f, 0.2f, 0.1f);
+  leaf.transmittance = glm::vec3(0.4f);
+  SurfacePoint p;
+  p.color = glm::vec3(0.5f, 1.0f, 1.0f);
+  EXPECT_NEAR(leaf.reflectance(p).x, 0.05f, 1e-7f);
+  p.leaf_back = true;
+  EXPECT_NEAR(leaf.reflectance(p).x, 0.15f, 1e-7f);
+  leaf.tinted = false;  // mesh leaves: as given
+  EXPECT_NEAR(leaf.reflectance(p).x, 0.3f, 1e-7f);
+}
+
+TEST(Material, TheBsdfAndTheAlbedoAovComeFromOneDispatch) {
+  Material bark;
+  bark.kind = Material::Kind::Bark;
+  bark.bark.albedo = glm::vec3(0.3f, 0.25f, 0.2f);
+  bark.bark.bump_height = 0.004f;  // procedural furrows
+  bark.bark.roughness = 0.3f;
+  Material leaf;
+  leaf.kind = Material::Kind::Leaf;
+  leaf.leaf.front = glm::vec3(0.1f);
+  leaf.leaf.back = glm::vec3(0.2f);
+  leaf.leaf.transmittance = glm::vec3(0.5f);
+  Material ground;
+  ground.albedo = glm::vec3(0.16f, 0.14f, 0.1f);
+  for (float a : {0.0f, 0.3f, 1.7f}) {
+    SurfacePoint p = limb_point(a, 2.0f * a);
+    p.leaf_back = a > 1.0f;
+    for (const Material* m : {&bark, &leaf, &ground}) {
+      const SurfaceBsdf b = m->bsdf(p);
+      EXPECT_EQ(b.albedo, m->albedo_at(p));
+      EXPECT_EQ(b.leaf, m == &leaf);
+      EXPECT_GE(glm::dot(b.normal, p.geometric_normal), 0.0f);  // kept on the geometry's side
+      EXPECT_NEAR(glm::length(b.normal), 1.0f, 1e-5f);
+    }
+    EXPECT_EQ(bark.bsdf(p).diffuse.sigma, 0.3f);
+    EXPECT_EQ(leaf.bsdf(p).leaf_bsdf.transmittance, glm::dvec3(glm::vec3(0.5f)));
+  }
+}
+
+}  // namespace arbor::mat
