@@ -36,28 +36,9 @@ namespace {
 
 Skeleton grow_model(const Species& species, const GrowOptions& options) {
   switch (species.model()) {
-    case Model::LSystem: {
-      LSystemOptions o;
-      o.seed = options.seed;
-      o.force = options.force;
-      o.max_segments = options.max_stems;
-      return grow_lsystem(species.lsystem(), o);
-    }
-    case Model::Fractal: {
-      FractalOptions o;
-      o.seed = options.seed;
-      o.time = options.time;
-      o.force = options.force;
-      o.max_stems = options.max_stems;
-      return grow_fractal(species.fractal(), o);
-    }
-    case Model::TreeMaker: {
-      TreeMakerOptions o;
-      o.seed = options.seed;
-      o.force = options.force;
-      o.max_stems = options.max_stems;
-      return grow_treemaker(species.treemaker(), o);
-    }
+    case Model::LSystem: return grow_lsystem(species.lsystem(), options);
+    case Model::Fractal: return grow_fractal(species.fractal(), options);
+    case Model::TreeMaker: return grow_treemaker(species.treemaker(), options);
     case Model::SkeletonFile:
       return species.skeleton();  // a skeleton file is the tree itself: seed and time do nothing
     case Model::WeberPenn:

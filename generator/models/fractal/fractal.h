@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "generator/grow_options.h"
 #include "generator/skeleton.h"
 
 namespace arbor::gen {
@@ -46,12 +47,9 @@ double fractal_full_age(const FractalParams& p);
 // Branches the tree can have (before pruning), for the size limit.
 double fractal_estimate(const FractalParams& p);
 
-struct FractalOptions {
-  std::uint64_t seed = 1;
-  double time = 0.0;        // age; 0 means p.age, and p.age 0 means full grown
-  double max_stems = 1e7;
-  bool force = false;
-};
+// The fractal model reads seed, time (its age: 0 means p.age, and p.age 0 means full grown),
+// max_stems and force.
+using FractalOptions = GrowOptions;
 
 Skeleton grow_fractal(const FractalParams& params, const FractalOptions& options);
 

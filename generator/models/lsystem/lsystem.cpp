@@ -106,7 +106,7 @@ class Interpreter {
   }
 
   void forward(const LAction& a, Turtle& t) {
-    refuse_growth(o_.force, static_cast<double>(++segments_), o_.max_segments, "the L-system drew more than",
+    refuse_growth(o_.force, static_cast<double>(++segments_), o_.max_stems, "the L-system drew more than",
                   "segments");
     if (t.stem < 0) {
       if (t.parent_stem < 0 && !stems_.empty()) {
@@ -278,8 +278,8 @@ double estimate_segments(const LSystem& sys) { return axiom_cost(sys, false); }
 
 Skeleton grow_lsystem(const LSystem& sys, const LSystemOptions& o) {
   const double estimate = estimate_segments(sys);
-  refuse_estimate(o.force, estimate, o.max_segments, "the L-system would draw", "segments");
-  refuse_estimate(o.force, axiom_cost(sys, true), 50.0 * o.max_segments, "the L-system would interpret",
+  refuse_estimate(o.force, estimate, o.max_stems, "the L-system would draw", "segments");
+  refuse_estimate(o.force, axiom_cost(sys, true), 50.0 * o.max_stems, "the L-system would interpret",
                   "actions");
   return Interpreter(sys, o).run();
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "generator/grow_options.h"
 #include "generator/skeleton.h"
 
 namespace arbor::gen {
@@ -49,11 +50,8 @@ struct LSystem {
 // Upper estimate of the number of f segments the system draws (for the size limit).
 double estimate_segments(const LSystem& system);
 
-struct LSystemOptions {
-  std::uint64_t seed = 1;
-  double max_segments = 1e7;
-  bool force = false;
-};
+// The L-system reads seed, force and max_stems (the most segments it may draw).
+using LSystemOptions = GrowOptions;
 
 // Interprets the system with a 3D turtle (heading +z, up +y at the start). Deterministic.
 Skeleton grow_lsystem(const LSystem& system, const LSystemOptions& options);

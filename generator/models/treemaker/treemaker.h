@@ -4,6 +4,7 @@
 
 #include <cstdint>
 
+#include "generator/grow_options.h"
 #include "generator/skeleton.h"
 #include "generator/models/treemaker/treemaker_template.h"
 
@@ -12,11 +13,8 @@ namespace arbor::gen {
 // Template units are centimetres (the paper's dogwood then grows to about 3 m with 9 cm leaves).
 constexpr double kTreeMakerUnit = 0.01;
 
-struct TreeMakerOptions {
-  std::uint64_t seed = 1;
-  double max_stems = 1e7;
-  bool force = false;
-};
+// TREE-MAKER reads seed, max_stems (branches) and force.
+using TreeMakerOptions = GrowOptions;
 
 // Upper estimate of the branches a template can grow (each level at its rule's largest count).
 double treemaker_estimate(const TreeMakerTemplate& t);
