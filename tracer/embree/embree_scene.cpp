@@ -12,18 +12,6 @@
 
 namespace arbor::trace {
 
-namespace {
-
-// Copies `count` elements of `stride` bytes into a new Embree buffer (Embree pads it as needed).
-void fill(RTCGeometry g, RTCBufferType type, RTCFormat format, const void* data,
-          std::size_t stride, std::size_t count) {
-  void* dst = rtcSetNewGeometryBuffer(g, type, 0, format, stride, count);
-  if (dst && count > 0) std::memcpy(dst, data, stride * count);
-}
-
-
-}  // namespace
-
 TreePrototype::TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry& geometry)
     : geometry_(geometry) {
   const auto start = std::chrono::steady_clock::now();
@@ -104,10 +92,9 @@ void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned prim
     const gen::LeafMesh& lm = geometry_.leaves;
     const std::uint32_t* tri = &lm.indices[3 * static_cast<std::size_t>(primitive)];
     const glm::vec3 a = lm.positions[tri[0]], b = lm.positions[tri[1]], c = lm.positions[tri[2]];
-    const glm::vec3 front = glm::normalize(glm::cross(b - a, c - a));  // counter-clockwise side
-    const bool from_front = glm::dot(front, ray.direction) < 0.0f;
-    hit.material = from_front ? lm.front_material[primitive] : lm.back_material[primitive];
-    hit.geometric_normal = from_front ? front : -front;
+    const TriangleSide side = side_seen(a, b, c, ray.direction);
+    hit.material = side.front ? lm.front_material[primitive] : lm.back_material[primitive];
+    hit.geometric_normal = side.normal;
     hit.shading_normal = hit.geometric_normal;
     hit.leaf = lm.leaf[primitive];
     hit.color = lm.color.empty() ? glm::vec3(1.0f) : lm.color[primitive];

@@ -40,21 +40,17 @@ World::World(const Scene& scene, const EmbreeDevice& device) : scene_(scene), de
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
     const MeshObject& mesh = scene.meshes[i];
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3), mesh.positions.size());
-    std::memcpy(v, mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3));
-    auto* ix = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), mesh.indices.size() / 3);
-    std::memcpy(ix, mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t));
+    fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, mesh.positions.data(), sizeof(glm::vec3), mesh.positions.size());
+    fill(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, mesh.indices.data(), 3 * sizeof(std::uint32_t), mesh.indices.size() / 3);
     map_id(mesh_of_geometry_, attach(top_.get(), g), i);
   }
   if (scene.has_ground) {
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, 4));
     const float s = kGroundHalfSize;
     const float corners[12] = {-s, -s, 0, s, -s, 0, s, s, 0, -s, s, 0};
-    std::copy(corners, corners + 12, v);
-    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12, 2));
     const unsigned tris[6] = {0, 1, 2, 0, 2, 3};
-    std::copy(tris, tris + 6, idx);
+    fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, corners, 3 * sizeof(float), 4);
+    fill(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, tris, 3 * sizeof(unsigned), 2);
     attach(top_.get(), g);
   }
   rtcCommitScene(top_.get());
@@ -76,13 +72,13 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
     const MeshObject& mesh = scene_.meshes[static_cast<std::size_t>(mesh_of_geometry_[rh.hit.geomID])];
     const std::uint32_t* tri = &mesh.indices[3 * static_cast<std::size_t>(rh.hit.primID)];
     const glm::vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]], c = mesh.positions[tri[2]];
-    const glm::vec3 front = glm::normalize(glm::cross(b - a, c - a));
+    const TriangleSide side = side_seen(a, b, c, ray.direction);
     s.kind = SurfaceKind::None;
     s.t = rh.ray.tfar;
     s.primitive = rh.hit.primID;
     s.position = ray.origin + ray.direction * s.t;
-    hit.mesh_front = glm::dot(front, ray.direction) < 0.0f;
-    s.geometric_normal = hit.mesh_front ? front : -front;
+    hit.mesh_front = side.front;
+    s.geometric_normal = side.normal;
     s.shading_normal = s.geometric_normal;
     s.tangent = glm::normalize(b - a);
     s.leaf = -1;
