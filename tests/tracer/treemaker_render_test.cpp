@@ -192,9 +192,11 @@ TEST(Treemaker, ShadeOfAVerticalTrunkIsWorkedOutFromTheView) {
   }
 }
 
-// Every pixel of a tree is albedo × MAX_INTENSITY × Σ w·factor with MAX_INTENSITY = (E_sun + E_sky)/π;
-// ground pixels are ρ(E_sun cos θ + E_sky)/π in sunlight and ρ E_sky/π in the tree's shadow,
-// which lies on the side away from the sun.
+// The AOVs' identity: every pixel of a tree is albedo × MAX_INTENSITY × Σ w·factor of its own
+// factors, with MAX_INTENSITY = (E_sun + E_sky)/π (the factors themselves are checked from the
+// view in ShadeOfAVerticalTrunkIsWorkedOutFromTheView). Ground pixels, worked out independently,
+// are ρ(E_sun cos θ + E_sky)/π in sunlight and ρ E_sky/π in the tree's shadow, which lies on the
+// side away from the sun.
 TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
   SceneDesc s;
   s.render.width = 64;
