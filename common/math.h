@@ -1,5 +1,5 @@
-// Constants and small functions every layer shares: π, degrees, RGB triples as read from files,
-// the concentric disk map.
+// Constants and small functions every layer shares: π, degrees, luminance, RGB triples as read
+// from files, the concentric disk map.
 #pragma once
 
 #include <array>
@@ -13,6 +13,12 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kTwoPi = 6.283185307179586;
 constexpr double radians(double degrees) { return degrees * (kPi / 180.0); }
 constexpr double degrees(double radians) { return radians * (180.0 / kPi); }
+
+// Rec. 709 luminance of linear RGB, in the precision of the arguments.
+template <class T>
+constexpr T luminance(T r, T g, T b) {
+  return T(0.2126) * r + T(0.7152) * g + T(0.0722) * b;
+}
 
 // A colour as a file states it (scene-linear RGB, double precision).
 using Rgb = std::array<double, 3>;

@@ -7,7 +7,7 @@
 namespace arbor::mat {
 
 namespace {
-double luminance(const Rgb& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+double luminance(const Rgb& c) { return arbor::luminance(c.x, c.y, c.z); }
 }  // namespace
 
 double LeafBsdf::reflect_probability() const {

@@ -9,6 +9,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include "common/error.h"
+#include "common/math.h"
 
 namespace arbor::mat {
 
@@ -62,7 +63,7 @@ std::vector<T> load_texels(const OIIO::ImageBuf& image, const std::string& path,
 HeightMap::HeightMap(const std::string& path) {
   values_ = load_texels<float>(read_float_image(path), path, width_, height_,
                                [&](const float* px, int channels, int, int) {
-    const float v = channels >= 3 ? 0.2126f * px[0] + 0.7152f * px[1] + 0.0722f * px[2] : px[0];
+    const float v = channels >= 3 ? luminance(px[0], px[1], px[2]) : px[0];
     if (!std::isfinite(v)) throw InputError({path, 0, 0}, "the image has a pixel that is not finite");
     return v;
   });
