@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <gtest/gtest.h>
 
 #include "app/cli.h"
@@ -335,4 +336,40 @@ TEST(ArborCli, RenderWritesExrAndPngAndNothingOnFailure) {
   const CliRun bad = run_arbor("render " + scene + " -o /no/such/dir/tiny.exr");
   EXPECT_EQ(bad.code, 1);
   EXPECT_FALSE(exists("/no/such/dir/tiny.exr"));
+}
+
+// $OCIO names the config of the whole run (read once, at start): an unreadable one is an input
+// error naming it, a copy of arbor's own renders the same pixels, a config without the scene's
+// colour space is refused at the scene key, and an empty $OCIO means arbor's own config.
+TEST(ArborCli, OcioNamesTheConfigOfTheRun) {
+  const std::string dir = ::testing::TempDir();
+  const std::string scene = write_temp(
+      "ocio_scene.toml",
+      "[render]\nwidth = 12\nheight = 8\nspp = 2\n[camera]\nposition = [10.0, -14.0, 3.0]\n"
+      "look_at = [0.0, 0.0, 5.0]\n[output]\ncolorspace = \"ACEScg\"\n[[tree]]\nspecies = \"" +
+      std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml\"\n");
+  const std::string args = "render " + scene + " -o " + dir + "ocio.exr --png " + dir + "ocio.png";
+  const CliRun missing = run_arbor_with("OCIO=/no/such/config.ocio", args);
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.err.find("/no/such/config.ocio"), std::string::npos) << missing.err;
+  EXPECT_FALSE(exists(dir + "ocio.exr"));
+
+  const std::string shipped = slurp(std::string(ARBOR_SOURCE_DIR) + "/imaging/ocio/config.ocio");
+  const std::string copy = write_temp("ocio_copy.ocio", shipped);
+  ASSERT_EQ(run_arbor_with("OCIO=" + copy, args).code, 0);
+  OIIO::ImageBuf with_copy(dir + "ocio.exr");
+  ASSERT_EQ(run_arbor_with("OCIO=", args).code, 0);  // empty: arbor's own
+  OIIO::ImageBuf with_own(dir + "ocio.exr");
+  ASSERT_TRUE(with_copy.read(0, 0, true, OIIO::TypeDesc::FLOAT) && with_own.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+  EXPECT_EQ(OIIO::ImageBufAlgo::compare(with_copy, with_own, 0.0f, 0.0f).nfail, 0u);
+
+  std::string renamed = shipped;
+  const std::string from = "    name: ACEScg\n";
+  ASSERT_NE(renamed.find(from), std::string::npos);
+  renamed.replace(renamed.find(from), from.size(), "    name: AP1 linear\n");
+  const std::string other = write_temp("ocio_other.ocio", renamed);
+  const CliRun refused = run_arbor_with("OCIO=" + other, args);
+  EXPECT_EQ(refused.code, 2);
+  EXPECT_NE(refused.err.find(scene + ":9:14: error: output.colorspace \"ACEScg\" is not in the OCIO config " + other),
+            std::string::npos) << refused.err;
 }
