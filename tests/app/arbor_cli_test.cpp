@@ -349,6 +349,7 @@ TEST(ArborCli, OcioNamesTheConfigOfTheRun) {
       "look_at = [0.0, 0.0, 5.0]\n[output]\ncolorspace = \"ACEScg\"\n[[tree]]\nspecies = \"" +
       std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml\"\n");
   const std::string args = "render " + scene + " -o " + dir + "ocio.exr --png " + dir + "ocio.png";
+  std::remove((dir + "ocio.exr").c_str());  // left by an earlier run
   const CliRun missing = run_arbor_with("OCIO=/no/such/config.ocio", args);
   EXPECT_EQ(missing.code, 2);
   EXPECT_NE(missing.err.find("/no/such/config.ocio"), std::string::npos) << missing.err;
