@@ -9,6 +9,7 @@
 
 #include "expect_input_error.h"
 #include "imaging/color.h"
+#include "formats/scene_desc.h"
 #include "imaging/image_output.h"
 
 namespace arbor::trace {
@@ -23,7 +24,25 @@ void expect_rgb(const float got[3], double r, double g, double b, double toleran
   EXPECT_NEAR(got[2], b, tolerance) << what;
 }
 
+// Errors the OCIO config finds in a scene that parsed: still at the scene key.
+void expect_colour_error(const std::string& text, int line, int column, const std::string& fragment) {
+  const SceneDesc s = parse_scene(text, "dir/s.toml");
+  const ColorPipeline color(kConfig);
+  testing::expect_input_error([&] { color.check(s.output); }, "dir/s.toml", line, column, fragment);
+}
+
 }  // namespace
+
+TEST(Color, ASceneOutputsUnknownNamesAreErrorsAtTheSceneKey) {
+  // The scene file parsed; the config finds the colour space, display or view missing and says
+  // so at the key, listing what it has.
+  expect_colour_error("[output]\nexr = \"a.exr\"\ncolorspace = \"Rec.2020 please\"\n", 3, 14,
+                      "output.colorspace \"Rec.2020 please\" is not in the OCIO config");
+  expect_colour_error("[output]\ndisplay = \"CRT\"\n", 2, 11,
+                      "output.display \"CRT\" is not in the OCIO config; it has \"sRGB\"");
+  expect_colour_error("[output]\nview = \"Filmic\"\n", 2, 8,
+                      "output.view \"Filmic\" is not a view of display \"sRGB\"");
+}
 
 TEST(Color, Rec709ToAcescgIsTheBradfordAdaptedMatrix) {
   // Linear Rec.709 → ACEScg (AP1, D60), Bradford adaptation: the columns of the published matrix

@@ -7,8 +7,6 @@
 #include "expect_input_error.h"
 
 #include "formats/scene_desc.h"
-#include "imaging/color.h"
-#include "tracer/test_world.h"
 
 namespace arbor::trace {
 
@@ -16,13 +14,6 @@ namespace {
 
 void expect_error(const std::string& text, int line, int column, const std::string& fragment) {
   testing::expect_input_error([&] { parse_scene(text, "dir/s.toml"); }, "dir/s.toml", line, column, fragment);
-}
-
-// Errors the OCIO config finds in a scene that parsed: still at the scene key.
-void expect_colour_error(const std::string& text, int line, int column, const std::string& fragment) {
-  const SceneDesc s = parse_scene(text, "dir/s.toml");
-  const ColorPipeline color(kOcioConfig);
-  testing::expect_input_error([&] { color.check(s.output); }, "dir/s.toml", line, column, fragment);
 }
 
 }  // namespace
@@ -184,7 +175,7 @@ namespace arbor::trace {
 
 // Camera, output-extension and colour errors once named no file or position and surfaced only
 // when rendering started; the loader finds them, at the key.
-TEST(SceneFile, CameraOutputAndColourErrorsAreFoundWithTheirKey) {
+TEST(SceneFile, CameraAndOutputErrorsAreFoundWithTheirKey) {
   expect_error("[camera]\nposition = [1.0, 2.0, 3.0]\nlook_at = [1.0, 2.0, 3.0]\n", 3, 11,
                "camera.look_at must differ from camera.position");
   expect_error("[camera]\nposition = [0.0, 0.0, 6.0]\n", 2, 12, "must differ");  // the default look_at
@@ -193,12 +184,6 @@ TEST(SceneFile, CameraOutputAndColourErrorsAreFoundWithTheirKey) {
   expect_error("[camera]\nup = [0.0, 0.0, 0.0]\n", 2, 6, "camera.up must not be parallel");
   expect_error("[output]\nexr = \"out/a.png\"\n", 2, 7, "output.exr must name a .exr file");
   expect_error("[output]\npng = \"out/a.exr\"\n", 2, 7, "output.png must name a .png file");
-  expect_colour_error("[output]\nexr = \"a.exr\"\ncolorspace = \"Rec.2020 please\"\n", 3, 14,
-                      "output.colorspace \"Rec.2020 please\" is not in the OCIO config");
-  expect_colour_error("[output]\ndisplay = \"CRT\"\n", 2, 11,
-                      "output.display \"CRT\" is not in the OCIO config; it has \"sRGB\"");
-  expect_colour_error("[output]\nview = \"Filmic\"\n", 2, 8,
-                      "output.view \"Filmic\" is not a view of display \"sRGB\"");
 }
 
 }  // namespace arbor::trace
