@@ -1,4 +1,5 @@
-// Orthonormal frames and rotations (right-handed, angles in radians unless a name says degrees).
+// Orthonormal frames: the stems' and leaves' Frame with its rotations (right-handed, angles in
+// radians unless a name says degrees), and the shading frame around a surface normal.
 #pragma once
 
 #include <cmath>
@@ -52,6 +53,7 @@ struct ShadingFrame {
     x = glm::vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
     y = glm::vec3(b, sign + n.y * n.y * a, -n.y);
   }
+  // World → local (double, as the BSDFs take it) and back.
   glm::dvec3 local(const glm::vec3& v) const {
     return {glm::dot(v, x), glm::dot(v, y), glm::dot(v, z)};
   }
