@@ -42,7 +42,7 @@ Species load_species(const std::string& path) {
   }
   if (ends_with(path, ".tmpl")) {
     Species sp = from_file(path, parse_treemaker_template(read_text_file(path), path));
-    if (sp.treemaker().has_light) sp.treemaker_weights = sp.treemaker().light;
+    sp.treemaker_light = sp.treemaker().light;
     // Colours come from the template: the looks only scale them.
     sp.bark.albedo = {1.0, 1.0, 1.0};
     sp.bark.bump_height = 0.0;

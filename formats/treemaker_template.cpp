@@ -106,7 +106,6 @@ class Parser {
         if (std::fabs(t.gravity) > 100.0) fail_at(last_, "gravity must be within ±100");
       } else if (s == "light") {
         light(t.light);
-        t.has_light = true;
       } else if (s == "color") {
         color(t);
       } else if (s == "branch") {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "common/error.h"
-#include "materials/looks.h"
+#include "common/math.h"
 #include "generator/models/fractal/fractal.h"
 #include "generator/models/lsystem/lsystem.h"
 #include "generator/skeleton.h"
@@ -19,9 +19,20 @@
 
 namespace arbor::gen {
 
-// The species' default looks (materials/looks.h).
-using mat::BarkLook;
-using mat::LeafLook;
+// Default bark of the species (scene files may override it).
+struct BarkLook {
+  Rgb albedo{0.30, 0.26, 0.22};
+  double bump_height = 0.004;  // metres of relief
+  double roughness = 0.0;      // degrees: Oren–Nayar slope deviation σ (0: Lambertian)
+};
+
+// Default leaves of the species: front reflectance, the lighter back, diffuse transmittance.
+struct LeafLook {
+  Rgb reflectance{0.06, 0.20, 0.04};
+  Rgb back_reflectance{0.10, 0.24, 0.07};
+  Rgb transmittance{0.05, 0.18, 0.03};
+  double hinge_angle = 0.0;  // degrees; > 0: Bloomenthal's hinged three-polygon leaf (§10)
+};
 
 // The models, in the order of ModelParams' alternatives.
 enum class Model { WeberPenn, LSystem, SkeletonFile, Fractal, TreeMaker };
@@ -46,8 +57,9 @@ struct Species {
 
   BarkLook bark;
   LeafLook leaf;
-  // The species' own TREE-MAKER shading weights (a template's `light {}`); unset: arbor's defaults.
-  std::optional<mat::TreemakerWeights> treemaker_weights;
+  // The TREE-MAKER shading weights the species states (a template's `light {}`); those it does
+  // not state take arbor's defaults (materials/treemaker_weights.h) when the scene is built.
+  TmLight treemaker_light;
   // Non-fatal notes from reading the file ("path:line:col: warning: …"), to show the user.
   std::vector<std::string> warnings;
 };

@@ -120,12 +120,13 @@ class SceneBuilder {
     TreeLook look;
     // The species' own weights (a template's light {}), else arbor's defaults
     // (treemaker-format.md), then the scene's [tree.treemaker] / [forest.treemaker].
-    if (sp.treemaker_weights) look.treemaker = *sp.treemaker_weights;
-    look.treemaker.ambient = tm.ambient.value_or(look.treemaker.ambient);
-    look.treemaker.lambert = tm.lambert.value_or(look.treemaker.lambert);
-    look.treemaker.height = tm.height.value_or(look.treemaker.height);
-    look.treemaker.radius = tm.radius.value_or(look.treemaker.radius);
-    look.treemaker.angle = tm.angle.value_or(look.treemaker.angle);
+    const gen::TmLight& own = sp.treemaker_light;
+    mat::TreemakerWeights& w = look.treemaker;
+    w.ambient = tm.ambient.value_or(own.ambient.value_or(w.ambient));
+    w.lambert = tm.lambert.value_or(own.lambert.value_or(w.lambert));
+    w.height = tm.height.value_or(own.height.value_or(w.height));
+    w.radius = tm.radius.value_or(own.radius.value_or(w.radius));
+    w.angle = tm.angle.value_or(own.angle.value_or(w.angle));
     mat::BarkMaterial& b = look.bark.bark;
     look.bark.kind = mat::Material::Kind::Bark;
     b.albedo = to_vec3(bark.albedo.value_or(sp.bark.albedo));

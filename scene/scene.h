@@ -15,7 +15,7 @@
 
 #include "formats/scene_desc.h"
 #include "generator/geometry/tree_geometry.h"
-#include "materials/looks.h"
+#include "materials/treemaker_weights.h"
 #include "materials/material.h"
 
 namespace arbor {

@@ -12,7 +12,6 @@
 #include <glm/vec4.hpp>
 
 #include "generator/skeleton.h"
-#include "materials/looks.h"
 
 namespace arbor::gen {
 
@@ -100,7 +99,8 @@ struct GeometryOptions {
 TreeGeometry build_tree_geometry(const Skeleton& skeleton, const GeometryOptions& options = {});
 
 // Geometry options a species asks for (its leaf hinge), defaults otherwise.
-GeometryOptions geometry_options_for(const mat::LeafLook& leaf);
+struct LeafLook;
+GeometryOptions geometry_options_for(const LeafLook& leaf);
 
 // Bloomenthal §8 bark coordinates: arc length along the limb and circumferential distance
 // (radius × azimuth from the frame normal), continuous along a limb.

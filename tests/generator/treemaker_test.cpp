@@ -45,8 +45,8 @@ TEST(TreeMakerTemplate, TheDogwoodParses) {
   const TreeMakerTemplate t = parse_treemaker_template(read_text_file(path), path);
   EXPECT_EQ(t.iterations, 13);
   EXPECT_DOUBLE_EQ(t.gravity, 0.08);
-  EXPECT_DOUBLE_EQ(t.light.height, 0.4);
-  EXPECT_DOUBLE_EQ(t.light.angle, 0.2);
+  EXPECT_DOUBLE_EQ(*t.light.height, 0.4);
+  EXPECT_DOUBLE_EQ(*t.light.angle, 0.2);
   ASSERT_EQ(t.colors.size(), 3u);
   EXPECT_DOUBLE_EQ(t.color("brown")->rgb.y, 0.9);
   ASSERT_EQ(t.branches.size(), 5u);

@@ -10,7 +10,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "materials/looks.h"
+#include "materials/treemaker_weights.h"
 #include "imaging/color.h"
 #include "imaging/treemaker_channels.h"
 #include "tracer/integrators/path.h"

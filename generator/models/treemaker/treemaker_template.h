@@ -2,13 +2,13 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "common/error.h"
-#include "materials/looks.h"
 
 namespace arbor::gen {
 
@@ -17,8 +17,11 @@ struct TmRange {
 };
 
 // The five weights of the approximate shading formula (§III).
-// The shading weights of a template's `light {}` section.
-using TmLight = mat::TreemakerWeights;
+// The shading weights a template's `light {}` section sets (§III); unset ones keep arbor's
+// defaults, applied where the scene is built.
+struct TmLight {
+  std::optional<double> ambient, lambert, height, radius, angle;
+};
 
 struct TmColor {
   std::string name;
@@ -72,7 +75,6 @@ struct TreeMakerTemplate {
   int iterations = 10;
   double gravity = 0.0;
   TmLight light;
-  bool has_light = false;
   std::vector<TmColor> colors;
   std::vector<TmBranchRule> branches;  // by level, ascending
   std::vector<TmParticle> particles;
