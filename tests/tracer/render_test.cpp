@@ -37,6 +37,17 @@ SceneDesc small_scene(int width, int height, int spp) {
   return s;
 }
 
+// Straight down onto the ground from 5 m, a 20° view, no sky: what the ground's radiance tests see.
+SceneDesc ground_view(int width, int height, int spp) {
+  SceneDesc s = small_scene(width, height, spp);
+  s.camera.position = {0.0, 0.0, 5.0};
+  s.camera.look_at = {0.0, 0.0, 0.0};
+  s.camera.up = {0.0, 1.0, 0.0};
+  s.camera.fov = 20.0;
+  s.sky.model = "none";
+  return s;
+}
+
 TreeDesc aspen() {
   TreeDesc t;
   t.species = std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml";
@@ -129,12 +140,7 @@ TEST(Render, WhiteFurnaceWithBumpMappedBarkLosesEnergyButNeverGainsIt) {
 
 TEST(Render, LambertianGroundUnderTheSunIsRhoEOverPi) {
   for (double elevation : {90.0, 30.0}) {
-    SceneDesc s = small_scene(8, 8, 16);
-    s.camera.position = {0.0, 0.0, 5.0};
-    s.camera.look_at = {0.0, 0.0, 0.0};
-    s.camera.up = {0.0, 1.0, 0.0};
-    s.camera.fov = 20.0;
-    s.sky.model = "none";
+    SceneDesc s = ground_view(8, 8, 16);
     s.sun.elevation = elevation;
     s.sun.irradiance = 2.0;
     s.ground.albedo = {0.5, 0.25, 0.1};
@@ -154,12 +160,7 @@ TEST(Render, BsdfSampledHitsOnALargeSunAreWeightedByMis) {
   // twenty, so the BSDF branch of the sun's MIS carries real weight. A disk of uniform radiance
   // lies wholly above the horizon, so the ground's irradiance is still E cos(theta_s) exactly and
   // its radiance rho E cos(theta_s) / pi: right only when the two branches' weights sum to one.
-  SceneDesc s = small_scene(8, 8, 256);
-  s.camera.position = {0.0, 0.0, 5.0};
-  s.camera.look_at = {0.0, 0.0, 0.0};
-  s.camera.up = {0.0, 1.0, 0.0};
-  s.camera.fov = 20.0;
-  s.sky.model = "none";
+  SceneDesc s = ground_view(8, 8, 256);
   s.sun.elevation = 60.0;
   s.sun.angular_diameter = 40.0;
   s.sun.irradiance = 2.0;
@@ -215,12 +216,7 @@ TEST(Render, ObjMeshesAreConvertedToZUpAndUseTheirMaterials) {
     std::ofstream f(obj);
     f << "v -5 0 -5\nv 5 0 -5\nv 5 0 5\nv -5 0 5\ng floor\nf 1 4 3 2\n";
   }
-  SceneDesc s = small_scene(8, 8, 8);
-  s.camera.position = {0.0, 0.0, 5.0};
-  s.camera.look_at = {0.0, 0.0, 0.0};
-  s.camera.up = {0.0, 1.0, 0.0};
-  s.camera.fov = 20.0;
-  s.sky.model = "none";
+  SceneDesc s = ground_view(8, 8, 8);
   s.sun.elevation = 90.0;
   s.sun.irradiance = 2.0;
   s.ground.enabled = false;
