@@ -101,6 +101,15 @@ TEST(Compare, ZTestFailsABiasAndNoiseUnderstated) {
   EXPECT_FALSE(reference_z_test(loud, b).passed);
 }
 
+TEST(Compare, ZeroVariancePixelsTolerateFloatRoundingOnly) {
+  // A constant sky seen directly has no variance: another renderer's 0.59999996 for 0.6 (one
+  // float ulp) passes, and so does 0 against 0; an error of 1e-5 (about 170 ulps) fails.
+  const CompareImage b = flat(8, 8, 0.6f, 0.0f);
+  EXPECT_TRUE(reference_z_test(flat(8, 8, 0.59999996f, 0.0f), b).passed);
+  EXPECT_TRUE(reference_z_test(flat(8, 8, 0.0f, 0.0f), flat(8, 8, 0.0f, 0.0f)).passed);
+  EXPECT_FALSE(reference_z_test(flat(8, 8, 0.6f * (1.0f + 1e-5f), 0.0f), b).passed);
+}
+
 TEST(Compare, ZTestNeedsTheReferenceVariance) {
   try {
     reference_z_test(flat(4, 4, 1.0f), flat(4, 4, 1.0f));
