@@ -4,7 +4,6 @@
 
 #include "tracer/embree/embree_internal.h"
 
-#include <chrono>
 #include <algorithm>
 #include <cstring>
 
@@ -14,7 +13,6 @@ namespace arbor::trace {
 
 TreePrototype::TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry& geometry)
     : geometry_(geometry) {
-  const auto start = std::chrono::steady_clock::now();
   scene_ = new_scene(device);
   const gen::CurveSet& c = geometry.curves;
   if (c.size() > 0) {
@@ -47,7 +45,6 @@ TreePrototype::TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry
   }
   rtcCommitScene(scene_.get());
   device.check("building the tree's BVH");
-  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 TreePrototype::~TreePrototype() = default;

@@ -22,8 +22,6 @@ class TreePrototype {
   TreePrototype& operator=(const TreePrototype&) = delete;
 
   RTCSceneTy* scene() const { return scene_.get(); }
-  const gen::TreeGeometry& geometry() const { return geometry_; }
-  double build_seconds() const { return build_seconds_; }
 
   // Fills `hit` from Embree's answer for an instanced hit, the ray taken to this prototype's
   // own space (World::intersect carries it back to the world).
@@ -34,7 +32,6 @@ class TreePrototype {
   const gen::TreeGeometry& geometry_;
   SceneHandle scene_;
   unsigned curve_id_ = ~0u, grid_id_ = ~0u, leaf_id_ = ~0u;
-  double build_seconds_ = 0.0;
 };
 
 }  // namespace arbor::trace
