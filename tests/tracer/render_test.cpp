@@ -48,6 +48,16 @@ SceneDesc ground_view(int width, int height, int spp) {
   return s;
 }
 
+// The white furnace: a constant sky of radiance 1, no sun, no ground, paths long enough that
+// nothing is cut off.
+void white_furnace(SceneDesc& s) {
+  s.render.max_depth = 512;
+  s.sun.enabled = false;
+  s.sky.model = "constant";
+  s.sky.color = {1.0, 1.0, 1.0};
+  s.ground.enabled = false;
+}
+
 TreeDesc aspen() {
   TreeDesc t;
   t.species = std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml";
@@ -69,11 +79,7 @@ TEST(Render, WhiteFurnaceOnARealTreeIsOneEverywhere) {
   // Bark albedo 1, leaves with R + T = 1, a constant sky of radiance 1, no ground, no sun: every
   // path carries exactly 1, so every pixel is 1 within noise.
   SceneDesc s = small_scene(32, 24, 64);
-  s.render.max_depth = 512;
-  s.sun.enabled = false;
-  s.sky.model = "constant";
-  s.sky.color = {1.0, 1.0, 1.0};
-  s.ground.enabled = false;
+  white_furnace(s);
   TreeDesc t = aspen();
   t.bark.albedo = Rgb{1.0, 1.0, 1.0};
   t.bark.bump_height = 0.0;  // shading normals off the geometry lose energy by design
@@ -106,11 +112,7 @@ TEST(Render, WhiteFurnaceWithBumpMappedBarkLosesEnergyButNeverGainsIt) {
   s.camera.position = {0.0, -3.0, 2.0};
   s.camera.look_at = {0.0, 0.0, 2.0};
   s.camera.fov = 12.0;
-  s.render.max_depth = 512;
-  s.sun.enabled = false;
-  s.sky.model = "constant";
-  s.sky.color = {1.0, 1.0, 1.0};
-  s.ground.enabled = false;
+  white_furnace(s);
   TreeDesc t = aspen();
   t.bark.albedo = Rgb{1.0, 1.0, 1.0};
   t.bark.bump_height = 0.004;  // the species' default relief
