@@ -103,6 +103,20 @@ int main(int argc, char** argv) {
   render_cmd->add_flag("--force", render.force,
                        "render even when the image and trees are estimated to need more memory "
                        "than this machine (or ulimit) allows");
+  render_cmd->add_flag("--resume", render.resume,
+                       "continue the render from the film state beside its EXR (OUT.exr.state), to the "
+                       "image an uninterrupted render gives");
+  render_cmd->add_option("--time-limit", render.time_limit,
+                         "seconds: stop after the last pass that fits (at least one pass is rendered)")
+      ->check(finite_in(0.0, 1e9));
+  render_cmd->add_option("--checkpoint-seconds", render.checkpoint_seconds,
+                         "rewrite the outputs this often as passes finish (overrides output.checkpoint_seconds)")
+      ->check(finite_in(0.0, 1e7));
+  render_cmd->add_option("--passes", render.passes,
+                         "A:B: render only passes A to B-1 (a work unit for arbor merge)");
+  render_cmd->add_option("--crop", render.crop,
+                         "X0,Y0,X1,Y1: render only that window (pixels, end exclusive), each pixel as in the "
+                         "whole image");
   arbor::trace::CompareRequest cmp;
   CLI::App* compare_cmd = app.add_subcommand(
       "compare", "Compare image A against reference B: error metrics, heatmap, z-test");

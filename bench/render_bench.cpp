@@ -87,6 +87,7 @@ void render_frames(benchmark::State& state, int spp, bool treemaker) {
   scene.render.width = 160;
   scene.render.height = 120;
   scene.render.spp = spp;
+  if (treemaker) scene.render.integrator = "treemaker";
   const trace::EmbreeDevice device("threads=1");
   const BuiltWorld built(scene, device);
   const trace::World& world = built.world;
@@ -94,9 +95,7 @@ void render_frames(benchmark::State& state, int spp, bool treemaker) {
   std::uint64_t rays = 0, samples = 0;
   for (auto _ : state) {
     trace::RenderStats stats;
-    const trace::Image img =
-        treemaker ? trace::render_treemaker(scene, world, sky, [](float*) {}, nullptr, stats)
-                  : trace::render_path(scene, world, sky, [](float*) {}, nullptr, stats);
+    const trace::Image img = trace::render_image(scene, world, sky, [](float*) {}, stats);
     benchmark::DoNotOptimize(img.beauty.data());
     rays += stats.rays;
     samples += stats.samples;

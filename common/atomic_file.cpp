@@ -45,7 +45,19 @@ void release_temporary(int slot) {
   g_temp_claimed[slot].store(false);
 }
 
+std::atomic<int> g_stop_signal{0};
+std::atomic<bool> g_graceful{false};
+
 extern "C" void remove_temporaries_and_die(int sig) {
+  // The first signal of a graceful stop only asks; the work stops at its next safe point.
+  int none = 0;
+  if (g_graceful.load() && g_stop_signal.compare_exchange_strong(none, sig)) {
+    static const char msg[] =
+        "\narbor: stopping after the running pass (a second Ctrl-C stops at once)\n";
+    ssize_t ignored = ::write(2, msg, sizeof msg - 1);
+    (void)ignored;
+    return;
+  }
   for (int i = 0; i < kSlots; ++i) {
     if (g_temp_ready[i].load()) ::unlink(g_temp_paths[i]);
   }
@@ -122,6 +134,10 @@ void check_output_folder(const std::string& path) {
     throw RuntimeFailure("cannot write " + path + ": its folder " + dir + " is not writable");
   }
 }
+
+void stop_gracefully_on_signal(bool on) { g_graceful.store(on); }
+
+const std::atomic<int>& stop_signal() { return g_stop_signal; }
 
 void remove_temporaries_on_signal() {
   struct sigaction sa;

@@ -3,6 +3,7 @@
 // temporary still open when SIGINT or SIGTERM arrives is removed before the process dies.
 #pragma once
 
+#include <atomic>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -54,5 +55,11 @@ void check_output_folder(const std::string& path);
 // end the process by the same signal (exit status 128 + signal). A signal inherited as ignored
 // stays ignored. Call once from main.
 void remove_temporaries_on_signal();
+
+// While on, the first SIGINT or SIGTERM does not end the process: it is stored in stop_signal()
+// (with a note on stderr) for the work to stop at a safe point; a second one ends it as above.
+void stop_gracefully_on_signal(bool on);
+// 0, or the signal that asked the work to stop.
+const std::atomic<int>& stop_signal();
 
 }  // namespace arbor

@@ -23,6 +23,9 @@ struct RenderSettings {
   std::string integrator = "path";  // "path" | "treemaker"
   int max_depth = 12;
   int treemaker_spp = 4;            // samples per pixel of the treemaker integrator (anti-aliasing)
+  int pass_spp = 16;                // samples a pixel takes per pass (a power of two keeps Sobol' balanced)
+  double noise_threshold = 0.0;     // adaptive sampling: relative standard error to stop at; 0: off
+  int min_spp = 0;                  // adaptive sampling: samples before a pixel may stop (and 2 passes)
   int threads = 0;                  // 0: all cores (command line only)
 };
 
@@ -132,7 +135,8 @@ struct OutputDesc {
   std::string colorspace = "ACEScg";
   std::string display = "sRGB";
   std::string view = "ACES 1.0 SDR-video";
-  std::vector<std::string> aovs;  // of "albedo", "normal", "depth", "variance", "treemaker"
+  std::vector<std::string> aovs;  // of "albedo", "normal", "depth", "variance", "samples", "treemaker"
+  double checkpoint_seconds = 0.0;  // rewrite the outputs this often as passes finish; 0: never
   SourceLocation treemaker_aov_where;  // where "treemaker" is listed (only that integrator has it)
   std::string pixel_type = "half";
   // The keys' positions, for errors found later (by the OCIO config); the file's when unset.

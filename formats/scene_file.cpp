@@ -91,6 +91,9 @@ class SceneReader : TomlReader {
       else if (k == "integrator") r.integrator = choice(n, "render.integrator", {"path", "treemaker"});
       else if (k == "max_depth") r.max_depth = static_cast<int>(integer(n, "render.max_depth", 1, 1024));
       else if (k == "treemaker_spp") r.treemaker_spp = static_cast<int>(integer(n, "render.treemaker_spp", 1, 1 << 20));
+      else if (k == "pass_spp") r.pass_spp = static_cast<int>(integer(n, "render.pass_spp", 1, 1 << 20));
+      else if (k == "noise_threshold") r.noise_threshold = number(n, "render.noise_threshold", 0.0, 1.0);
+      else if (k == "min_spp") r.min_spp = static_cast<int>(integer(n, "render.min_spp", 0, 1 << 20));
       else unknown(key, "render");
     }
   }
@@ -301,12 +304,13 @@ class SceneReader : TomlReader {
       else if (k == "colorspace") { o.colorspace = text(n, "output.colorspace"); o.colorspace_where = at(n.source()); }
       else if (k == "display") { o.display = text(n, "output.display"); o.display_where = at(n.source()); }
       else if (k == "view") { o.view = text(n, "output.view"); o.view_where = at(n.source()); }
+      else if (k == "checkpoint_seconds") o.checkpoint_seconds = number(n, "output.checkpoint_seconds", 0.0, 1e7);
       else if (k == "pixel_type") o.pixel_type = choice(n, "output.pixel_type", {"half", "float"});
       else if (k == "aovs") {
         const toml::array* a = n.as_array();
         if (!a) fail(n, "output.aovs must be an array of strings");
         for (const toml::node& e : *a) {
-          o.aovs.push_back(choice(e, "output.aovs", {"albedo", "normal", "depth", "variance", "treemaker"}));
+          o.aovs.push_back(choice(e, "output.aovs", {"albedo", "normal", "depth", "variance", "samples", "treemaker"}));
           if (o.aovs.back() == "treemaker") o.treemaker_aov_where = at(e.source());
         }
       } else unknown(key, "output");

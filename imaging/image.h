@@ -11,12 +11,15 @@
 namespace arbor::trace {
 
 struct Image {
-  int width = 0, height = 0;
+  int width = 0, height = 0;            // the pixels held: the whole image, or a crop of it
+  int x0 = 0, y0 = 0;                   // where they sit in the whole image
+  int full_width = 0, full_height = 0;  // the whole image
   std::vector<glm::vec3> beauty;    // mean, output colour space
   std::vector<glm::vec3> variance;  // variance of the mean (sample variance / n), per channel
   std::vector<glm::vec3> albedo;    // first hit, output colour space
   std::vector<glm::vec3> normal;    // first hit, world space
   std::vector<float> depth;         // distance to the first hit along the camera ray
+  std::vector<float> samples;       // finite samples the pixel took
   // Integrator-specific AOVs (the treemaker integrator's), pixel means: extra_names.size()
   // floats per pixel; colour triples are in the output colour space, like the beauty.
   std::vector<std::string> extra_names;

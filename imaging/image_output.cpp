@@ -34,6 +34,8 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta,
   // Depth and variance keep full precision: reference tests divide by the variance.
   if (depth) { names.emplace_back("Z"); formats.push_back(OIIO::TypeDesc::FLOAT); }
   if (variance) for (const char* c : {"variance.R", "variance.G", "variance.B"}) { names.emplace_back(c); formats.push_back(OIIO::TypeDesc::FLOAT); }
+  const bool samples = wants("samples");
+  if (samples) { names.emplace_back("samples"); formats.push_back(OIIO::TypeDesc::FLOAT); }
   const bool treemaker = wants("treemaker");
   if (treemaker && img.extra_names.empty()) {
     // render_command refuses this scene (at its key) before rendering; reaching here is a bug.
@@ -46,6 +48,11 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta,
   OIIO::ImageSpec spec(img.width, img.height, nch, formats[0]);
   spec.channelnames = names;
   spec.channelformats = formats;
+  spec.x = img.x0;
+  spec.y = img.y0;
+  spec.full_x = spec.full_y = 0;
+  spec.full_width = img.full_width > 0 ? img.full_width : img.width;
+  spec.full_height = img.full_height > 0 ? img.full_height : img.height;
   spec.attribute("oiio:ColorSpace", o.colorspace);
   spec.attribute("arbor:colorspace", o.colorspace);
   spec.attribute("arbor:version", ARBOR_VERSION_STRING);
@@ -55,7 +62,26 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta,
   spec.attribute("arbor:integrator", meta.integrator);
   spec.attribute("arbor:render_seconds", static_cast<float>(meta.stats.seconds));
   spec.attribute("arbor:nonfinite_samples", std::to_string(meta.stats.nonfinite));
-  spec.attribute("arbor:variance", "variance of the pixel mean (sample variance / spp)");
+  spec.attribute("arbor:variance", meta.passes >= 2
+                                       ? "variance of the pixel mean, estimated across independent passes"
+                                       : "variance of the pixel mean, sample variance / spp within one pass "
+                                         "(overstates it for QMC samples)");
+  spec.attribute("arbor:passes", meta.passes);
+  spec.attribute("arbor:pass_spp", meta.pass_spp);
+  spec.attribute("arbor:passes_planned", meta.passes_planned);
+  spec.attribute("arbor:pass_range", std::to_string(meta.pass_begin) + ":" + std::to_string(meta.pass_end));
+  spec.attribute("arbor:mean_spp", static_cast<float>(meta.mean_spp));
+  spec.attribute("arbor:fingerprint", meta.fingerprint);
+  if (meta.noise_threshold > 0) {
+    spec.attribute("arbor:noise_threshold", static_cast<float>(meta.noise_threshold));
+    spec.attribute("arbor:min_spp", meta.min_spp);
+  }
+  if (img.width != spec.full_width || img.height != spec.full_height) {
+    spec.attribute("arbor:crop", std::to_string(img.x0) + "," + std::to_string(img.y0) + "," +
+                                     std::to_string(img.x0 + img.width) + "," + std::to_string(img.y0 + img.height));
+  }
+  if (meta.incomplete) spec.attribute("arbor:incomplete", 1);
+  if (!meta.stopped.empty()) spec.attribute("arbor:stopped", meta.stopped);
   if (!meta.treemaker_weights.empty()) spec.attribute("arbor:treemaker_weights", meta.treemaker_weights);
   spec.attribute("compression", "zip");
   // The EXR standard's own statement of the colour space, for the spaces arbor's config defines.
@@ -78,6 +104,7 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta,
     if (normal) put(img.normal[p]);
     if (depth) data[k++] = img.depth[p];
     if (variance) put(img.variance[p]);
+    if (samples) data[k++] = img.samples[p];
     if (treemaker) {
       const std::size_t e = img.extra_names.size();
       for (std::size_t i = 0; i < e; ++i) data[k++] = img.extra[p * e + i];

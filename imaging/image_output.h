@@ -19,11 +19,21 @@ struct ExrMetadata {
   // The treemaker integrator's weights as "ambient=… lambert=… height=… radius=… angle=…" when
   // every tree shares them, "per tree" when they differ; empty for the path integrator.
   std::string treemaker_weights;
+  // The passes (docs/rendering.md, "Passes"): pass_spp samples each, passes_planned in all;
+  // this image holds passes [pass_begin, pass_begin + passes).
+  int pass_spp = 0, passes = 1, passes_planned = 1, pass_begin = 0, pass_end = 1;
+  bool incomplete = false;   // stopped by a signal before the passes asked for
+  std::string stopped;       // "", "interrupted" or "time limit"
+  std::string fingerprint;   // of the scene, its inputs and the settings (film_file.h)
+  double noise_threshold = 0.0;
+  int min_spp = 0;
+  double mean_spp = 0.0;     // samples a pixel on average (below spp with adaptive sampling)
 };
 
 // Writes the EXR atomically (a temporary beside it, renamed when complete). Channels: R G B,
-// then the requested AOVs: albedo.{R,G,B}, N.{X,Y,Z}, Z, variance.{R,G,B}, and for "treemaker"
-// the image's extra channels (float). "treemaker" must only be asked of an image that has them
+// then the requested AOVs: albedo.{R,G,B}, N.{X,Y,Z}, Z, variance.{R,G,B}, samples, and for
+// "treemaker" the image's extra channels (float). A crop is written as its data window within
+// the whole image's display window. "treemaker" must only be asked of an image that has them
 // (the treemaker integrator's; std::logic_error otherwise).
 void write_exr(const Image& image, const OutputDesc& output, const ExrMetadata& meta,
                const std::string& path);

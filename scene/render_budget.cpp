@@ -14,8 +14,10 @@ namespace arbor::trace {
 
 namespace {
 
-constexpr std::uint64_t kBytesPerPixel = 72;      // film and beauty, PNG included
+constexpr std::uint64_t kBytesPerPixel = 72;      // image and beauty, PNG included
+constexpr std::uint64_t kFilmBytesPerPixel = 144; // the film's state and AOV sums (tracer/film.h)
 constexpr std::uint64_t kBytesPerChannel = 8;     // each EXR channel: its pixels and encoding
+constexpr std::uint64_t kRecordBytes = 14 * 8;    // a pass record of a pixel, beside its extras
 constexpr std::uint64_t kBytesPerInstance = 1024;
 constexpr std::uint64_t kTreemakerChannels = 23;  // the treemaker AOVs (film.cpp)
 constexpr std::uint64_t kBaseline = 256ull << 20; // libraries, OCIO, Embree's device
@@ -24,14 +26,16 @@ double gigabytes(std::uint64_t bytes) { return static_cast<double>(bytes) / doub
 
 }  // namespace
 
-MemoryEstimate estimate_render_memory(const SceneDesc& s) {
+MemoryEstimate estimate_render_memory(const SceneDesc& s, std::uint64_t record_passes) {
   MemoryEstimate e;
-  std::uint64_t channels = 3;
+  std::uint64_t channels = 3, extras = 0;
   for (const std::string& a : s.output.aovs) {
-    channels += a == "depth" ? 1 : a == "treemaker" ? kTreemakerChannels : 3;
+    channels += a == "depth" || a == "samples" ? 1 : a == "treemaker" ? kTreemakerChannels : 3;
+    if (a == "treemaker") extras = kTreemakerChannels;
   }
   const std::uint64_t pixels = static_cast<std::uint64_t>(s.render.width) * static_cast<std::uint64_t>(s.render.height);
-  e.image_bytes = pixels * (kBytesPerPixel + kBytesPerChannel * channels);
+  const std::uint64_t film = kFilmBytesPerPixel + 8 * extras + record_passes * (kRecordBytes + 8 * extras);
+  e.image_bytes = pixels * (kBytesPerPixel + film + kBytesPerChannel * channels);
   e.instances = s.trees.size();
   for (const ForestDesc& f : s.forests) e.instances += static_cast<std::uint64_t>(f.count);
   e.instance_bytes = e.instances * kBytesPerInstance;
@@ -51,8 +55,8 @@ std::uint64_t usable_memory_bytes() {
   return usable;
 }
 
-void check_render_memory(const SceneDesc& s, bool force, std::uint64_t usable) {
-  const MemoryEstimate e = estimate_render_memory(s);
+void check_render_memory(const SceneDesc& s, bool force, std::uint64_t usable, std::uint64_t record_passes) {
+  const MemoryEstimate e = estimate_render_memory(s, record_passes);
   if (force || e.total() + kBaseline <= usable) return;
   SourceLocation where{s.path, 0, 0};
   int largest = 0;

@@ -17,9 +17,11 @@ struct MemoryEstimate {
 
 // Calibrated on the development machine (peak RSS of renders at growing sizes, /usr/bin/time): about
 // 77 bytes a pixel with beauty only, 106 with four AOVs, 257 with the treemaker AOVs, and 0.7 KB
-// a forest instance; the estimate rounds each up. Tree geometry is not included: each tree has
+// a forest instance, before the film kept its state across passes (144 bytes a pixel more, 8 a
+// treemaker AOV; a work unit of passes A:B with A > 0 also keeps each pass: `record_passes` of
+// 112 bytes a pixel); the estimate rounds each up. Tree geometry is not included: each tree has
 // its own size limit when it is grown.
-MemoryEstimate estimate_render_memory(const SceneDesc& scene);
+MemoryEstimate estimate_render_memory(const SceneDesc& scene, std::uint64_t record_passes = 0);
 
 // What this process may use: the machine's physical memory, or the address-space or data-size
 // limit (ulimit -v / -d) when it is lower.
@@ -27,6 +29,7 @@ std::uint64_t usable_memory_bytes();
 
 // InputError (at the largest forest, or the scene file) when the estimate exceeds `usable`
 // bytes, saying how much each part needs and that --force renders it anyway.
-void check_render_memory(const SceneDesc& scene, bool force, std::uint64_t usable = usable_memory_bytes());
+void check_render_memory(const SceneDesc& scene, bool force, std::uint64_t usable = usable_memory_bytes(),
+                         std::uint64_t record_passes = 0);
 
 }  // namespace arbor::trace

@@ -1,10 +1,16 @@
-// Pixel accumulation and the reconstruction filter.
+// Pixel accumulation over passes and the reconstruction filter.
 #include "tracer/film.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace arbor::trace {
+
+namespace {
+// Below this magnitude a channel's error counts as absolute (docs/rendering.md): near-black
+// pixels would otherwise never meet a relative threshold.
+constexpr double kRelativeErrorFloor = 0.01;
+}  // namespace
 
 float sample_tent(float u) {
   return u < 0.5f ? std::sqrt(2.0f * u) - 1.0f : 1.0f - std::sqrt(2.0f - 2.0f * u);
@@ -14,21 +20,29 @@ Image make_image(int width, int height, std::size_t extras) {
   Image img;
   img.width = width;
   img.height = height;
+  img.full_width = width;
+  img.full_height = height;
   const std::size_t n = static_cast<std::size_t>(width) * height;
   img.beauty.assign(n, glm::vec3(0.0f));
   img.variance.assign(n, glm::vec3(0.0f));
   img.albedo.assign(n, glm::vec3(0.0f));
   img.normal.assign(n, glm::vec3(0.0f));
   img.depth.assign(n, 0.0f);
+  img.samples.assign(n, 0.0f);
   img.extra.assign(n * extras, 0.0f);
   return img;
 }
 
+int PassPlan::samples(int begin, int end) const {
+  int n = 0;
+  for (int p = begin; p < end; ++p) n += size(p);
+  return n;
+}
+
 void PixelAccumulator::reset() {
   count_ = 0;
-  mean_ = m2_ = albedo_ = normal_ = glm::dvec3(0.0);
-  depth_ = 0.0;
-  std::fill(extra_sum_.begin(), extra_sum_.end(), 0.0);
+  mean_ = m2_ = glm::dvec3(0.0);
+  std::fill(sums_.begin(), sums_.end(), 0.0);
 }
 
 void PixelAccumulator::add(const float rgb[3], const float alb[3], const glm::vec3& normal, float depth,
@@ -39,22 +53,110 @@ void PixelAccumulator::add(const float rgb[3], const float alb[3], const glm::ve
   const glm::dvec3 delta = v - mean_;
   mean_ += delta / static_cast<double>(count_);
   m2_ += delta * (v - mean_);
-  albedo_ += glm::dvec3(alb[0], alb[1], alb[2]);
-  normal_ += glm::dvec3(normal);
-  depth_ += depth;
-  for (std::size_t e = 0; e < extra_sum_.size(); ++e) extra_sum_[e] += extra[e];
+  double* s = sums_.data();
+  for (int c = 0; c < 3; ++c) s[c] += alb[c];
+  for (int c = 0; c < 3; ++c) s[3 + c] += normal[c];
+  s[6] += depth;
+  for (std::size_t e = kAovSums; e < sums_.size(); ++e) s[e] += extra[e - kAovSums];
 }
 
-void PixelAccumulator::store(Image& img, std::size_t p) const {
-  if (count_ == 0) return;
-  const std::size_t extras = extra_sum_.size();
-  img.beauty[p] = glm::vec3(mean_);
-  img.variance[p] = count_ > 1 ? glm::vec3(m2_ / (double(count_ - 1) * count_)) : glm::vec3(0.0f);
-  img.albedo[p] = glm::vec3(albedo_ / double(count_));
-  const glm::dvec3 nn = normal_ / double(count_);
-  img.normal[p] = glm::vec3(nn);
-  img.depth[p] = static_cast<float>(depth_ / count_);
-  for (std::size_t e = 0; e < extras; ++e) img.extra[p * extras + e] = static_cast<float>(extra_sum_[e] / count_);
+Film::Film(Window window, std::size_t extras, int pass_begin, bool keep_records)
+    : window_(window),
+      extras_(extras),
+      pass_begin_(pass_begin),
+      next_pass_(pass_begin),
+      keep_records_(keep_records),
+      states_(window.pixels()),
+      sums_(window.pixels() * (kAovSums + extras), 0.0) {}
+
+void Film::fold(std::size_t p, double n, const glm::dvec3& m, const glm::dvec3& m2, const double* s) {
+  if (n <= 0) return;  // every sample of the pass was NaN or infinite
+  PixelState& st = states_[p];
+  // West's weighted incremental mean and spread: a pass of n samples and mean m has weight n.
+  const double w = static_cast<double>(st.count) + n;
+  const glm::dvec3 delta = m - st.mean;
+  st.mean += delta * (n / w);
+  st.spread += n * delta * (m - st.mean);
+  if (st.passes == 0) st.first_m2 = m2;
+  ++st.passes;
+  st.count += static_cast<std::uint32_t>(n);
+  double* sum = &sums_[p * (kAovSums + extras_)];
+  for (std::size_t i = 0; i < kAovSums + extras_; ++i) sum[i] += s[i];
+}
+
+void Film::add_pass(std::size_t p, const PixelAccumulator& a) {
+  if (keep_records_) {
+    const std::size_t r = record_size();
+    double* rec = &records_[static_cast<std::size_t>(next_pass_ - pass_begin_) * r * states_.size() + p * r];
+    rec[0] = a.count();
+    for (int c = 0; c < 3; ++c) rec[1 + c] = a.mean()[c];
+    for (int c = 0; c < 3; ++c) rec[4 + c] = a.m2()[c];
+    std::copy(a.sums().begin(), a.sums().end(), rec + 7);
+  }
+  fold(p, a.count(), a.mean(), a.m2(), a.sums().data());
+}
+
+void Film::fold_record(std::size_t p, const double* rec) {
+  fold(p, rec[0], glm::dvec3(rec[1], rec[2], rec[3]), glm::dvec3(rec[4], rec[5], rec[6]), rec + 7);
+}
+
+double Film::relative_error(std::size_t p) const {
+  const PixelState& st = states_[p];
+  if (st.passes < 2) return HUGE_VAL;
+  double worst = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const double var = st.spread[c] / (double(st.passes - 1) * double(st.count));
+    worst = std::max(worst, std::sqrt(var) / std::max(std::fabs(st.mean[c]), kRelativeErrorFloor));
+  }
+  return worst;
+}
+
+void Film::begin_pass() {
+  // Zero records for every pixel: a pixel that takes no samples folds nothing from its record.
+  if (keep_records_) {
+    records_.resize(static_cast<std::size_t>(next_pass_ - pass_begin_ + 1) * record_size() * states_.size(), 0.0);
+  }
+}
+
+void Film::finish_pass(const AdaptiveSettings& adaptive) {
+  ++next_pass_;
+  if (adaptive.noise_threshold <= 0) return;
+  for (std::size_t p = 0; p < states_.size(); ++p) {
+    PixelState& st = states_[p];
+    if (!st.done && st.passes >= 2 && st.count >= static_cast<std::uint32_t>(adaptive.min_spp) &&
+        relative_error(p) <= adaptive.noise_threshold) {
+      st.done = 1;
+    }
+  }
+}
+
+Image Film::image(std::size_t extras_wanted) const {
+  Image img = make_image(window_.width(), window_.height(), extras_wanted);
+  img.x0 = window_.x0;
+  img.y0 = window_.y0;
+  const std::size_t stride = kAovSums + extras_;
+  for (std::size_t p = 0; p < states_.size(); ++p) {
+    const PixelState& st = states_[p];
+    img.samples[p] = static_cast<float>(st.count);
+    if (st.count == 0) continue;
+    const double n = st.count;
+    img.beauty[p] = glm::vec3(st.mean);
+    // Across passes: Σ n_p (m_p − m)² / ((P − 1) N), unbiased for the variance of the mean when
+    // a pass mean's variance is σ²/n_p. One pass: the sample variance / n (overstated for QMC).
+    if (st.passes >= 2) {
+      img.variance[p] = glm::vec3(st.spread / (double(st.passes - 1) * n));
+    } else if (st.count > 1) {
+      img.variance[p] = glm::vec3(st.first_m2 / ((n - 1.0) * n));
+    }
+    const double* s = &sums_[p * stride];
+    img.albedo[p] = glm::vec3(s[0] / n, s[1] / n, s[2] / n);
+    img.normal[p] = glm::vec3(s[3] / n, s[4] / n, s[5] / n);
+    img.depth[p] = static_cast<float>(s[6] / n);
+    for (std::size_t e = 0; e < extras_wanted; ++e) {
+      img.extra[p * extras_wanted + e] = static_cast<float>(s[kAovSums + e] / n);
+    }
+  }
+  return img;
 }
 
 }  // namespace arbor::trace

@@ -1,8 +1,10 @@
-// The film: a pixel's samples accumulated into its mean, the variance of that mean and the
-// AOVs, and the tent filter that places samples.
+// The film: a pixel's samples accumulated pass by pass into its mean, an honest estimate of the
+// variance of that mean (across independent passes), the AOVs, and the tent filter that places
+// samples. docs/rendering.md, "Passes", states the estimator.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -18,25 +20,121 @@ float sample_tent(float u);
 // floats a pixel.
 Image make_image(int width, int height, std::size_t extras);
 
-// One pixel's samples, in sample order (the order makes the sums bit-identical at any thread
-// count): Welford's running mean and squared deviations of the beauty, sums of the AOVs.
+// The passes of a render: `spp` samples a pixel in passes of `pass_spp` (the last one shorter
+// when pass_spp does not divide spp).
+struct PassPlan {
+  int spp = 1, pass_spp = 1;
+  int passes() const { return (spp + pass_spp - 1) / pass_spp; }
+  int size(int pass) const { return pass < passes() - 1 ? pass_spp : spp - (passes() - 1) * pass_spp; }
+  // Samples a pixel of passes [begin, end).
+  int samples(int begin, int end) const;
+};
+
+// A window of the image in pixels, end exclusive.
+struct Window {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+  std::size_t pixels() const { return static_cast<std::size_t>(width()) * static_cast<std::size_t>(height()); }
+  bool operator==(const Window& o) const { return x0 == o.x0 && y0 == o.y0 && x1 == o.x1 && y1 == o.y1; }
+  bool operator!=(const Window& o) const { return !(*this == o); }
+};
+
+// The sums of the AOVs a pixel keeps besides its extras: albedo (3), normal (3), depth (1).
+constexpr std::size_t kAovSums = 7;
+
+// One pixel's samples of one pass, in sample order (the order makes the sums bit-identical at
+// any thread count): Welford's running mean and squared deviations of the beauty, sums of the
+// AOVs.
 class PixelAccumulator {
  public:
-  explicit PixelAccumulator(std::size_t extras) : extra_sum_(extras) {}
+  explicit PixelAccumulator(std::size_t extras) : sums_(kAovSums + extras) {}
 
   void reset();
   // A finite sample: beauty and albedo already in the output colour space.
   void add(const float rgb[3], const float albedo[3], const glm::vec3& normal, float depth,
            const float* extra);
-  // Writes the pixel's mean, variance of the mean (sample variance / n) and AOV means to pixel
-  // p of `image`; leaves it zero when no sample was finite.
-  void store(Image& image, std::size_t p) const;
+
+  int count() const { return count_; }
+  const glm::dvec3& mean() const { return mean_; }
+  const glm::dvec3& m2() const { return m2_; }
+  const std::vector<double>& sums() const { return sums_; }
 
  private:
   int count_ = 0;
-  glm::dvec3 mean_{0.0}, m2_{0.0}, albedo_{0.0}, normal_{0.0};
-  double depth_ = 0.0;
-  std::vector<double> extra_sum_;
+  glm::dvec3 mean_{0.0}, m2_{0.0};
+  std::vector<double> sums_;
+};
+
+// What one pixel has gathered over its passes.
+struct PixelState {
+  std::uint32_t passes = 0;   // passes that gave at least one finite sample
+  std::uint32_t count = 0;    // finite samples over all passes
+  std::uint32_t done = 0;     // 1: adaptive sampling stopped it
+  glm::dvec3 mean{0.0};       // mean of all samples (passes weighted by their sample counts)
+  glm::dvec3 spread{0.0};     // Σ n_p (m_p − mean)², by West's weighted update
+  glm::dvec3 first_m2{0.0};   // Σ (x − m)² within its first pass (the estimate when passes = 1)
+};
+
+// The settings adaptive sampling judges pixels by (docs/rendering.md, "Adaptive sampling").
+struct AdaptiveSettings {
+  double noise_threshold = 0.0;  // 0: off
+  int min_spp = 0;
+};
+
+// The film of a window of the image over a range of passes: every pixel's PixelState and AOV
+// sums and, for a range that does not start at pass 0, each pass's own results (so that a merge
+// can fold them in pass order after the passes before it).
+class Film {
+ public:
+  Film(Window window, std::size_t extras, int pass_begin, bool keep_records);
+
+  const Window& window() const { return window_; }
+  std::size_t extras() const { return extras_; }
+  int pass_begin() const { return pass_begin_; }
+  int next_pass() const { return next_pass_; }  // the first pass not yet rendered
+  bool keeps_records() const { return keep_records_; }
+
+  // Pixel p (row-major within the window).
+  const PixelState& state(std::size_t p) const { return states_[p]; }
+  bool done(std::size_t p) const { return states_[p].done != 0; }
+  // Starts pass next_pass() (allocates its records); not thread-safe.
+  void begin_pass();
+  // Folds pass next_pass()'s result for pixel p in (between begin_pass and finish_pass, for
+  // every pixel not done; pixels in parallel).
+  void add_pass(std::size_t p, const PixelAccumulator& pass);
+  // Ends the pass: applies adaptive sampling's test to every pixel.
+  void finish_pass(const AdaptiveSettings& adaptive);
+
+  // The pixel means and variance estimates as an image of the window.
+  Image image(std::size_t extras_wanted) const;
+
+  // The relative standard error adaptive sampling compares with its threshold.
+  double relative_error(std::size_t p) const;
+
+  // Raw access for the state file and merges.
+  std::vector<PixelState>& states() { return states_; }
+  std::vector<double>& sums() { return sums_; }
+  std::vector<double>& records() { return records_; }
+  const std::vector<PixelState>& states() const { return states_; }
+  const std::vector<double>& sums() const { return sums_; }
+  const std::vector<double>& records() const { return records_; }
+  void set_next_pass(int pass) { next_pass_ = pass; }
+  // Doubles per pixel and pass in records(): count, mean (3), m2 (3), the sums.
+  std::size_t record_size() const { return 7 + kAovSums + extras_; }
+  // Folds a pass record (as stored in records()) into pixel p: exactly what add_pass did.
+  void fold_record(std::size_t p, const double* record);
+
+ private:
+  void fold(std::size_t p, double count, const glm::dvec3& mean, const glm::dvec3& m2, const double* sums);
+
+  Window window_;
+  std::size_t extras_;
+  int pass_begin_, next_pass_;
+  bool keep_records_;
+  std::vector<PixelState> states_;
+  std::vector<double> sums_;     // (kAovSums + extras) a pixel
+  std::vector<double> records_;  // record_size() a pixel a pass, passes in order
 };
 
 }  // namespace arbor::trace

@@ -1,10 +1,17 @@
-// Rendering a frame: tiles in parallel, samples placed by the tent filter (film.h), per-pixel mean
-// and variance of the beauty in the output colour space, AOVs.
+// Rendering a frame in passes: each pass takes its samples from its own scramble over the whole
+// window, tiles in parallel; the film folds pass after pass (film.h). Between passes the loop
+// may stop (a signal, a time limit), write a checkpoint, or retire converged pixels (adaptive).
 #pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
 
 #include "formats/scene_desc.h"
 #include "imaging/color.h"
 #include "imaging/image.h"
+#include "tracer/film.h"
 #include "tracer/integrators/path.h"
 
 namespace arbor {
@@ -13,15 +20,40 @@ class Progress;
 
 namespace arbor::trace {
 
-// Renders with the path integrator. Deterministic: each pixel's samples depend only on (pixel,
-// sample index, seed), and each pixel is accumulated in sample order by one task.
-Image render_path(const SceneDesc& scene, const World& world, const Sky& sky,
-                  const ColorTransform& to_output, Progress* progress, RenderStats& stats);
+// Which passes to render and when to stop early.
+struct RenderJob {
+  PassPlan plan;
+  int pass_end = 0;  // renders passes film.next_pass() .. pass_end - 1
+  AdaptiveSettings adaptive;
+  double time_limit = 0;          // seconds of this run; 0: none. At least one pass is rendered.
+  double checkpoint_seconds = 0;  // 0: no checkpoints
+  std::function<void(const Film&)> checkpoint;  // writes what the film holds (between passes)
+  const std::atomic<int>* stop = nullptr;       // nonzero: stop after the running pass
+};
 
-// Renders with the treemaker integrator at scene.render.treemaker_spp samples per pixel (they
-// only anti-alias: its shade has no noise). Fills extra_names/extra with the "treemaker" AOVs
-// when scene.output.aovs asks for them.
-Image render_treemaker(const SceneDesc& scene, const World& world, const Sky& sky,
-                       const ColorTransform& to_output, Progress* progress, RenderStats& stats);
+// Why the loop ended before pass_end: "" (it did not), "interrupted" or "time limit".
+struct RenderOutcome {
+  std::string stopped;
+};
+
+// The integrator AOV names of the scene's render ("treemaker" asked of the treemaker
+// integrator), which size the film's extras.
+std::vector<std::string> integrator_aov_names(const SceneDesc& scene);
+
+// Renders with the path integrator. Deterministic: each pixel's samples depend only on (pixel,
+// pass, sample index, seed), and each pixel is accumulated in sample and pass order by one task.
+RenderOutcome render_path(const SceneDesc& scene, const World& world, const Sky& sky,
+                          const ColorTransform& to_output, const RenderJob& job, Film& film,
+                          Progress* progress, RenderStats& stats);
+
+// Renders with the treemaker integrator (its samples only anti-alias: its shade has no noise);
+// fills the film's extras with the "treemaker" AOVs when integrator_aov_names asks for them.
+RenderOutcome render_treemaker(const SceneDesc& scene, const World& world, const Sky& sky,
+                               const ColorTransform& to_output, const RenderJob& job, Film& film,
+                               Progress* progress, RenderStats& stats);
+
+// A whole image at the scene's settings in one go, for tests and benchmarks.
+Image render_image(const SceneDesc& scene, const World& world, const Sky& sky,
+                   const ColorTransform& to_output, RenderStats& stats);
 
 }  // namespace arbor::trace

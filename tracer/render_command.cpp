@@ -1,10 +1,19 @@
-// `arbor render`: load the scene, apply the overrides, check the outputs, build, render, write.
+// `arbor render`: load the scene, apply the overrides, check the outputs, build, render in
+// passes (stopping, checkpointing or resuming as asked), write.
 #include "tracer/render_command.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <memory>
+#include <sstream>
 #include <vector>
+
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
@@ -12,13 +21,14 @@
 #include "common/strings.h"
 #include "formats/scene_desc.h"
 #include "imaging/color.h"
-#include "imaging/image_output.h"
 #include "scene/render_budget.h"
 #include "scene/scene.h"
 #include "tracer/embree/embree_device.h"
 #include "tracer/embree/world.h"
-#include "tracer/render.h"
+#include "tracer/film_file.h"
 #include "tracer/lights/sky.h"
+#include "tracer/render.h"
+#include "tracer/render_output.h"
 
 namespace arbor::trace {
 
@@ -36,6 +46,61 @@ std::string treemaker_weights_text(const Scene& scene) {
     else if (text != buf) return "per tree";
   }
   return text;
+}
+
+// Whole numbers separated by `sep`, each in [0, 2^31).
+std::vector<int> parse_integers(const std::string& text, char sep, std::size_t count, const char* option,
+                                const char* form) {
+  std::vector<int> v;
+  const char* p = text.data();
+  const char* end = text.data() + text.size();
+  while (v.size() < count) {
+    int x = 0;
+    const auto [next, ec] = std::from_chars(p, end, x);
+    if (ec != std::errc() || x < 0) break;
+    v.push_back(x);
+    p = next;
+    if (v.size() < count) {
+      if (p == end || *p != sep) break;
+      ++p;
+    }
+  }
+  if (v.size() != count || p != end) {
+    throw InputError({}, std::string(option) + " '" + text + "' is not of the form " + form);
+  }
+  return v;
+}
+
+// The hash of everything that decides the pixels: the settings (not the threads, the outputs or
+// the pass range and window of a work unit), the bytes of the scene and each of its inputs, and
+// the OCIO config.
+std::string render_fingerprint(const SceneDesc& scene, const RenderRequest& a, const std::string& ocio) {
+  const RenderSettings& r = scene.render;
+  std::ostringstream s;
+  s.precision(17);
+  s << "arbor render 1 " << r.width << "x" << r.height << " spp " << r.spp << " pass_spp " << r.pass_spp
+    << " seed " << r.seed << " " << r.integrator << " depth " << r.max_depth << " treemaker_spp "
+    << r.treemaker_spp << " noise " << r.noise_threshold << " min " << r.min_spp << " time ";
+  if (a.time) s << *a.time;
+  std::uint64_t hash = fnv1a(s.str());
+  std::vector<std::string> files = scene_inputs(scene);
+  files.push_back(ocio);
+  for (const std::string& f : files) {
+    std::ifstream in(f, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    hash = fnv1a(bytes, fnv1a(f + "\n", hash));
+  }
+  return fingerprint_hex(hash);
+}
+
+// The EXR's arbor:fingerprint and whether it says it is a finished render, or "" when it cannot
+// be read.
+std::string finished_fingerprint(const std::string& exr) {
+  auto in = OIIO::ImageInput::open(exr);
+  if (!in) return "";
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.get_int_attribute("arbor:incomplete", 0) != 0) return "";
+  return spec.get_string_attribute("arbor:fingerprint");
 }
 
 }  // namespace
@@ -56,64 +121,191 @@ int render_command(const RenderRequest& a) {
   }
   if (!a.exr.empty()) scene.output.exr = a.exr;
   if (!a.png.empty()) scene.output.png = a.png;
+  if (a.checkpoint_seconds) scene.output.checkpoint_seconds = *a.checkpoint_seconds;
   if (!treemaker &&
       std::find(scene.output.aovs.begin(), scene.output.aovs.end(), "treemaker") != scene.output.aovs.end()) {
     throw InputError(scene.output.treemaker_aov_where,
                      "output.aovs lists \"treemaker\", which only the treemaker integrator writes "
                      "(render it with --integrator treemaker)");
   }
-  if (scene.output.exr.empty() && scene.output.png.empty()) {
+  const std::string& exr = scene.output.exr;
+  if (exr.empty() && scene.output.png.empty()) {
     throw InputError({a.scene, 0, 0}, "nothing to write: give -o OUT.exr, --png OUT.png or an [output] table");
   }
-  if (!scene.output.exr.empty() && !ends_with(scene.output.exr, ".exr")) {
-    throw InputError({}, "the EXR output must end in .exr: " + scene.output.exr);
+  if (!exr.empty() && !ends_with(exr, ".exr")) {
+    throw InputError({}, "the EXR output must end in .exr: " + exr);
   }
   if (!scene.output.png.empty() && !ends_with(scene.output.png, ".png")) {
     throw InputError({}, "the PNG output must end in .png: " + scene.output.png);
   }
-  const std::vector<std::string> inputs = scene_inputs(scene);
-  if (!scene.output.exr.empty()) refuse_overwriting("the EXR output", scene.output.exr, inputs);
-  if (!scene.output.png.empty()) {
-    refuse_overwriting("the PNG output", scene.output.png, inputs, {scene.output.exr});
+
+  // The passes and the window of this run.
+  const PassPlan plan{treemaker ? r.treemaker_spp : r.spp, r.pass_spp};
+  int pass_begin = 0, pass_end = plan.passes();
+  if (!a.passes.empty()) {
+    const std::vector<int> v = parse_integers(a.passes, ':', 2, "--passes", "A:B (passes A to B-1)");
+    if (v[0] >= v[1] || v[1] > plan.passes()) {
+      throw InputError({}, "--passes " + a.passes + ": the render has passes 0 to " + std::to_string(plan.passes()) +
+                               " (" + std::to_string(plan.spp) + " spp in passes of " + std::to_string(plan.pass_spp) +
+                               "), so A:B needs 0 <= A < B <= " + std::to_string(plan.passes()));
+    }
+    pass_begin = v[0];
+    pass_end = v[1];
   }
-  for (const std::string& out : {scene.output.exr, scene.output.png}) {
+  Window window{0, 0, r.width, r.height};
+  if (!a.crop.empty()) {
+    const std::vector<int> v = parse_integers(a.crop, ',', 4, "--crop", "X0,Y0,X1,Y1 (pixels, end exclusive)");
+    window = {v[0], v[1], v[2], v[3]};
+    if (window.width() <= 0 || window.height() <= 0 || window.x1 > r.width || window.y1 > r.height) {
+      throw InputError({}, "--crop " + a.crop + " is not a window of the " + std::to_string(r.width) + "x" +
+                               std::to_string(r.height) + " image (X0 < X1 <= width, Y0 < Y1 <= height)");
+    }
+  }
+  if ((!a.passes.empty() || !a.crop.empty() || a.resume) && exr.empty()) {
+    throw InputError({}, std::string(a.resume ? "--resume" : !a.passes.empty() ? "--passes" : "--crop") +
+                             " needs an EXR output (-o OUT.exr): its film state is kept beside it");
+  }
+  if (pass_begin > 0 && r.noise_threshold > 0) {
+    throw InputError({}, "--passes " + a.passes + " starts after pass 0, but adaptive sampling "
+                         "(render.noise_threshold) decides each pass from the passes before it; "
+                         "split an adaptive render by --crop instead");
+  }
+
+  const std::vector<std::string> inputs = scene_inputs(scene);
+  if (!exr.empty()) {
+    refuse_overwriting("the EXR output", exr, inputs);
+    refuse_overwriting("the EXR output's film state", state_path(exr), inputs, {exr});
+  }
+  if (!scene.output.png.empty()) {
+    refuse_overwriting("the PNG output", scene.output.png, inputs, {exr, exr.empty() ? "" : state_path(exr)});
+  }
+  for (const std::string& out : {exr, scene.output.png}) {
     if (!out.empty()) check_output_folder(out);
   }
-  check_render_memory(scene, a.force);
   const ColorPipeline color(a.ocio_config);
   color.check(scene.output);
+  const std::vector<std::string> extra_names = integrator_aov_names(scene);
+
+  FilmHeader header;
+  header.fingerprint = render_fingerprint(scene, a, color.config_path());
+  header.scene = scene.path;
+  header.full_width = r.width;
+  header.full_height = r.height;
+  header.plan = plan;
+  header.pass_end = pass_end;
+  header.noise_threshold = r.noise_threshold;
+  header.min_spp = r.min_spp;
+  header.integrator = r.integrator;
+  header.seed = r.seed;
+  header.colorspace = scene.output.colorspace;
+  header.display = scene.output.display;
+  header.view = scene.output.view;
+  header.pixel_type = scene.output.pixel_type;
+  header.aovs = scene.output.aovs;
+
+  check_render_memory(scene, a.force, usable_memory_bytes(),
+                      pass_begin > 0 ? static_cast<std::uint64_t>(pass_end - pass_begin) : 0);
+  std::unique_ptr<Film> film;
+  if (a.resume) {
+    const std::string state = state_path(exr);
+    if (::access(state.c_str(), F_OK) != 0) {
+      if (finished_fingerprint(exr) == header.fingerprint) {
+        std::fprintf(stderr, "arbor: %s is already finished; nothing to resume\n", exr.c_str());
+        return 0;
+      }
+      throw InputError({state, 0, 0}, "--resume: there is no film state beside " + exr +
+                                          " (it is written when a render stops early, at checkpoints and "
+                                          "for --passes/--crop parts)");
+    }
+    FilmFile saved = read_film_state(state);
+    if (saved.header.fingerprint != header.fingerprint) {
+      throw InputError({state, 0, 0}, "--resume: it was rendered from " + saved.header.scene +
+                                          " with other settings or inputs (fingerprint " +
+                                          saved.header.fingerprint + ", this render's " + header.fingerprint +
+                                          "); give the same scene, files and options");
+    }
+    if (saved.film->window() != window || saved.film->pass_begin() != pass_begin || saved.header.pass_end != pass_end) {
+      throw InputError({state, 0, 0}, "--resume: it holds another --crop or --passes than this command asks for");
+    }
+    film = std::move(saved.film);
+    header.seconds = saved.header.seconds;
+    header.nonfinite = saved.header.nonfinite;
+    header.rays = saved.header.rays;
+    if (film->next_pass() == pass_end) {
+      std::fprintf(stderr, "arbor: %s already holds passes %d to %d; nothing to resume\n", exr.c_str(),
+                   pass_begin, pass_end - 1);
+      return 0;
+    }
+  } else {
+    film = std::make_unique<Film>(window, extra_names.size(), pass_begin, pass_begin > 0);
+  }
+
   const EmbreeDevice device(r.threads > 0 ? "threads=" + std::to_string(r.threads) : "");
   Progress build_progress("build", 1);
   const std::unique_ptr<const Scene> built = build_scene(scene, color.config_path(), &build_progress);
   const World world(*built, device);
   build_progress.finish();
+  if (treemaker) header.treemaker_weights = treemaker_weights_text(*built);
   const Sky sky(scene.sky, scene.sun, color.xyz_to_scene_linear());
-  Progress progress("render", 1);
+
+  RenderWrite write{exr, scene.output.png, &color, ""};
   RenderStats stats;
-  const Image image =
-      treemaker ? render_treemaker(scene, world, sky, color.to_output(scene.output.colorspace), &progress, stats)
-                : render_path(scene, world, sky, color.to_output(scene.output.colorspace), &progress, stats);
+  RenderJob job;
+  job.plan = plan;
+  job.pass_end = pass_end;
+  job.adaptive = {r.noise_threshold, r.min_spp};
+  job.time_limit = a.time_limit;
+  job.checkpoint_seconds = scene.output.checkpoint_seconds;
+  job.stop = &stop_signal();
+  const double seconds_before = header.seconds;
+  job.checkpoint = [&](const Film& f) {
+    FilmHeader h = header;
+    h.seconds = seconds_before + stats.seconds;
+    RenderWrite w = write;
+    w.stopped = "in progress";
+    write_render(h, f, w);
+  };
+  const int first_pass = film->next_pass();
+  Progress progress("render", 1);
+  stop_gracefully_on_signal(true);
+  const ColorTransform to_output = color.to_output(scene.output.colorspace);
+  const RenderOutcome outcome = treemaker ? render_treemaker(scene, world, sky, to_output, job, *film, &progress, stats)
+                                          : render_path(scene, world, sky, to_output, job, *film, &progress, stats);
   progress.finish();
-  const int spp = treemaker ? r.treemaker_spp : r.spp;
-  ExrMetadata meta{scene.path, r.seed, spp, r.integrator, stats, {}};
-  if (treemaker) meta.treemaker_weights = treemaker_weights_text(*built);
-  if (!scene.output.exr.empty()) write_exr(image, scene.output, meta, scene.output.exr);
-  if (!scene.output.png.empty()) write_png(image, scene.output, color, scene.output.png);
+  const int signal = stop_signal().load();
+  header.seconds = seconds_before + stats.seconds;
+  header.nonfinite += stats.nonfinite;
+  header.rays += stats.rays;
+  write.stopped = outcome.stopped;
+  if (film->next_pass() == first_pass) {
+    // Stopped before one pass finished: the old outputs stay as they were.
+    std::fprintf(stderr, "arbor: stopped before a pass finished; nothing written\n");
+  } else {
+    write_render(header, *film, write);
+  }
+  stop_gracefully_on_signal(false);
   const double seconds = std::max(stats.seconds, 1e-9);
+  const int done = plan.samples(pass_begin, film->next_pass());
   std::fprintf(stderr,
-               "arbor: rendered %dx%d at %d spp in %.2f s (%.3g samples/s, %.3g rays/s; %zu trees "
-               "from %zu prototypes, built in %.2f s)\n",
-               r.width, r.height, spp, stats.seconds, double(stats.samples) / seconds,
-               double(stats.rays) / seconds, built->stats.instances, built->stats.prototypes,
-               built->stats.build_seconds + world.build_seconds());
+               "arbor: rendered %dx%d at %d spp (passes %d to %d of %d) in %.2f s (%.3g samples/s, %.3g rays/s; "
+               "%zu trees from %zu prototypes, built in %.2f s)\n",
+               window.width(), window.height(), done, pass_begin, film->next_pass() - 1, plan.passes(),
+               stats.seconds, double(stats.samples) / seconds, double(stats.rays) / seconds,
+               built->stats.instances, built->stats.prototypes, built->stats.build_seconds + world.build_seconds());
+  if (!outcome.stopped.empty()) {
+    std::fprintf(stderr, "arbor: stopped early (%s) after %d of %d passes; continue with --resume\n",
+                 outcome.stopped.c_str(), film->next_pass() - pass_begin, pass_end - pass_begin);
+  }
   if (stats.nonfinite > 0) {
     std::fprintf(stderr, "arbor: warning: %llu samples were NaN or infinite and were left out\n",
                  static_cast<unsigned long long>(stats.nonfinite));
   }
-  for (const std::string& out : {scene.output.exr, scene.output.png}) {
-    if (!out.empty()) std::fprintf(stderr, "arbor: wrote %s\n", out.c_str());
+  if (film->next_pass() != first_pass) {
+    for (const std::string& out : {exr, scene.output.png}) {
+      if (!out.empty()) std::fprintf(stderr, "arbor: wrote %s\n", out.c_str());
+    }
   }
-  return 0;
+  return signal != 0 ? 128 + signal : 0;
 }
 
 }  // namespace arbor::trace

@@ -14,6 +14,11 @@ struct RenderRequest {
   std::optional<std::uint64_t> seed;
   std::optional<double> time;  // seconds of wind for every [[tree]]
   bool force = false;          // render past the memory estimate
+  bool resume = false;         // continue from the EXR's film state
+  double time_limit = 0;       // seconds; 0: none
+  std::optional<double> checkpoint_seconds;  // overrides output.checkpoint_seconds
+  std::string passes;          // "A:B": render passes A .. B-1 only; empty: all
+  std::string crop;            // "X0,Y0,X1,Y1": render that window only; empty: all
   std::string ocio_config;     // the run's OCIO config (default_ocio_config())
 };
 

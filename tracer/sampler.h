@@ -1,4 +1,4 @@
-// Low-discrepancy samples keyed by (pixel, sample index, dimension, seed): padded 2D Sobol' points
+// Low-discrepancy samples keyed by (pixel, pass, sample index, dimension, seed): padded 2D Sobol' points
 // with hash-based Owen scrambling (Burley 2020). No state, so any thread and tile order gives the
 // same numbers.
 #pragma once
@@ -38,8 +38,12 @@ constexpr std::uint32_t hash32(std::uint32_t a, std::uint32_t b) {
 // The samples of one pixel; dimension pairs are independent scrambles of the 2D Sobol' points.
 class PixelSampler {
  public:
-  PixelSampler(std::uint32_t pixel, std::uint64_t seed)
-      : key_(hash32(pixel, static_cast<std::uint32_t>(seed) ^ hash32(static_cast<std::uint32_t>(seed >> 32), 0x51ed27u))) {}
+  // Pass 0 keeps the key a single-pass render always had; every other pass scrambles anew, so
+  // pass means are independent replicates (randomised QMC).
+  PixelSampler(std::uint32_t pixel, std::uint64_t seed, std::uint32_t pass = 0)
+      : key_(hash32(pixel, static_cast<std::uint32_t>(seed) ^ hash32(static_cast<std::uint32_t>(seed >> 32), 0x51ed27u))) {
+    if (pass != 0) key_ = hash32(key_ ^ 0x7a55e5u, pass);
+  }
 
   // The 2D point of sample `index` in dimension pair `dim`, in [0, 1)².
   glm::vec2 get2d(std::uint32_t index, std::uint32_t dim) const {

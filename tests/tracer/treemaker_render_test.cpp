@@ -149,6 +149,7 @@ TEST(Treemaker, ShadeOfAVerticalTrunkIsWorkedOutFromTheView) {
   s.render.width = 16;
   s.render.height = 64;
   s.render.treemaker_spp = 1;
+  s.render.integrator = "treemaker";
   s.camera.position = {0.0, -20.0, 5.0};
   s.camera.look_at = {0.0, 0.0, 5.0};
   s.camera.fov = 40.0;
@@ -169,7 +170,7 @@ TEST(Treemaker, ShadeOfAVerticalTrunkIsWorkedOutFromTheView) {
     const TestWorld test_world(s, device);
     const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 64);
     RenderStats stats;
-    const Image img = render_treemaker(s, test_world.world, sky, kIdentity, nullptr, stats);
+    const Image img = render_image(s, test_world.world, sky, kIdentity, stats);
     int trunk = 0;
     for (int y = 0; y < s.render.height; ++y) {
       // The height the row's centre sees on the trunk's front (19.7 m away), and what one pixel
@@ -202,6 +203,7 @@ TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
   s.render.width = 64;
   s.render.height = 64;
   s.render.treemaker_spp = 1;
+  s.render.integrator = "treemaker";
   s.output.aovs = {"treemaker"};
   s.camera.position = {0.0, 0.0, 60.0};  // straight down onto the tree and its shadow
   s.camera.look_at = {0.0, 0.0, 0.0};
@@ -227,7 +229,7 @@ TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
   EXPECT_NEAR(integrator.max_intensity().x, (2.0f + e_sky) / kPi, 1e-5);
 
   RenderStats stats;
-  const Image img = render_treemaker(s, world, sky, kIdentity, nullptr, stats);
+  const Image img = render_image(s, world, sky, kIdentity, stats);
   const float lit = static_cast<float>(0.5 * (2.0 * std::sin(kPi / 4) + e_sky) / kPi);
   const float shadow = static_cast<float>(0.5 * e_sky / kPi);
   const std::size_t channels = img.extra_names.size();
@@ -269,6 +271,7 @@ TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
   s.render.width = 48;
   s.render.height = 32;
   s.render.treemaker_spp = 3;
+  s.render.integrator = "treemaker";
   s.output.aovs = {"treemaker"};
   s.camera.position = {9.0, -12.0, 4.0};
   s.camera.look_at = {0.0, 0.0, 6.0};
@@ -282,7 +285,7 @@ TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
   const World& world = test_world.world;
     const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 128);
     RenderStats stats;
-    images[threads - 1] = render_treemaker(s, world, sky, kIdentity, nullptr, stats);
+    images[threads - 1] = render_image(s, world, sky, kIdentity, stats);
   }
   ASSERT_EQ(images[0].extra.size(), images[1].extra.size());
   ASSERT_EQ(images[0].extra.size(), 48u * 32u * 23u);
@@ -297,7 +300,7 @@ TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
   const World& world = test_world.world;
   const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 128);
   RenderStats stats;
-  const Image plain = render_treemaker(s, world, sky, kIdentity, nullptr, stats);
+  const Image plain = render_image(s, world, sky, kIdentity, stats);
   EXPECT_TRUE(plain.extra.empty());
   EXPECT_TRUE(plain.extra_names.empty());
   EXPECT_EQ(std::memcmp(plain.beauty.data(), images[1].beauty.data(), plain.beauty.size() * sizeof(glm::vec3)), 0);

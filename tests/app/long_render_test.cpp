@@ -1,0 +1,199 @@
+// Long renders through the command line: a signal stops after the running pass and writes what
+// is done, --resume continues it to the image an uninterrupted render gives, --time-limit stops
+// in time, checkpoints survive kill -9, and work units (--passes, --crop) merge back exactly.
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include "temp_files.h"
+using arbor::testing::files_in;
+namespace {
+std::string fresh_folder(const std::string& name) { return arbor::testing::fresh_folder("long_" + name); }
+}  // namespace
+
+#include "app/cli.h"
+
+namespace {
+
+// A small scene of many short passes: 32x24, `spp` samples in passes of 4, every AOV that
+// depends on the passes, float pixels.
+std::string scene_file(const std::string& dir, int spp, const std::string& extra = "") {
+  const std::string path = dir + "/scene.toml";
+  std::ofstream(path) << "[render]\nwidth = 32\nheight = 24\nspp = " << spp
+                      << "\npass_spp = 4\nseed = 5\nmax_depth = 4\n" << extra
+                      << "[camera]\nposition = [10.0, -14.0, 3.0]\nlook_at = [0.0, 0.0, 4.0]\n"
+                         "[[tree]]\nspecies = \""
+                      << ARBOR_SOURCE_DIR << "/species/lsystem_weed.lsys\"\nseed = 2\n"
+                      << "[output]\naovs = [\"variance\", \"samples\", \"albedo\"]\npixel_type = \"float\"\n";
+  return path;
+}
+
+struct Exr {
+  OIIO::ImageSpec spec;
+  std::vector<float> pixels;
+};
+
+Exr read_exr(const std::string& path) {
+  Exr e;
+  auto in = OIIO::ImageInput::open(path);
+  EXPECT_TRUE(in) << path << ": " << OIIO::geterror();
+  if (!in) return e;
+  e.spec = in->spec();
+  e.pixels.resize(static_cast<std::size_t>(e.spec.width) * e.spec.height * e.spec.nchannels);
+  EXPECT_TRUE(in->read_image(0, 0, 0, e.spec.nchannels, OIIO::TypeDesc::FLOAT, e.pixels.data()));
+  return e;
+}
+
+bool same_pixels(const Exr& a, const Exr& b) {
+  return a.spec.channelnames == b.spec.channelnames && a.pixels.size() == b.pixels.size() &&
+         std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)) == 0;
+}
+
+// Starts `arbor ARGS...` in `dir` with stderr to dir/err.txt.
+pid_t start_arbor(const std::string& dir, const std::vector<std::string>& args) {
+  const pid_t child = fork();
+  if (child == 0) {
+    signal(SIGINT, SIG_DFL);
+    if (chdir(dir.c_str()) != 0) _exit(3);
+    if (!freopen("err.txt", "w", stderr)) _exit(3);
+    std::vector<char*> argv{const_cast<char*>(ARBOR_BINARY)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(ARBOR_BINARY, argv.data());
+    _exit(3);
+  }
+  return child;
+}
+
+// Waits until `path` exists (up to 60 s).
+bool wait_for(const std::string& path) {
+  for (int i = 0; i < 6000 && !exists(path); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  return exists(path);
+}
+
+}  // namespace
+
+// The first SIGINT or SIGTERM stops after the running pass: a valid EXR and PNG of the passes
+// done, marked incomplete, its film state beside it, exit 130 / 143, no temporary; --resume then
+// finishes it to exactly the uninterrupted image.
+TEST(LongRender, ASignalStopsAfterThePassAndResumeFinishesItExactly) {
+  const std::string whole_dir = fresh_folder("whole");
+  const std::string whole_scene = scene_file(whole_dir, 1024);
+  const CliRun whole = run_arbor("render " + whole_scene + " -o " + whole_dir + "/whole.exr");
+  ASSERT_EQ(whole.code, 0) << whole.err;
+  EXPECT_FALSE(exists(whole_dir + "/whole.exr.state"));  // finished: nothing to resume
+  const Exr reference = read_exr(whole_dir + "/whole.exr");
+  EXPECT_EQ(reference.spec.get_int_attribute("arbor:passes"), 256);
+  EXPECT_EQ(reference.spec.get_int_attribute("arbor:spp"), 1024);
+  EXPECT_EQ(reference.spec.get_int_attribute("arbor:incomplete", 0), 0);
+
+  for (const int sig : {SIGINT, SIGTERM}) {
+    const std::string dir = fresh_folder("signal_" + std::to_string(sig));
+    const std::string scene = scene_file(dir, 1024);
+    const pid_t child = start_arbor(dir, {"render", scene, "-o", "out.exr", "--png", "out.png",
+                                          "--checkpoint-seconds", "0.2"});
+    // The first checkpoint shows that passes are being rendered; then the signal.
+    ASSERT_TRUE(wait_for(dir + "/out.exr.state"));
+    kill(child, sig);
+    int status = 0;
+    waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status)) << "died by signal " << WTERMSIG(status);
+    EXPECT_EQ(WEXITSTATUS(status), 128 + sig);
+    EXPECT_EQ(files_in(dir), (std::vector<std::string>{"err.txt", "out.exr", "out.exr.state", "out.png", "scene.toml"}));
+    const Exr part = read_exr(dir + "/out.exr");
+    EXPECT_EQ(part.spec.get_int_attribute("arbor:incomplete"), 1);
+    EXPECT_EQ(part.spec.get_string_attribute("arbor:stopped"), "interrupted");
+    const int passes = part.spec.get_int_attribute("arbor:passes");
+    EXPECT_GT(passes, 0);
+    EXPECT_LT(passes, 256) << "the render finished before the signal: make it longer";
+    EXPECT_EQ(part.spec.get_int_attribute("arbor:spp"), 4 * passes);
+    EXPECT_NE(slurp(dir + "/err.txt").find("continue with --resume"), std::string::npos);
+
+    const CliRun resumed = run_arbor("render " + scene + " -o " + dir + "/out.exr --png " + dir + "/out.png --resume");
+    ASSERT_EQ(resumed.code, 0) << resumed.err;
+    EXPECT_FALSE(exists(dir + "/out.exr.state"));
+    const Exr done = read_exr(dir + "/out.exr");
+    EXPECT_TRUE(same_pixels(done, reference)) << "the resumed render differs from the uninterrupted one";
+    EXPECT_EQ(done.spec.get_int_attribute("arbor:incomplete", 0), 0);
+    EXPECT_EQ(done.spec.get_int_attribute("arbor:spp"), 1024);
+    // Resuming a finished render does nothing and says so.
+    const CliRun again = run_arbor("render " + scene + " -o " + dir + "/out.exr --resume");
+    EXPECT_EQ(again.code, 0) << again.err;
+    EXPECT_NE(again.err.find("already finished"), std::string::npos) << again.err;
+  }
+}
+
+// --resume refuses a film state of other settings, and a render with nothing to resume.
+TEST(LongRender, ResumeRefusesOtherSettings) {
+  const std::string dir = fresh_folder("refuse");
+  const std::string scene = scene_file(dir, 64);
+  const CliRun part = run_arbor("render " + scene + " -o " + dir + "/out.exr --passes 0:4");
+  ASSERT_EQ(part.code, 0) << part.err;
+  ASSERT_TRUE(exists(dir + "/out.exr.state"));
+  const CliRun seed = run_arbor("render " + scene + " -o " + dir + "/out.exr --passes 0:4 --seed 6 --resume");
+  EXPECT_EQ(seed.code, 2) << seed.err;
+  EXPECT_NE(seed.err.find("other settings or inputs"), std::string::npos) << seed.err;
+  const CliRun none = run_arbor("render " + scene + " -o " + dir + "/none.exr --resume");
+  EXPECT_EQ(none.code, 2) << none.err;
+  EXPECT_NE(none.err.find("no film state"), std::string::npos) << none.err;
+  const CliRun range = run_arbor("render " + scene + " -o " + dir + "/out.exr --passes 0:17");
+  EXPECT_EQ(range.code, 2) << range.err;
+  EXPECT_NE(range.err.find("0 <= A < B <= 16"), std::string::npos) << range.err;
+}
+
+// --time-limit stops after the last pass that fits: a finished, valid file saying why it stopped;
+// resumed, it is the uninterrupted image.
+TEST(LongRender, TimeLimitStopsInTimeAndResumes) {
+  const std::string dir = fresh_folder("time");
+  const std::string scene = scene_file(dir, 4096);
+  const auto start = std::chrono::steady_clock::now();
+  const CliRun limited = run_arbor("render " + scene + " -o " + dir + "/out.exr --time-limit 1");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(limited.code, 0) << limited.err;
+  const Exr part = read_exr(dir + "/out.exr");
+  EXPECT_EQ(part.spec.get_string_attribute("arbor:stopped"), "time limit");
+  EXPECT_EQ(part.spec.get_int_attribute("arbor:incomplete", 0), 0);
+  const int passes = part.spec.get_int_attribute("arbor:passes");
+  EXPECT_GT(passes, 0);
+  EXPECT_LT(passes, 1024);
+  EXPECT_LE(part.spec.get_float_attribute("arbor:render_seconds"), 1.0f);
+  EXPECT_LT(seconds, 30.0);  // build and start-up included; the render alone is at most 1 s
+  const CliRun resumed = run_arbor("render " + scene + " -o " + dir + "/out.exr --resume --spp 4096");
+  ASSERT_EQ(resumed.code, 0) << resumed.err;
+  const CliRun whole = run_arbor("render " + scene + " -o " + dir + "/whole.exr");
+  ASSERT_EQ(whole.code, 0) << whole.err;
+  EXPECT_TRUE(same_pixels(read_exr(dir + "/out.exr"), read_exr(dir + "/whole.exr")));
+}
+
+// A checkpointed render killed with SIGKILL keeps what it last wrote: a valid EXR and a film
+// state that --resume finishes.
+TEST(LongRender, CheckpointsSurviveKill9) {
+  const std::string dir = fresh_folder("kill9");
+  const std::string scene = scene_file(dir, 1024);
+  const pid_t child = start_arbor(dir, {"render", scene, "-o", "out.exr", "--checkpoint-seconds", "0.1"});
+  ASSERT_TRUE(wait_for(dir + "/out.exr.state"));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  kill(child, SIGKILL);
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  const Exr part = read_exr(dir + "/out.exr");
+  ASSERT_EQ(part.spec.get_int_attribute("arbor:incomplete"), 1);
+  EXPECT_GT(part.spec.get_int_attribute("arbor:passes"), 0);
+  for (const std::string& f : files_in(dir)) EXPECT_EQ(f.find(".tmp"), std::string::npos) << f;
+  const CliRun resumed = run_arbor("render " + scene + " -o " + dir + "/out.exr --resume");
+  ASSERT_EQ(resumed.code, 0) << resumed.err;
+  const CliRun whole = run_arbor("render " + scene + " -o " + dir + "/whole.exr");
+  ASSERT_EQ(whole.code, 0) << whole.err;
+  EXPECT_TRUE(same_pixels(read_exr(dir + "/out.exr"), read_exr(dir + "/whole.exr")));
+}

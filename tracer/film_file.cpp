@@ -1,0 +1,146 @@
+// The film state file: a text header, then the film's arrays in native binary form.
+#include "tracer/film_file.h"
+
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <type_traits>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+
+namespace arbor::trace {
+
+namespace {
+
+const char* const kMagic = "arbor film state 1";
+static_assert(std::is_trivially_copyable<PixelState>::value, "PixelState is written as bytes");
+
+std::string number_text(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+}  // namespace
+
+std::string state_path(const std::string& exr) { return exr + ".state"; }
+
+std::uint64_t fnv1a(const std::string& text, std::uint64_t hash) {
+  for (const unsigned char c : text) {
+    hash ^= c;
+    hash *= 0x100000001b3ull;
+  }
+  return hash;
+}
+
+std::string fingerprint_hex(std::uint64_t hash) {
+  char buf[24];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(hash));
+  return buf;
+}
+
+void write_film_state(const std::string& path, const FilmHeader& h, const Film& film) {
+  const Window& w = film.window();
+  std::ostringstream head;
+  head << kMagic << "\n"
+       << "fingerprint " << h.fingerprint << "\n"
+       << "scene " << h.scene << "\n"
+       << "size " << h.full_width << " " << h.full_height << "\n"
+       << "window " << w.x0 << " " << w.y0 << " " << w.x1 << " " << w.y1 << "\n"
+       << "plan " << h.plan.spp << " " << h.plan.pass_spp << "\n"
+       << "passes " << film.pass_begin() << " " << film.next_pass() << " " << h.pass_end << "\n"
+       << "adaptive " << number_text(h.noise_threshold) << " " << h.min_spp << "\n"
+       << "extras " << film.extras() << " " << (film.keeps_records() ? 1 : 0) << "\n"
+       << "seconds " << number_text(h.seconds) << "\n"
+       << "counts " << h.nonfinite << " " << h.rays << "\n"
+       << "integrator " << h.integrator << "\n"
+       << "seed " << h.seed << "\n"
+       << "colorspace " << h.colorspace << "\n"
+       << "display " << h.display << "\n"
+       << "view " << h.view << "\n"
+       << "pixel_type " << h.pixel_type << "\n"
+       << "aovs ";
+  for (const std::string& a : h.aovs) head << a << " ";
+  head << "\n"
+       << "treemaker_weights " << h.treemaker_weights << "\n"
+       << "end\n";
+  AtomicFile file(path, true);
+  file.write(head.str());
+  file.write(film.states().data(), film.states().size() * sizeof(PixelState));
+  file.write(film.sums().data(), film.sums().size() * sizeof(double));
+  file.write(film.records().data(), film.records().size() * sizeof(double));
+  file.commit();
+}
+
+FilmFile read_film_state(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError({path, 0, 0}, "cannot read the film state (it is written beside an EXR "
+                                          "whose render can be resumed or merged)");
+  auto bad = [&](const std::string& why) {
+    return InputError({path, 0, 0}, "is not a film state arbor can read: " + why);
+  };
+  std::string line;
+  if (!std::getline(in, line) || line != kMagic) throw bad("it does not start with \"" + std::string(kMagic) + "\"");
+  std::map<std::string, std::string> keys;
+  while (std::getline(in, line) && line != "end") {
+    const auto space = line.find(' ');
+    if (space == std::string::npos) throw bad("a header line without a value: " + line);
+    keys[line.substr(0, space)] = line.substr(space + 1);
+  }
+  if (line != "end") throw bad("its header does not end");
+  auto field = [&](const char* name) {
+    auto it = keys.find(name);
+    if (it == keys.end()) throw bad(std::string("its header has no ") + name);
+    return std::istringstream(it->second);
+  };
+  FilmFile f;
+  FilmHeader& h = f.header;
+  h.fingerprint = keys["fingerprint"];
+  h.scene = keys["scene"];
+  h.integrator = keys["integrator"];
+  h.colorspace = keys["colorspace"];
+  h.display = keys["display"];
+  h.view = keys["view"];
+  h.pixel_type = keys["pixel_type"];
+  h.treemaker_weights = keys["treemaker_weights"];
+  {
+    std::istringstream aovs(keys["aovs"]);
+    for (std::string a; aovs >> a;) h.aovs.push_back(a);
+  }
+  Window w;
+  int begin = 0, next = 0, records = 0;
+  std::size_t extras = 0;
+  bool ok = static_cast<bool>(field("size") >> h.full_width >> h.full_height);
+  ok = ok && static_cast<bool>(field("window") >> w.x0 >> w.y0 >> w.x1 >> w.y1);
+  ok = ok && static_cast<bool>(field("plan") >> h.plan.spp >> h.plan.pass_spp);
+  ok = ok && static_cast<bool>(field("passes") >> begin >> next >> h.pass_end);
+  ok = ok && static_cast<bool>(field("adaptive") >> h.noise_threshold >> h.min_spp);
+  ok = ok && static_cast<bool>(field("extras") >> extras >> records);
+  ok = ok && static_cast<bool>(field("seconds") >> h.seconds);
+  ok = ok && static_cast<bool>(field("counts") >> h.nonfinite >> h.rays);
+  ok = ok && static_cast<bool>(field("seed") >> h.seed);
+  if (!ok || h.full_width <= 0 || h.full_height <= 0 || w.x0 < 0 || w.y0 < 0 || w.x1 > h.full_width ||
+      w.y1 > h.full_height || w.width() <= 0 || w.height() <= 0 || h.plan.spp <= 0 || h.plan.pass_spp <= 0 ||
+      begin < 0 || next < begin || h.pass_end < next || h.pass_end > h.plan.passes() || extras > 64) {
+    throw bad("its header is malformed");
+  }
+  f.film = std::make_unique<Film>(w, extras, begin, records != 0);
+  Film& film = *f.film;
+  film.set_next_pass(next);
+  if (film.keeps_records()) {
+    film.records().resize(static_cast<std::size_t>(next - begin) * film.record_size() * w.pixels());
+  }
+  auto read = [&](void* data, std::size_t bytes) {
+    if (!in.read(static_cast<char*>(data), static_cast<std::streamsize>(bytes))) throw bad("it is truncated");
+  };
+  read(film.states().data(), film.states().size() * sizeof(PixelState));
+  read(film.sums().data(), film.sums().size() * sizeof(double));
+  read(film.records().data(), film.records().size() * sizeof(double));
+  if (in.peek() != std::char_traits<char>::eof()) throw bad("it has bytes past its end");
+  return f;
+}
+
+}  // namespace arbor::trace

@@ -1,0 +1,52 @@
+// The film state file, `<exr>.state` beside a render's EXR: everything needed to continue the
+// render exactly (--resume) or to merge it with other parts (arbor merge): each pixel's running
+// sums in double precision and, for a pass range that does not start at pass 0, each pass's own
+// results. Written atomically with the EXR whenever the image is not the whole, finished render.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tracer/film.h"
+
+namespace arbor::trace {
+
+struct FilmHeader {
+  std::string fingerprint;  // of the scene, its inputs and the settings that decide the pixels
+  std::string scene;        // the scene file, for messages
+  int full_width = 0, full_height = 0;
+  PassPlan plan;
+  int pass_end = 0;         // the pass range's end: the part renders [film.pass_begin(), pass_end)
+  double noise_threshold = 0;
+  int min_spp = 0;
+  double seconds = 0;       // render time spent so far
+  std::uint64_t nonfinite = 0, rays = 0;
+  // What the outputs are written with (a merge writes them again without the scene).
+  std::string integrator;
+  std::uint64_t seed = 0;
+  std::string colorspace, display, view, pixel_type;
+  std::vector<std::string> aovs;
+  std::string treemaker_weights;
+};
+
+struct FilmFile {
+  FilmHeader header;
+  std::unique_ptr<Film> film;
+};
+
+// `<exr>.state`.
+std::string state_path(const std::string& exr);
+
+// Writes atomically (RuntimeFailure when it cannot).
+void write_film_state(const std::string& path, const FilmHeader& header, const Film& film);
+
+// InputError naming the file when it is missing, not a film state, or truncated.
+FilmFile read_film_state(const std::string& path);
+
+// A 64-bit FNV-1a hash of `text` continued from `hash`, as 16 hex digits by fingerprint_hex.
+std::uint64_t fnv1a(const std::string& text, std::uint64_t hash = 0xcbf29ce484222325ull);
+std::string fingerprint_hex(std::uint64_t hash);
+
+}  // namespace arbor::trace

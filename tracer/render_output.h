@@ -1,0 +1,32 @@
+// Writing what a film holds: the EXR, the PNG and, when the image is not the whole finished
+// render, the film state beside the EXR (film_file.h). Shared by `arbor render` (at the end, at
+// checkpoints, on a signal) and `arbor merge`.
+#pragma once
+
+#include <string>
+
+#include "imaging/color.h"
+#include "imaging/image.h"
+#include "tracer/film.h"
+#include "tracer/film_file.h"
+
+namespace arbor::trace {
+
+struct RenderWrite {
+  std::string exr, png;            // empty: not written
+  const ColorPipeline* color = nullptr;  // for the PNG
+  std::string stopped;  // "", "interrupted", "time limit" or "in progress" (a checkpoint)
+};
+
+// True when the film holds every pass of the whole image: nothing to resume or merge.
+bool film_complete(const FilmHeader& header, const Film& film);
+
+// The image of the film, its whole-image size set.
+Image film_image(const FilmHeader& header, const Film& film);
+
+// Writes the state (unless complete; a stale one is then removed), the EXR, then the PNG, each
+// atomically. The state goes first: a kill between the writes leaves a state at least as far
+// along as the EXR, which is what --resume continues from.
+void write_render(const FilmHeader& header, const Film& film, const RenderWrite& what);
+
+}  // namespace arbor::trace
