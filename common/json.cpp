@@ -21,11 +21,23 @@ JsonObject& JsonObject::raw(const std::string& key, const std::string& value) {
   return *this;
 }
 
-JsonObject& JsonObject::number(const std::string& key, double value, int digits) {
-  if (!std::isfinite(value)) return raw(key, "null");
+namespace {
+std::string number_text(double value, int digits) {
+  if (!std::isfinite(value)) return "null";
   char buf[48];
   std::snprintf(buf, sizeof buf, "%.*g", digits, value);
-  return raw(key, buf);
+  return buf;
+}
+}  // namespace
+
+JsonObject& JsonObject::number(const std::string& key, double value, int digits) {
+  return raw(key, number_text(value, digits));
+}
+
+JsonObject& JsonObject::numbers(const std::string& key, const std::vector<double>& values, int digits) {
+  std::string list = "[";
+  for (std::size_t i = 0; i < values.size(); ++i) list += (i ? ", " : "") + number_text(values[i], digits);
+  return raw(key, list + "]");
 }
 
 JsonObject& JsonObject::integer(const std::string& key, long long value) {

@@ -18,6 +18,7 @@ class JsonObject {
   JsonObject& integer(const std::string& key, unsigned long long value);
   JsonObject& text(const std::string& key, const std::string& value);
   JsonObject& boolean(const std::string& key, bool value);
+  JsonObject& numbers(const std::string& key, const std::vector<double>& values, int digits = 9);
   JsonObject& integers(const std::string& key, const std::vector<long long>& values);
   JsonObject& object(const std::string& key, const JsonObject& value);
   std::string str() const { return "{" + body_ + "}"; }

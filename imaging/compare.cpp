@@ -12,6 +12,7 @@
 
 #include "common/error.h"
 #include "imaging/image_file.h"
+#include "imaging/statistics.h"
 
 namespace arbor::trace {
 
@@ -115,6 +116,21 @@ double float_rounding_variance(double v) {
   return ulp * ulp;
 }
 
+// The largest rounding error the pooled tests forgive a value: half a half-float ulp (its
+// rounding), one float ulp (the floor above). Rounding of a smooth image is not noise that
+// averages out over a block: it can be the same in every pixel, so it is forgiven as a bound.
+double rounding_bound(double v, bool half) {
+  return half ? 0.5 * std::ldexp(1.0, std::ilogb(std::max(std::fabs(v), 6.1e-5)) - 10)
+              : std::ldexp(1.0, std::ilogb(std::max(std::fabs(v), 1.1754944e-38)) - 23);
+}
+
+// z of a pooled difference d with variance v after forgiving `forgiven` of it.
+double pooled_z(double d, double v, double forgiven) {
+  const double excess = std::max(0.0, std::fabs(d) - forgiven);
+  if (excess == 0.0) return 0.0;
+  return v > 0 ? std::copysign(excess / std::sqrt(v), d) : std::copysign(HUGE_VAL, d);
+}
+
 }  // namespace
 
 CompareImage read_compare_image(const std::string& path) {
@@ -129,6 +145,7 @@ CompareImage read_compare_image(const std::string& path) {
   const int r = image.index("R"), g = image.index("G"), bl = image.index("B");
   if (r < 0 || g < 0 || bl < 0) throw InputError({path, 0, 0}, "has no R, G and B channels");
   im.half_beauty = spec.channelformat(r) == OIIO::TypeDesc::HALF;
+  im.passes = spec.get_int_attribute("arbor:passes", 0);
   const int vr = image.index("variance.R"), vg = image.index("variance.G"), vb = image.index("variance.B");
   const bool has_var = vr >= 0 && vg >= 0 && vb >= 0;
   const std::size_t n = static_cast<std::size_t>(spec.width) * spec.height;
@@ -172,17 +189,6 @@ CompareMetrics compare_images(const CompareImage& a, const CompareImage& b) {
   return m;
 }
 
-double normal_two_sided_critical(double p) {
-  ARBOR_CHECK(p > 0 && p < 1);
-  // erfc(z / sqrt 2) is the two-sided tail; it falls monotonically, so bisect.
-  double lo = 0, hi = 40;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (std::erfc(mid / std::sqrt(2.0)) > p ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
-}
-
 ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alpha, double required) {
   require_same_size(a, b);
   if (b.variance.empty()) {
@@ -193,25 +199,84 @@ ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alph
   t.alpha = alpha;
   t.required = required;
   t.a_has_variance = !a.variance.empty();
-  const std::size_t n = static_cast<std::size_t>(a.width) * a.height;
+  const int w = a.width, h = a.height;
+  const std::size_t n = static_cast<std::size_t>(w) * h;
   t.pixels = static_cast<long long>(n);
   // Sidak over all 3N channel tests: the chance that any of them fails by noise alone is alpha.
   t.alpha_channel = -std::expm1(std::log1p(-alpha) / (3.0 * static_cast<double>(n)));
-  t.z_critical = normal_two_sided_critical(t.alpha_channel);
+  t.dof = b.passes >= 2 ? b.passes - 1 : 0;
+  t.z_critical = t.dof > 0 ? student_t_two_sided_critical(t.alpha_channel, t.dof)
+                           : normal_two_sided_critical(t.alpha_channel);
+  auto rounding = [&](std::size_t i) {
+    return (b.half_beauty ? half_rounding_variance(b.rgb[i]) : float_rounding_variance(b.rgb[i])) +
+           (a.half_beauty ? half_rounding_variance(a.rgb[i]) : float_rounding_variance(a.rgb[i]));
+  };
+  auto var_a = [&](std::size_t i) { return t.a_has_variance ? static_cast<double>(a.variance[i]) : 0.0; };
+
+  // Blocks of kBlock x kBlock pixels: A's level of noise relative to B's, and the block means.
+  constexpr int kBlock = 16;
+  const int bx = (w + kBlock - 1) / kBlock, by = (h + kBlock - 1) / kBlock;
+  double sum_a = 0, sum_b = 0, chi2 = 0;
+  double image_d[3] = {0, 0, 0}, image_v[3] = {0, 0, 0}, image_r[3] = {0, 0, 0};
+  int blocks = 0;
+  std::vector<double> ratio(static_cast<std::size_t>(bx) * by * 3, 0.0);
+  for (int j = 0; j < by; ++j) {
+    for (int k = 0; k < bx; ++k) {
+      double d[3] = {0, 0, 0}, va[3] = {0, 0, 0}, vb[3] = {0, 0, 0}, r[3] = {0, 0, 0};
+      for (int y = j * kBlock; y < std::min(h, (j + 1) * kBlock); ++y) {
+        for (int x = k * kBlock; x < std::min(w, (k + 1) * kBlock); ++x) {
+          for (int c = 0; c < 3; ++c) {
+            const std::size_t i = 3 * (static_cast<std::size_t>(y) * w + x) + c;
+            d[c] += static_cast<double>(a.rgb[i]) - b.rgb[i];
+            va[c] += var_a(i);
+            vb[c] += b.variance[i];
+            r[c] += rounding_bound(a.rgb[i], a.half_beauty) + rounding_bound(b.rgb[i], b.half_beauty);
+          }
+        }
+      }
+      for (int c = 0; c < 3; ++c) {
+        ratio[(static_cast<std::size_t>(j) * bx + k) * 3 + c] = vb[c] > 0 ? va[c] / vb[c] : 0.0;
+        const double v = va[c] + vb[c];
+        const double z = pooled_z(d[c], v, r[c]);
+        chi2 += z * z;
+        ++blocks;
+        image_d[c] += d[c];
+        image_v[c] += v;
+        image_r[c] += r[c];
+        sum_a += va[c];
+        sum_b += vb[c];
+      }
+    }
+  }
+  t.variance_ratio = sum_b > 0 ? sum_a / sum_b : 0.0;
+
   for (std::size_t p = 0; p < n; ++p) {
+    const std::size_t block = static_cast<std::size_t>((static_cast<int>(p) / w) / kBlock) * bx +
+                              static_cast<std::size_t>((static_cast<int>(p) % w) / kBlock);
     bool ok = true;
     for (int c = 0; c < 3 && ok; ++c) {
       const std::size_t i = 3 * p + c;
       const double d = static_cast<double>(a.rgb[i]) - b.rgb[i];
-      double var = b.variance[i] + (t.a_has_variance ? a.variance[i] : 0.0);
-      var += b.half_beauty ? half_rounding_variance(b.rgb[i]) : float_rounding_variance(b.rgb[i]);
-      var += a.half_beauty ? half_rounding_variance(a.rgb[i]) : float_rounding_variance(a.rgb[i]);
+      const double var = (1.0 + ratio[block * 3 + c]) * b.variance[i] + rounding(i);
       ok = std::fabs(d) <= t.z_critical * std::sqrt(var);
     }
     if (!ok) ++t.failed;
   }
   t.pass_fraction = n ? 1.0 - static_cast<double>(t.failed) / static_cast<double>(n) : 1.0;
-  t.passed = t.pass_fraction >= required;
+  t.pixels_passed = t.pass_fraction >= required;
+
+  // Pooled: each channel's image mean (Sidak over three) and the blocks' chi-square.
+  t.mean_z_critical = normal_two_sided_critical(-std::expm1(std::log1p(-t.alpha_pooled) / 3.0));
+  t.mean_passed = true;
+  for (int c = 0; c < 3; ++c) {
+    t.mean_z[c] = pooled_z(image_d[c], image_v[c], image_r[c]);
+    t.mean_passed = t.mean_passed && std::fabs(t.mean_z[c]) <= t.mean_z_critical;
+  }
+  t.block_chi2 = chi2;
+  t.block_dof = blocks;
+  t.block_p = chi_square_upper_tail(chi2, blocks);
+  t.blocks_passed = t.block_p >= t.alpha_pooled;
+  t.passed = t.pixels_passed && t.mean_passed && t.blocks_passed;
   return t;
 }
 

@@ -17,6 +17,7 @@ struct CompareImage {
   std::vector<float> rgb;       // width*height*3
   std::vector<float> variance;  // width*height*3, or empty
   bool half_beauty = false;     // R,G,B stored as half floats (adds quantisation noise)
+  int passes = 0;               // arbor:passes, the passes the variance was estimated over; 0: unknown
 };
 
 // InputError when the file cannot be read, lacks R/G/B, or holds a NaN or infinity.
@@ -34,17 +35,31 @@ CompareMetrics compare_images(const CompareImage& a, const CompareImage& b);
 struct ZTest {
   double alpha = 0.01;          // family-wise level over all pixels
   double alpha_channel = 0;     // per channel, after the Sidak correction over 3*pixels tests
-  double z_critical = 0;        // two-sided critical |z| at alpha_channel
+  double z_critical = 0;        // two-sided critical |z| at alpha_channel (Student's t with dof)
+  double dof = 0;               // of the reference's per-pixel variance; 0: taken as normal
   double pass_fraction = 0;     // pixels whose three channels all pass
   double required = 0.995;
   long long pixels = 0, failed = 0;
-  bool passed = false;
   bool a_has_variance = false;
+  // Pooled tests, each at alpha_pooled: the image mean of each channel (Sidak over the three)
+  // and the chi-square of the block means' z over 16x16 blocks.
+  double alpha_pooled = 0.005;
+  double mean_z[3] = {0, 0, 0}; // (mean of A - mean of B) / its standard error, per channel
+  double mean_z_critical = 0;
+  double block_chi2 = 0, block_dof = 0, block_p = 1;
+  double variance_ratio = 0;    // Σ var_a / Σ var_b: how much noisier A is than B
+  bool pixels_passed = false, mean_passed = false, blocks_passed = false;
+  bool passed = false;          // all three
 };
 
-// Per-pixel z-test of A against reference B: z = (a - b) / sqrt(var_a + var_b + q_b), q_b the
-// half-float quantisation variance of B's beauty when stored as half. B must carry variance
-// (InputError otherwise); A's is used when present. Sidak: alpha_channel = 1-(1-alpha)^(1/(3N)).
+// The reference test of A against B (docs/rendering.md, "Reference tests"). Per pixel: z =
+// (a - b) / sqrt((1 + c) var_b + q), c = Σ var_a / Σ var_b over the pixel's 16x16 block (A's own
+// variance is too noisy a pixel at a few passes; B's shape scaled to A's level is not) and q the
+// float or half rounding of both; |z| <= the Sidak-corrected critical value of Student's t with
+// B's passes - 1 degrees of freedom, for at least `required` of the pixels. Pooled, with A's and
+// B's variance summed: each channel's image mean, and Σ z² of the block means against
+// chi-square. B must carry variance (InputError otherwise); without A's, c = 0 and the pooled
+// tests use B's variance alone.
 ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alpha = 0.01,
                        double required = 0.995);
 
@@ -62,8 +77,5 @@ struct ComparePictures {
 // made before either is written, so an unknown display or view leaves neither behind.
 void write_compare_pictures(const CompareImage& a, const CompareImage& b,
                             const ComparePictures& pictures);
-
-// The two-sided standard-normal critical value: P(|Z| > z) = p.
-double normal_two_sided_critical(double p);
 
 }  // namespace arbor::trace

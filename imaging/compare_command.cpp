@@ -67,7 +67,13 @@ int compare_command(const CompareRequest& args) {
     j.number("max_abs", m.max_abs).integers("max_at", {m.max_x, m.max_y}).number("psnr", m.psnr);
     if (args.reference_test) {
       j.number("z_test_pass_fraction", z.pass_fraction).number("z_critical", z.z_critical);
-      j.integer("pixels", z.pixels).integer("failed_pixels", z.failed).boolean("passed", z.passed);
+      j.number("z_dof", z.dof).integer("pixels", z.pixels).integer("failed_pixels", z.failed);
+      j.boolean("pixels_passed", z.pixels_passed);
+      j.numbers("mean_z", {z.mean_z[0], z.mean_z[1], z.mean_z[2]}).number("mean_z_critical", z.mean_z_critical);
+      j.boolean("mean_passed", z.mean_passed);
+      j.number("block_chi2", z.block_chi2).number("block_dof", z.block_dof).number("block_p", z.block_p);
+      j.boolean("blocks_passed", z.blocks_passed).number("variance_ratio", z.variance_ratio);
+      j.boolean("passed", z.passed);
     }
     if (args.fit_treemaker) {
       JsonObject weights, f;
@@ -88,9 +94,15 @@ int compare_command(const CompareRequest& args) {
       std::printf("psnr      inf (identical)\n");
     }
     if (args.reference_test) {
-      std::printf("z-test    %.3f %% of %lld pixels pass (|z| <= %.2f: alpha 0.01, Sidak-corrected); "
-                  "needs %.1f %%: %s\n",
-                  100.0 * z.pass_fraction, z.pixels, z.z_critical, 100.0 * z.required,
+      std::printf("z-test    pixels: %.3f %% of %lld pass (|z| <= %.2f: alpha 0.01, Sidak-corrected, t with "
+                  "%g dof); needs %.1f %%: %s\n",
+                  100.0 * z.pass_fraction, z.pixels, z.z_critical, z.dof, 100.0 * z.required,
+                  z.pixels_passed ? "pass" : "FAIL");
+      std::printf("          image mean: z = %.2f %.2f %.2f (|z| <= %.2f: alpha %g): %s\n", z.mean_z[0],
+                  z.mean_z[1], z.mean_z[2], z.mean_z_critical, z.alpha_pooled, z.mean_passed ? "pass" : "FAIL");
+      std::printf("          16x16 blocks: chi-square %.1f on %g dof, p = %.3g (alpha %g): %s\n", z.block_chi2,
+                  z.block_dof, z.block_p, z.alpha_pooled, z.blocks_passed ? "pass" : "FAIL");
+      std::printf("          A is %.3g times as noisy as B (variance); %s\n", z.variance_ratio,
                   z.passed ? "PASS" : "FAIL");
     }
     if (args.fit_treemaker) {

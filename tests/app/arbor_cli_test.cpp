@@ -161,12 +161,20 @@ TEST(ArborCli, CompareMetricsJsonAndImages) {
 
 TEST(ArborCli, CompareReferenceTestExitCodes) {
   const std::string ref = write_exr("rt_ref.exr", 16, 16, 0.5f, 1e-4f);
-  const std::string close = write_exr("rt_close.exr", 16, 16, 0.505f, 1e-4f);  // 0.35 sigma
+  // 0.014 sigma a pixel, 0.23 sigma in the image mean: passes.
+  const std::string close = write_exr("rt_close.exr", 16, 16, 0.5002f, 1e-4f);
+  // 0.35 sigma a pixel, every pixel passes; but 5.7 sigma in the image mean: fails, pooled.
+  const std::string shifted = write_exr("rt_shifted.exr", 16, 16, 0.505f, 1e-4f);
   const std::string far = write_exr("rt_far.exr", 16, 16, 0.6f, 1e-4f);        // 7 sigma
   const CliRun pass = run_arbor("compare " + close + " " + ref + " --reference-test --json");
   EXPECT_EQ(pass.code, 0) << pass.out << pass.err;
   EXPECT_NE(pass.out.find("\"z_test_pass_fraction\": 1"), std::string::npos) << pass.out;
   EXPECT_NE(pass.out.find("\"passed\": true"), std::string::npos) << pass.out;
+  const CliRun pooled = run_arbor("compare " + shifted + " " + ref + " --reference-test");
+  EXPECT_EQ(pooled.code, 1) << pooled.out << pooled.err;
+  EXPECT_NE(pooled.out.find("pixels: 100.000 % of 256 pass"), std::string::npos) << pooled.out;
+  EXPECT_NE(pooled.out.find("image mean: z = 5.66 5.66 5.66 (|z| <= 3.14: alpha 0.005): FAIL"), std::string::npos)
+      << pooled.out;
   const CliRun fail = run_arbor("compare " + far + " " + ref + " --reference-test");
   EXPECT_EQ(fail.code, 1) << fail.out << fail.err;
   EXPECT_NE(fail.out.find("FAIL"), std::string::npos) << fail.out;

@@ -11,6 +11,7 @@
 #include "common/error.h"
 #include "expect_input_error.h"
 #include "imaging/compare.h"
+#include "imaging/statistics.h"
 
 namespace arbor::trace {
 namespace {
@@ -144,6 +145,55 @@ TEST(Compare, ReadingFindsVarianceChannels) {
   EXPECT_FLOAT_EQ(im.rgb[1], 0.5f);
   EXPECT_FLOAT_EQ(im.variance[2], 3e-3f);
   EXPECT_FALSE(im.half_beauty);
+}
+
+}  // namespace
+}  // namespace arbor::trace
+
+namespace arbor::trace {
+namespace {
+
+TEST(Statistics, StudentTAndChiSquareMatchTables) {
+  EXPECT_NEAR(student_t_two_sided_critical(0.05, 10), 2.228139, 1e-5);
+  EXPECT_NEAR(student_t_two_sided_critical(0.01, 3), 5.840909, 1e-5);
+  EXPECT_NEAR(student_t_two_sided_critical(0.05, 1), 12.706205, 1e-4);
+  // Many degrees of freedom: the normal's value.
+  EXPECT_NEAR(student_t_two_sided_critical(1e-6, 1e7), normal_two_sided_critical(1e-6), 1e-4);
+  EXPECT_NEAR(student_t_two_sided_tail(2.228139, 10), 0.05, 1e-6);
+  EXPECT_NEAR(chi_square_upper_tail(3.841459, 1), 0.05, 1e-6);
+  EXPECT_NEAR(chi_square_upper_tail(18.307038, 10), 0.05, 1e-6);
+  EXPECT_NEAR(chi_square_upper_tail(124.342113, 100), 0.05, 1e-6);
+  // Many degrees of freedom: the mean k sits just above the median k (1 - 2/(9k))³.
+  EXPECT_GT(chi_square_upper_tail(1e4, 1e4), 0.49);
+  EXPECT_LT(chi_square_upper_tail(1e4, 1e4), 0.5);
+  EXPECT_LT(chi_square_upper_tail(2000, 1000), 1e-40);
+}
+
+// What the pooled tests add: a 2 % shift of a quarter of the image, far below one pixel's noise
+// (a tenth of its standard deviation), fails; the same image without it passes.
+TEST(Compare, PooledTestsCatchATwoPercentShiftOfARegion) {
+  const CompareImage b = flat(128, 128, 0.5f, 2.5e-3f / 2.0f);  // sd of a - b: 0.05, 10 %
+  CompareImage a = noisy(b, 2.5e-3f / 2.0f, 0.0f, 11);
+  const ZTest clean = reference_z_test(a, b);
+  EXPECT_TRUE(clean.passed) << clean.mean_z[0] << " " << clean.block_p;
+  for (int y = 0; y < 64; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      for (int c = 0; c < 3; ++c) a.rgb[3 * (static_cast<std::size_t>(y) * 128 + x) + c] *= 1.02f;
+    }
+  }
+  const ZTest shifted = reference_z_test(a, b);
+  EXPECT_TRUE(shifted.pixels_passed);  // no single pixel shows it
+  EXPECT_FALSE(shifted.blocks_passed) << shifted.block_p;
+  EXPECT_FALSE(shifted.passed);
+}
+
+// The false-alarm rate of the whole test on noise of the stated variance: at most its alpha
+// (0.01 for the pixels, 0.005 for each pooled test; measured 0.5 % over 400 images).
+TEST(Compare, FalseAlarmRateOnNoiseOfTheStatedVariance) {
+  const CompareImage b = flat(48, 48, 0.5f, 1e-3f);
+  int alarms = 0;
+  for (unsigned seed = 100; seed < 500; ++seed) alarms += reference_z_test(noisy(b, 1e-3f, 0.0f, seed), b).passed ? 0 : 1;
+  EXPECT_LE(alarms, 12);  // 3 %: the binomial's 99.9 % bound for a rate of 1 %
 }
 
 }  // namespace
