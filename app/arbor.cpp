@@ -16,6 +16,7 @@
 #include "imaging/color.h"
 #include "imaging/compare_command.h"
 #include "scene/grow_command.h"
+#include "tracer/merge_command.h"
 #include "tracer/render_command.h"
 
 namespace {
@@ -139,6 +140,15 @@ int main(int argc, char** argv) {
                         "render, the other a treemaker render of the same view with the \"treemaker\" "
                         "AOVs; prints the weights and the error left");
 
+  arbor::trace::MergeRequest merge;
+  CLI::App* merge_cmd = app.add_subcommand(
+      "merge", "Combine work units of one render (--passes ranges, --crop windows) into its image, bit for bit");
+  merge_cmd->add_option("PARTS", merge.parts,
+                        "the parts' EXRs, in any order (each with its film state PART.exr.state beside it)")
+      ->required();
+  merge_cmd->add_option("-o,--output", merge.exr, "the merged EXR")->required();
+  merge_cmd->add_option("--png", merge.png, "also write a PNG of it through the display view");
+
   arbor::remove_temporaries_on_signal();
   try {
     app.parse(argc, argv);
@@ -149,10 +159,11 @@ int main(int argc, char** argv) {
 
   try {
     // The OCIO config of this run: $OCIO, or arbor's own beside the executable.
-    render.ocio_config = cmp.ocio_config = arbor::trace::default_ocio_config();
+    render.ocio_config = cmp.ocio_config = merge.ocio_config = arbor::trace::default_ocio_config();
     if (*grow_cmd) return arbor::trace::grow_command(grow);
     if (*render_cmd) return arbor::trace::render_command(render);
     if (*compare_cmd) return arbor::trace::compare_command(cmp);
+    if (*merge_cmd) return arbor::trace::merge_command(merge);
   } catch (const arbor::InputError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;

@@ -197,3 +197,64 @@ TEST(LongRender, CheckpointsSurviveKill9) {
   ASSERT_EQ(whole.code, 0) << whole.err;
   EXPECT_TRUE(same_pixels(read_exr(dir + "/out.exr"), read_exr(dir + "/whole.exr")));
 }
+
+// Work units: pass ranges and crops, merged in any order, give the single render bit for bit;
+// parts of another render, overlaps and gaps are refused naming the part and the pixel.
+TEST(LongRender, PassRangesAndCropsMergeToTheSingleRender) {
+  const std::string dir = fresh_folder("merge");
+  const std::string scene = scene_file(dir, 64);  // 16 passes
+  auto render = [&](const std::string& out, const std::string& opts) {
+    const CliRun r = run_arbor("render " + scene + " -o " + dir + "/" + out + " " + opts);
+    EXPECT_EQ(r.code, 0) << opts << "\n" << r.err;
+    EXPECT_TRUE(exists(dir + "/" + out + ".state")) << out;
+    return dir + "/" + out;
+  };
+  const CliRun whole = run_arbor("render " + scene + " -o " + dir + "/whole.exr");
+  ASSERT_EQ(whole.code, 0) << whole.err;
+  const Exr reference = read_exr(dir + "/whole.exr");
+
+  // Passes: three ranges, given out of order.
+  const std::string p0 = render("p0.exr", "--passes 0:5"), p1 = render("p1.exr", "--passes 5:11"),
+                    p2 = render("p2.exr", "--passes 11:16");
+  const CliRun merged = run_arbor("merge -o " + dir + "/passes.exr --png " + dir + "/passes.png " + p2 + " " + p0 + " " + p1);
+  ASSERT_EQ(merged.code, 0) << merged.err;
+  EXPECT_NE(merged.err.find("(the whole render)"), std::string::npos) << merged.err;
+  EXPECT_TRUE(same_pixels(read_exr(dir + "/passes.exr"), reference));
+  EXPECT_FALSE(exists(dir + "/passes.exr.state"));
+  EXPECT_TRUE(exists(dir + "/passes.png"));
+  // Two later ranges merge into a part that still merges with the first.
+  ASSERT_EQ(run_arbor("merge -o " + dir + "/p12.exr " + p1 + " " + p2).code, 0);
+  EXPECT_TRUE(exists(dir + "/p12.exr.state"));
+  ASSERT_EQ(run_arbor("merge -o " + dir + "/again.exr " + dir + "/p12.exr " + p0).code, 0);
+  EXPECT_TRUE(same_pixels(read_exr(dir + "/again.exr"), reference));
+
+  // Crops (one split into pass ranges too): stitched.
+  const std::string left = render("left.exr", "--crop 0,0,13,24"),
+                    right_a = render("right_a.exr", "--crop 13,0,32,24 --passes 0:7"),
+                    right_b = render("right_b.exr", "--crop 13,0,32,24 --passes 7:16");
+  const Exr crop = read_exr(left);
+  EXPECT_EQ(crop.spec.width, 13);
+  EXPECT_EQ(crop.spec.full_width, 32);
+  EXPECT_EQ(crop.spec.get_string_attribute("arbor:crop"), "0,0,13,24");
+  ASSERT_EQ(run_arbor("merge -o " + dir + "/crops.exr " + right_b + " " + left + " " + right_a).code, 0);
+  EXPECT_TRUE(same_pixels(read_exr(dir + "/crops.exr"), reference));
+
+  // Refused: an overlap, a gap, a part of another render.
+  const CliRun overlap = run_arbor("merge -o " + dir + "/bad.exr " + p0 + " " + render("p4.exr", "--passes 4:16"));
+  EXPECT_EQ(overlap.code, 2) << overlap.err;
+  EXPECT_NE(overlap.err.find("overlaps " + p0 + ": both hold pass 4 of pixel (0, 0)"), std::string::npos) << overlap.err;
+  const CliRun gap = run_arbor("merge -o " + dir + "/bad.exr " + p0 + " " + p2);
+  EXPECT_EQ(gap.code, 2) << gap.err;
+  EXPECT_NE(gap.err.find("leaves a gap: no part holds passes 5 to 10 of pixel (0, 0)"), std::string::npos) << gap.err;
+  const CliRun hole = run_arbor("merge -o " + dir + "/bad.exr " + left + " " + render("r.exr", "--crop 14,0,32,24"));
+  EXPECT_EQ(hole.code, 2) << hole.err;
+  EXPECT_NE(hole.err.find("of pixel (13, 0), which lies in no part's window"), std::string::npos) << hole.err;
+  const CliRun other = run_arbor("merge -o " + dir + "/bad.exr " + p0 + " " +
+                                 render("seed.exr", "--passes 5:16 --seed 9"));
+  EXPECT_EQ(other.code, 2) << other.err;
+  EXPECT_NE(other.err.find("is not a part of the same render"), std::string::npos) << other.err;
+  EXPECT_FALSE(exists(dir + "/bad.exr"));
+  const CliRun missing = run_arbor("merge -o " + dir + "/bad.exr " + dir + "/whole.exr");
+  EXPECT_EQ(missing.code, 2) << missing.err;
+  EXPECT_NE(missing.err.find("whole.exr.state"), std::string::npos) << missing.err;
+}

@@ -1,0 +1,20 @@
+// `arbor merge`: work units of one render (--passes ranges, --crop windows) combined into the
+// image the single render gives, bit for bit.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace arbor::trace {
+
+struct MergeRequest {
+  std::vector<std::string> parts;  // EXRs with their film states beside them
+  std::string exr, png;            // png: empty for none
+  std::string ocio_config;         // the run's OCIO config (default_ocio_config())
+};
+
+// Merges and writes; returns the exit status (0). InputError (exit 2) for parts that are not of
+// one render, overlap, or leave a gap; RuntimeFailure when writing fails.
+int merge_command(const MergeRequest& request);
+
+}  // namespace arbor::trace
