@@ -59,7 +59,8 @@ struct ZTest {
 // B's passes - 1 degrees of freedom, for at least `required` of the pixels. Pooled, with A's and
 // B's variance summed: each channel's image mean, and Σ z² of the block means against
 // chi-square. B must carry variance (InputError otherwise); without A's, c = 0 and the pooled
-// tests use B's variance alone.
+// tests use B's variance alone. Rounding is variance in the pooled tests where a pixel has
+// noise, and a bound forgiven where it has none.
 ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alpha = 0.01,
                        double required = 0.995);
 
