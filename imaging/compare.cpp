@@ -117,11 +117,11 @@ double float_rounding_variance(double v) {
 }
 
 // The largest rounding error the pooled tests forgive a value: half a half-float ulp (its
-// rounding), one float ulp (the floor above). Where a pixel has noise, its rounding errors are as
-// good as independent and count as variance; where it has none (a constant sky), its rounding
-// may be the same in every pixel and would not average out over a block, so the pixel's
-// difference is first shrunk towards 0 by the bound: a noise-free pixel may be off by its
-// rounding, and no more.
+// rounding), one float ulp (the floor above). Where a pixel has noise, its rounding errors are
+// as good as independent and count as variance; where it has none beyond its rounding (a
+// constant sky), its rounding may be the same in every pixel and would not average out over a
+// block, so the pixel's difference is first shrunk towards 0 by the bound: such a pixel may be
+// off by its rounding, and no more.
 double rounding_bound(double v, bool half) {
   return half ? 0.5 * std::ldexp(1.0, std::ilogb(std::max(std::fabs(v), 6.1e-5)) - 10)
               : std::ldexp(1.0, std::ilogb(std::max(std::fabs(v), 1.1754944e-38)) - 23);
@@ -227,6 +227,7 @@ ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alph
   for (int j = 0; j < by; ++j) {
     for (int k = 0; k < bx; ++k) {
       double d[3] = {0, 0, 0}, va[3] = {0, 0, 0}, vb[3] = {0, 0, 0}, q[3] = {0, 0, 0};
+      int noisy[3] = {0, 0, 0};
       for (int y = j * kBlock; y < std::min(h, (j + 1) * kBlock); ++y) {
         for (int x = k * kBlock; x < std::min(w, (k + 1) * kBlock); ++x) {
           for (int c = 0; c < 3; ++c) {
@@ -237,6 +238,7 @@ ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alph
             if (var_a(i) + b.variance[i] > rounding(i)) {
               d[c] += diff;
               q[c] += rounding(i);
+              ++noisy[c];
             } else {
               d[c] += forgive(diff, rounding_bound(a.rgb[i], a.half_beauty) + rounding_bound(b.rgb[i], b.half_beauty));
             }
@@ -248,7 +250,9 @@ ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alph
         const double v = va[c] + vb[c] + q[c];
         const double z = pooled_z(d[c], v);
         chi2 += z * z;
-        ++blocks;
+        // A block without noise (sky seen directly) tests only that it does not differ by more
+        // than its rounding: its z is 0 or infinite, and it adds no degree of freedom.
+        if (noisy[c] > 0) ++blocks;
         image_d[c] += d[c];
         image_v[c] += v;
         sum_a += va[c];
@@ -282,7 +286,7 @@ ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alph
   }
   t.block_chi2 = chi2;
   t.block_dof = blocks;
-  t.block_p = chi_square_upper_tail(chi2, blocks);
+  t.block_p = blocks > 0 ? chi_square_upper_tail(chi2, blocks) : (chi2 > 0 ? 0.0 : 1.0);
   t.blocks_passed = t.block_p >= t.alpha_pooled;
   t.passed = t.pixels_passed && t.mean_passed && t.blocks_passed;
   return t;

@@ -122,6 +122,12 @@ int compare_command(const CompareRequest& args) {
       for (int i = 0; i < 5; ++i) std::printf("  %s = %.4f\n", names[i], fit.weights[static_cast<size_t>(i)]);
     }
   }
+  if (args.reference_test && z.a_has_variance && a.passes >= 2 && a.passes < 8) {
+    std::fprintf(stderr, "arbor compare: note: %s has %d passes: its variance is estimated from %d degree%s of "
+                         "freedom a pixel, and a block whose noise sits in a few pixels can fail by chance; "
+                         "render it in at least 8 passes (pass_spp = spp / 8)\n",
+                 args.a.c_str(), a.passes, a.passes - 1, a.passes == 2 ? "" : "s");
+  }
   if (args.reference_test && !z.a_has_variance) {
     std::fprintf(stderr, "arbor compare: note: %s has no variance channels; the test used the "
                          "reference's variance alone\n", args.a.c_str());

@@ -1,0 +1,103 @@
+// Adaptive sampling against uniform sampling on the default scene's view (120×90, one thread),
+// at equal error: the 95th percentile over pixels of the relative error
+// max_c |x_c - ref_c| / max(|ref_c|, 0.01) against a 1024-spp reference (seed 99, two threads,
+// not timed). Benchmarks, each one iteration:
+// - uniform/spp:N: every pixel N samples; counters p95_error, mean_spp;
+// - adaptive/threshold:T (‰): noise_threshold T/1000, spp at most 1024, min_spp 16; counters
+//   p95_error, mean_spp.
+// bench/run.sh interpolates each method's time at the same p95 error and prints the ratio.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "formats/scene_desc.h"
+#include "imaging/color.h"
+#include "scene/scene.h"
+#include "tracer/embree/world.h"
+#include "tracer/lights/sky.h"
+#include "tracer/render.h"
+
+namespace {
+
+using namespace arbor;
+
+const std::string kOcioConfig = std::string(ARBOR_SOURCE_DIR) + "/imaging/ocio/config.ocio";
+
+trace::SceneDesc view(int spp, int threads) {
+  trace::SceneDesc s = trace::load_scene(std::string(ARBOR_SOURCE_DIR) + "/scenes/default.toml");
+  s.render.width = 120;
+  s.render.height = 90;
+  s.render.spp = spp;
+  s.render.threads = threads;
+  return s;
+}
+
+trace::Image render(const trace::SceneDesc& s) {
+  const trace::EmbreeDevice device("threads=" + std::to_string(s.render.threads));
+  const std::unique_ptr<const trace::Scene> scene = trace::build_scene(s, kOcioConfig);
+  const trace::World world(*scene, device);
+  const trace::ColorPipeline color(kOcioConfig);
+  const trace::Sky sky(s.sky, s.sun, color.xyz_to_scene_linear());
+  trace::RenderStats stats;
+  return trace::render_image(s, world, sky, color.to_output(s.output.colorspace), stats);
+}
+
+const trace::Image& reference() {
+  static const trace::Image ref = [] {
+    trace::SceneDesc s = view(1024, 2);
+    s.render.seed = 99;
+    return render(s);
+  }();
+  return ref;
+}
+
+double p95_error(const trace::Image& img) {
+  const trace::Image& ref = reference();
+  std::vector<double> e(img.beauty.size());
+  for (std::size_t p = 0; p < e.size(); ++p) {
+    double worst = 0;
+    for (int c = 0; c < 3; ++c) {
+      worst = std::max(worst, std::fabs(double(img.beauty[p][c]) - ref.beauty[p][c]) /
+                                  std::max(std::fabs(double(ref.beauty[p][c])), 0.01));
+    }
+    e[p] = worst;
+  }
+  std::nth_element(e.begin(), e.begin() + static_cast<long>(0.95 * double(e.size())), e.end());
+  return e[static_cast<std::size_t>(0.95 * double(e.size()))];
+}
+
+void report(benchmark::State& state, const trace::Image& img) {
+  double total = 0;
+  for (float n : img.samples) total += n;
+  state.counters["p95_error"] = p95_error(img);
+  state.counters["mean_spp"] = total / double(img.samples.size());
+}
+
+void uniform(benchmark::State& state) {
+  reference();
+  const trace::SceneDesc s = view(static_cast<int>(state.range(0)), 1);
+  trace::Image img;
+  for (auto _ : state) img = render(s);
+  report(state, img);
+}
+
+void adaptive(benchmark::State& state) {
+  reference();
+  trace::SceneDesc s = view(1024, 1);
+  s.render.noise_threshold = static_cast<double>(state.range(0)) / 1000.0;
+  s.render.min_spp = 16;
+  trace::Image img;
+  for (auto _ : state) img = render(s);
+  report(state, img);
+}
+
+}  // namespace
+
+BENCHMARK(uniform)->ArgName("spp")->Arg(32)->Arg(64)->Arg(128)->Arg(256)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(adaptive)->ArgName("threshold")->Arg(100)->Arg(60)->Arg(40)->Arg(25)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();
