@@ -150,6 +150,7 @@ CompareImage read_compare_image(const std::string& path) {
   if (r < 0 || g < 0 || bl < 0) throw InputError({path, 0, 0}, "has no R, G and B channels");
   im.half_beauty = spec.channelformat(r) == OIIO::TypeDesc::HALF;
   im.passes = spec.get_int_attribute("arbor:passes", 0);
+  im.spp = spec.get_int_attribute("arbor:spp", 0);
   const int vr = image.index("variance.R"), vg = image.index("variance.G"), vb = image.index("variance.B");
   const bool has_var = vr >= 0 && vg >= 0 && vb >= 0;
   const std::size_t n = static_cast<std::size_t>(spec.width) * spec.height;
@@ -215,6 +216,11 @@ ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alph
     return (b.half_beauty ? half_rounding_variance(b.rgb[i]) : float_rounding_variance(b.rgb[i])) +
            (a.half_beauty ? half_rounding_variance(a.rgb[i]) : float_rounding_variance(a.rgb[i]));
   };
+  // Under the hypothesis that A renders what B does, A's variance is at least B's scaled by the
+  // ratio of their samples (quasi-Monte Carlo converges at least as fast as 1/n).
+  t.spp_ratio = t.a_has_variance && a.spp > 0 && b.spp > 0 ? double(b.spp) / double(a.spp) : 0.0;
+  // Applied to sums over blocks, where A's estimate is good, not to single pixels, where
+  // flooring a noisy estimate would inflate it.
   auto var_a = [&](std::size_t i) { return t.a_has_variance ? static_cast<double>(a.variance[i]) : 0.0; };
 
   // Blocks of kBlock x kBlock pixels: A's level of noise relative to B's, and the block means.
@@ -246,7 +252,8 @@ ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alph
         }
       }
       for (int c = 0; c < 3; ++c) {
-        ratio[(static_cast<std::size_t>(j) * bx + k) * 3 + c] = vb[c] > 0 ? va[c] / vb[c] : 0.0;
+        va[c] = std::max(va[c], t.spp_ratio * vb[c]);
+        ratio[(static_cast<std::size_t>(j) * bx + k) * 3 + c] = vb[c] > 0 ? va[c] / vb[c] : t.spp_ratio;
         const double v = va[c] + vb[c] + q[c];
         const double z = pooled_z(d[c], v);
         chi2 += z * z;

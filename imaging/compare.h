@@ -18,6 +18,7 @@ struct CompareImage {
   std::vector<float> variance;  // width*height*3, or empty
   bool half_beauty = false;     // R,G,B stored as half floats (adds quantisation noise)
   int passes = 0;               // arbor:passes, the passes the variance was estimated over; 0: unknown
+  int spp = 0;                  // arbor:spp, samples a pixel; 0: unknown
 };
 
 // InputError when the file cannot be read, lacks R/G/B, or holds a NaN or infinity.
@@ -48,17 +49,21 @@ struct ZTest {
   double mean_z_critical = 0;
   double block_chi2 = 0, block_dof = 0, block_p = 1;
   double variance_ratio = 0;    // Σ var_a / Σ var_b: how much noisier A is than B
+  double spp_ratio = 0;         // spp_b / spp_a when both say, else 0: A's variance over a block is
+                                // at least B's times this (quasi-Monte Carlo converges at least as 1/n)
   bool pixels_passed = false, mean_passed = false, blocks_passed = false;
   bool passed = false;          // all three
 };
 
 // The reference test of A against B (docs/rendering.md, "Reference tests"). Per pixel: z =
-// (a - b) / sqrt((1 + c) var_b + q), c = Σ var_a / Σ var_b over the pixel's 16x16 block (A's own
-// variance is too noisy a pixel at a few passes; B's shape scaled to A's level is not) and q the
+// (a - b) / sqrt((1 + c) var_b + q), c = Σ var_a / Σ var_b over the pixel's 16x16 block, at
+// least spp_ratio (A's own variance is too noisy a pixel at a few passes; B's shape scaled to
+// A's level is not), and q the
 // float or half rounding of both; |z| <= the Sidak-corrected critical value of Student's t with
 // B's passes - 1 degrees of freedom, for at least `required` of the pixels. Pooled, with A's and
 // B's variance summed: each channel's image mean, and Σ z² of the block means against
-// chi-square. B must carry variance (InputError otherwise); without A's, c = 0 and the pooled
+// chi-square, A's variance over a block taken as at least spp_ratio times B's (where A never
+// sampled a thin twig B sees, it has no variance of its own). B must carry variance (InputError otherwise); without A's, c = 0 and the pooled
 // tests use B's variance alone. Rounding is variance in the pooled tests where a pixel has
 // noise, and a bound forgiven where it has none.
 ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alpha = 0.01,

@@ -73,6 +73,7 @@ int compare_command(const CompareRequest& args) {
       j.boolean("mean_passed", z.mean_passed);
       j.number("block_chi2", z.block_chi2).number("block_dof", z.block_dof).number("block_p", z.block_p);
       j.boolean("blocks_passed", z.blocks_passed).number("variance_ratio", z.variance_ratio);
+      j.number("spp_ratio", z.spp_ratio);
       j.boolean("passed", z.passed);
     }
     if (args.fit_treemaker) {
@@ -102,8 +103,9 @@ int compare_command(const CompareRequest& args) {
                   z.mean_z[1], z.mean_z[2], z.mean_z_critical, z.alpha_pooled, z.mean_passed ? "pass" : "FAIL");
       std::printf("          16x16 blocks: chi-square %.1f on %g dof, p = %.3g (alpha %g): %s\n", z.block_chi2,
                   z.block_dof, z.block_p, z.alpha_pooled, z.blocks_passed ? "pass" : "FAIL");
-      std::printf("          A is %.3g times as noisy as B (variance); %s\n", z.variance_ratio,
-                  z.passed ? "PASS" : "FAIL");
+      std::printf("          A is %.3g times as noisy as B (variance; in each block at least %.3g times B's, "
+                  "their spp ratio); %s\n",
+                  z.variance_ratio, z.spp_ratio, z.passed ? "PASS" : "FAIL");
     }
     if (args.fit_treemaker) {
       std::printf("treemaker fit of %s to the exact %s, over the %lld pixels that show a tree:\n",

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Re-renders the reference images: each reference/<name>.toml at 1024 samples per pixel with
-# seed 1000 (independent of the tests' seed 1), to reference/<name>.exr (half RGB, float
-# variance of the pixel mean). Usage: reference/make.sh [BUILD_DIR] [NAME...]
+# seed 1000 (independent of the tests' seed 1), in the scene's passes (pass_spp = 4: 256 passes), to
+# reference/<name>.exr (half RGB, float variance of the pixel mean across the passes). Usage: reference/make.sh [BUILD_DIR] [NAME...]
 # Run it after a change that is meant to change images, look at the images, then commit them.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
