@@ -27,6 +27,27 @@ runs = {b["name"]: b["real_time"] for b in json.load(open(sys.argv[1]))["benchma
 path, tm = runs["frame/path_64spp/iterations:3"], runs["frame/treemaker"]
 print(f"bench: default-scene frame, path 64 spp / treemaker = {path / tm:.1f}x")
 PY
+"$build/bench/adaptive_bench" --benchmark_out="$out/adaptive_bench.json" --benchmark_out_format=json
+# Adaptive sampling's time against uniform sampling's at the same 95th-percentile error.
+python3 - "$out/adaptive_bench.json" <<'PY'
+import json, math, sys
+runs = json.load(open(sys.argv[1]))["benchmarks"]
+uni = sorted((b["p95_error"], b["real_time"]) for b in runs if b["name"].startswith("uniform/"))
+for b in runs:
+    if not b["name"].startswith("adaptive/"):
+        continue
+    e = b["p95_error"]
+    pts = [(math.log(x), math.log(t)) for x, t in uni]
+    lo = max((p for p in pts if p[0] <= math.log(e)), default=None)
+    hi = min((p for p in pts if p[0] >= math.log(e)), default=None)
+    if lo is None or hi is None:
+        print(f"bench: {b['name']}: p95 error {e:.3f} outside the uniform renders' range")
+        continue
+    f = 0 if hi[0] == lo[0] else (math.log(e) - lo[0]) / (hi[0] - lo[0])
+    t = math.exp(lo[1] + f * (hi[1] - lo[1]))
+    print(f"bench: {b['name']}: p95 error {e:.3f} in {b['real_time']:.0f} ms, uniform {t:.0f} ms: "
+          f"{t / b['real_time']:.2f}x")
+PY
 "$build/bench/render_bench" --benchmark_filter='forest_1000' \
   --benchmark_out="$out/render_bench_forest.json" --benchmark_out_format=json
 echo "bench: results in $out"

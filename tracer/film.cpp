@@ -121,11 +121,28 @@ void Film::begin_pass() {
 void Film::finish_pass(const AdaptiveSettings& adaptive) {
   ++next_pass_;
   if (adaptive.noise_threshold <= 0) return;
+  // A pixel's own estimate has only passes - 1 degrees of freedom and is often far too low by
+  // chance, so a pixel stops only when it and its 8 neighbours are all at the threshold (as
+  // Cycles dilates its convergence mask). Pixels already stopped count as converged.
+  const int w = window_.width(), h = window_.height();
+  std::vector<unsigned char> converged(states_.size(), 0);
   for (std::size_t p = 0; p < states_.size(); ++p) {
-    PixelState& st = states_[p];
-    if (!st.done && st.passes >= 2 && st.count >= static_cast<std::uint32_t>(adaptive.min_spp) &&
-        relative_error(p) <= adaptive.noise_threshold) {
-      st.done = 1;
+    const PixelState& st = states_[p];
+    converged[p] = st.done || (st.passes >= 2 && st.count >= static_cast<std::uint32_t>(adaptive.min_spp) &&
+                               relative_error(p) <= adaptive.noise_threshold);
+  }
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const std::size_t p = static_cast<std::size_t>(y) * w + x;
+      if (states_[p].done || !converged[p]) continue;
+      bool all = true;
+      for (int dy = -1; dy <= 1 && all; ++dy) {
+        for (int dx = -1; dx <= 1 && all; ++dx) {
+          const int nx = x + dx, ny = y + dy;
+          if (nx >= 0 && ny >= 0 && nx < w && ny < h) all = converged[static_cast<std::size_t>(ny) * w + nx] != 0;
+        }
+      }
+      if (all) states_[p].done = 1;
     }
   }
 }
