@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
                        "continue the render from the film state beside its EXR (OUT.exr.state), to the "
                        "image an uninterrupted render gives");
   render_cmd->add_option("--time-limit", render.time_limit,
-                         "seconds: stop after the last pass that fits (at least one pass is rendered)")
+                         "seconds: stop after the last pass that fits (at least one pass is rendered; 0: no limit)")
       ->check(finite_in(0.0, 1e9));
   render_cmd->add_option("--checkpoint-seconds", render.checkpoint_seconds,
                          "rewrite the outputs this often as passes finish (overrides output.checkpoint_seconds)")

@@ -258,3 +258,24 @@ TEST(LongRender, PassRangesAndCropsMergeToTheSingleRender) {
   EXPECT_EQ(missing.code, 2) << missing.err;
   EXPECT_NE(missing.err.find("whole.exr.state"), std::string::npos) << missing.err;
 }
+
+// A film state that is truncated, or not one, is refused naming it (exit 2), and the EXR beside
+// it is left as it was.
+TEST(LongRender, ABrokenFilmStateIsRefused) {
+  const std::string dir = fresh_folder("broken");
+  const std::string scene = scene_file(dir, 64);
+  ASSERT_EQ(run_arbor("render " + scene + " -o " + dir + "/out.exr --passes 0:4").code, 0);
+  const std::string state = dir + "/out.exr.state", bytes = slurp(state);
+  const std::string exr = slurp(dir + "/out.exr");
+  std::ofstream(state, std::ios::binary) << bytes.substr(0, bytes.size() - 100);
+  const CliRun cut = run_arbor("render " + scene + " -o " + dir + "/out.exr --passes 0:4 --resume");
+  EXPECT_EQ(cut.code, 2) << cut.err;
+  EXPECT_NE(cut.err.find(state + ": error: is not a film state arbor can read: it is truncated"), std::string::npos)
+      << cut.err;
+  std::ofstream(state, std::ios::binary) << "arbor film state 1\nfingerprint x\nsize -3 4\nend\n";
+  const CliRun bad = run_arbor("merge -o " + dir + "/m.exr " + dir + "/out.exr");
+  EXPECT_EQ(bad.code, 2) << bad.err;
+  EXPECT_NE(bad.err.find(state + ": error: is not a film state arbor can read"), std::string::npos) << bad.err;
+  EXPECT_EQ(slurp(dir + "/out.exr"), exr);
+  EXPECT_FALSE(exists(dir + "/m.exr"));
+}

@@ -70,10 +70,11 @@ double stated_to_seen(int spp, int pass_spp) {
 }  // namespace
 
 TEST(Passes, VarianceAcrossPassesIsWhatTwoSeedsShow) {
-  // 64 spp in 8 passes of 8: within ±25 % of the empirical variance of the difference.
+  // 64 spp in 8 passes of 8: within ±25 % of the empirical variance of the difference is what
+  // issue 12 asks; we hold it to ±15 % (measured 0.995; a variance 30 % too large gives 0.765).
   const double honest = stated_to_seen(64, 8);
-  EXPECT_GT(honest, 0.75);
-  EXPECT_LT(honest, 1.25);
+  EXPECT_GT(honest, 0.85);
+  EXPECT_LT(honest, 1.15);
   // The same samples in one pass: the sample variance / n of scrambled Sobol' points overstates
   // the variance of the mean (issue 12 measured 0.31), and the test above would catch it.
   const double one_pass = stated_to_seen(64, 64);
