@@ -27,6 +27,7 @@ class ObjReader {
       start = end + 1;
     }
     check_forward_references();
+    if (!mesh_.normals.empty()) mesh_.normal_indices = std::move(triangle_normals_);
     return std::move(mesh_);
   }
 
@@ -94,6 +95,7 @@ class ObjReader {
 
   void face(std::string_view rest, std::string_view keyword) {
     corners_.clear();
+    corner_normals_.clear();
     for (std::string_view corner = token(rest); !corner.empty(); corner = token(rest)) {
       // v, v/vt, v//vn or v/vt/vn
       std::string_view parts[3];
@@ -108,7 +110,8 @@ class ObjReader {
       }
       corners_.push_back(static_cast<std::uint32_t>(index(parts[0], corner, mesh_.positions.size(), "vertex")));
       if (n > 1 && !parts[1].empty()) index(parts[1], corner, texcoords_, "texture coordinate");
-      if (n > 2) index(parts[2], corner, normals_, "normal");
+      corner_normals_.push_back(n > 2 ? static_cast<std::uint32_t>(index(parts[2], corner, normals_, "normal"))
+                                      : ObjMesh::kNoNormal);
     }
     if (corners_.size() < 3) fail(keyword, "a face needs at least three vertices");
     if (part_dirty_) {
@@ -120,6 +123,8 @@ class ObjReader {
     for (std::size_t k = 1; k + 1 < corners_.size(); ++k) {
       mesh_.indices.insert(mesh_.indices.end(), {corners_[0], corners_[k], corners_[k + 1]});
       mesh_.part.push_back(part);
+      triangle_normals_.insert(triangle_normals_.end(),
+                               {corner_normals_[0], corner_normals_[k], corner_normals_[k + 1]});
     }
   }
 
@@ -145,6 +150,9 @@ class ObjReader {
       ++texcoords_;
     } else if (keyword == "vn") {
       numbers(rest, keyword, 3, 3, v);
+      const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+      if (!(length > 1e-12) || !std::isfinite(length)) fail(keyword, "a vertex normal of zero length");
+      mesh_.normals.emplace_back(v[0] / length, v[1] / length, v[2] / length);
       ++normals_;
     } else if (keyword == "f") {
       face(rest, keyword);
@@ -197,7 +205,7 @@ class ObjReader {
   ObjMesh::Part current_;
   bool part_dirty_ = true;
   std::size_t texcoords_ = 0, normals_ = 0;
-  std::vector<std::uint32_t> corners_;
+  std::vector<std::uint32_t> corners_, corner_normals_, triangle_normals_;
   std::vector<Forward> forward_;
 };
 

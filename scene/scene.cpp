@@ -228,6 +228,11 @@ void SceneBuilder::add_mesh(const MeshDesc& d) {
     material_of_part[i] = material_of(key);
   }
   mesh.indices = obj.indices;
+  // Normals go through the inverse transpose of the placement (scale is uniform, but stay exact).
+  const glm::mat3 to_world_normal = glm::transpose(glm::inverse(glm::mat3(m)));
+  mesh.normals.reserve(obj.normals.size());
+  for (const glm::vec3& n : obj.normals) mesh.normals.push_back(glm::normalize(to_world_normal * n));
+  mesh.normal_indices = obj.normal_indices;
   mesh.material.reserve(obj.part.size());
   for (const std::uint32_t p : obj.part) mesh.material.push_back(material_of_part[p]);
   if (mesh.indices.empty()) throw InputError({d.path, 0, 0}, "the OBJ mesh has no faces");

@@ -38,6 +38,17 @@ TEST(ObjMesh, ReadsFacesGroupsAndMaterials) {
   EXPECT_EQ(m.parts[1].group, "floor");
   EXPECT_EQ(m.parts[1].material, "bark");
   EXPECT_EQ(m.part_line, (std::vector<int>{12, 14}));
+  // The normals are kept (unit length) and indexed per triangle corner; a corner without one is
+  // kNoNormal.
+  ASSERT_EQ(m.normals.size(), 1u);
+  EXPECT_EQ(m.normals[0], glm::vec3(0, 0, 1));
+  const std::uint32_t none = ObjMesh::kNoNormal;
+  EXPECT_EQ(m.normal_indices, (std::vector<std::uint32_t>{0, 0, 0, 0, 0, none, none, none, none}));
+  // A file without normals keeps none.
+  EXPECT_TRUE(parse_obj(std::string(kQuad) + "f 1 2 3\n", "m.obj").normal_indices.empty());
+  const ObjMesh scaled = parse_obj(std::string(kQuad) + "vn 0 3 4\nf 1//1 2//1 3//1\n", "m.obj");
+  EXPECT_NEAR(scaled.normals[0].y, 0.6f, 1e-6f);
+  EXPECT_NEAR(scaled.normals[0].z, 0.8f, 1e-6f);
   // Faces may name vertices defined after them.
   EXPECT_EQ(parse_obj("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n", "m.obj").indices.size(), 3u);
 }
@@ -53,6 +64,7 @@ TEST(ObjMesh, BadNumbersAndIndicesAreRefusedWithTheirPosition) {
   expect_error("v 0 0 x\n", 1, 7, "'x' is not a number");
   expect_error("vn 0 0 nan\n", 1, 8, "not a finite number");
   expect_error("vt nan\n", 1, 4, "not a finite number");
+  expect_error("vn 0 0 0\n", 1, 1, "a vertex normal of zero length");
   expect_error(q + "f 1 2 5\n", 5, 7, "refers to vertex 5, but the file defines 4");
   expect_error(q + "f 1 2 0\n", 5, 7, "not a vertex index");
   expect_error(q + "f 1 2 -5\n", 5, 7, "only 4 are defined");

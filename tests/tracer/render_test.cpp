@@ -152,11 +152,31 @@ TEST(Render, LambertianGroundUnderTheSunIsRhoEOverPi) {
     RenderStats stats;
     const Image img = render(s, stats);
     const double e = 2.0 * std::sin(elevation * kPi / 180.0);  // on the horizontal ground
+    // Each pixel within 0.2 % (a low sun's cos θ varies by ±0.4 % over its disk), the image
+    // within 0.02 %: the sun's cone kept as a float cos α once made the ground 0.25 % too dark
+    // (issue 13).
+    glm::dvec3 mean(0.0);
     for (const glm::vec3& v : img.beauty) {
-      EXPECT_NEAR(v.x, 0.5 * e / kPi, 2e-3 * e);
-      EXPECT_NEAR(v.y, 0.25 * e / kPi, 2e-3 * e);
-      EXPECT_NEAR(v.z, 0.1 * e / kPi, 2e-3 * e);
+      EXPECT_NEAR(v.x, 0.5 * e / kPi, 2e-3 * 0.5 * e / kPi);
+      mean += glm::dvec3(v) / double(img.beauty.size());
     }
+    EXPECT_NEAR(mean.x, 0.5 * e / kPi, 2e-4 * 0.5 * e / kPi) << elevation;
+    EXPECT_NEAR(mean.y, 0.25 * e / kPi, 2e-4 * 0.25 * e / kPi) << elevation;
+    EXPECT_NEAR(mean.z, 0.1 * e / kPi, 2e-4 * 0.1 * e / kPi) << elevation;
+  }
+}
+
+TEST(Render, ASmallSunLightsTheGroundExactly) {
+  // The bias was largest for small suns: at 0.5° the float 1 - cos α is 0.18 % off.
+  for (double diameter : {0.5, 0.53, 0.1}) {
+    SceneDesc s = ground_view(4, 4, 16);
+    s.sun.elevation = 90.0;
+    s.sun.angular_diameter = diameter;
+    s.sun.irradiance = 3.0;
+    s.ground.albedo = {0.5, 0.5, 0.5};
+    RenderStats stats;
+    const Image img = render(s, stats);
+    for (const glm::vec3& v : img.beauty) EXPECT_NEAR(v.x, 0.5 * 3.0 / kPi, 2e-4 * 0.5 * 3.0 / kPi) << diameter;
   }
 }
 
@@ -245,6 +265,36 @@ TEST(Render, ObjMeshesAreConvertedToZUpAndUseTheirMaterials) {
   } catch (const InputError& e) {
     EXPECT_NE(e.message().find("group 'floor'"), std::string::npos) << e.what();
   }
+}
+
+TEST(Render, ObjVertexNormalsShadeTheMesh) {
+  // A level quad under the sun at the zenith whose vertex normals all lean 60°: it shades as a
+  // surface facing 60° from the sun, ρE cos 60° / π, half the flat quad's ρE / π. Without
+  // normals on its corners the same quad is flat again.
+  const std::string obj = ::testing::TempDir() + "leaning.obj";
+  {
+    std::ofstream f(obj);
+    f << "v -5 -5 0\nv 5 -5 0\nv 5 5 0\nv -5 5 0\nvn 0.8660254 0 0.5\ng floor\nf 1//1 2//1 3//1 4//1\n";
+  }
+  SceneDesc s = ground_view(8, 8, 8);
+  s.sun.elevation = 90.0;
+  s.sun.irradiance = 2.0;
+  s.ground.enabled = false;
+  MeshDesc m;
+  m.path = obj;
+  m.placement.position = {0.0, 0.0, 1.0};
+  MeshMaterialDesc floor;
+  floor.kind = "diffuse";
+  floor.albedo = {0.5, 0.5, 0.5};
+  m.materials["floor"] = floor;
+  s.meshes.push_back(m);
+  RenderStats stats;
+  for (const glm::vec3& v : render(s, stats).beauty) EXPECT_NEAR(v.x, 0.5 * 0.5 * 2.0 / kPi, 2e-3);
+  {
+    std::ofstream f(obj);
+    f << "v -5 -5 0\nv 5 -5 0\nv 5 5 0\nv -5 5 0\nvn 0.8660254 0 0.5\ng floor\nf 1 2 3 4\n";
+  }
+  for (const glm::vec3& v : render(s, stats).beauty) EXPECT_NEAR(v.x, 0.5 * 2.0 / kPi, 2e-3);
 }
 
 TEST(Render, BarkBumpMapImagesShadeTheBarkAndMissingOnesAreErrors) {

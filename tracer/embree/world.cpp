@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "formats/obj_mesh.h"
 #include "tracer/embree/embree_internal.h"
 #include "tracer/embree/embree_scene.h"
 
@@ -80,6 +81,21 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
     hit.mesh_front = side.front;
     s.geometric_normal = side.normal;
     s.shading_normal = s.geometric_normal;
+    // The OBJ's vertex normals, interpolated (Embree's u, v weigh the second and third corner),
+    // shade a smooth mesh smoothly; offsets and leak tests keep the geometric normal. Turned to
+    // the side the ray sees.
+    if (!mesh.normal_indices.empty()) {
+      const std::uint32_t* ni = &mesh.normal_indices[3 * static_cast<std::size_t>(rh.hit.primID)];
+      if (ni[0] != ObjMesh::kNoNormal && ni[1] != ObjMesh::kNoNormal && ni[2] != ObjMesh::kNoNormal) {
+        const float u = rh.hit.u, v = rh.hit.v;
+        glm::vec3 n = (1.0f - u - v) * mesh.normals[ni[0]] + u * mesh.normals[ni[1]] + v * mesh.normals[ni[2]];
+        const float len = glm::length(n);
+        if (len > 1e-6f) {
+          n /= len;
+          s.shading_normal = glm::dot(n, s.geometric_normal) < 0.0f ? -n : n;
+        }
+      }
+    }
     s.tangent = glm::normalize(b - a);
     s.leaf = -1;
     hit.ground = false;

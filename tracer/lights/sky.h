@@ -59,6 +59,8 @@ class Sky {
   glm::vec3 sun_direction_{0.0f, 0.0f, 1.0f}, sun_radiance_{0.0f};
   float sun_irradiance_ = 0.0f;
   float sun_cos_ = 1.0f;
+  double sun_one_minus_cos_ = 0.0;      // 1 - cos α, the cone's solid angle / 2π
+  glm::dvec3 sun_direction_d_{0.0, 0.0, 1.0};
 };
 
 // Preetham, Shirley & Smits 1999 sky radiance as CIE XYZ (relative to a sun of irradiance
