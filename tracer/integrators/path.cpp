@@ -68,23 +68,20 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
     const std::uint32_t dim = 2 + 4 * static_cast<std::uint32_t>(depth);
 
     // Next-event estimation: one light, the sun or the sky, chosen by its irradiance.
-    const glm::vec2 ul = sampler.get2d(index, dim);
-    const bool pick_sun = ul.x < p_sun_;
-    LightSample chosen = pick_sun ? sky_.sample_sun(sampler.get2d(index, dim + 1)) : sky_.sample(sampler.get2d(index, dim + 1));
-    chosen.pdf *= pick_sun ? p_sun_ : 1.0f - p_sun_;
-    const LightSample lights[1] = {chosen};
-    for (int k = 0; k < 1; ++k) {
-      const LightSample& ls = lights[k];
-      if (ls.pdf <= 0.0f || (ls.radiance.x <= 0.0f && ls.radiance.y <= 0.0f && ls.radiance.z <= 0.0f)) continue;
-      const float cos_g = glm::dot(ls.direction, s.geometric_normal);
-      if (!sh.leaf && cos_g <= 0.0f) continue;  // below an opaque surface
+    const bool pick_sun = sampler.get2d(index, dim).x < p_sun_;
+    LightSample ls = pick_sun ? sky_.sample_sun(sampler.get2d(index, dim + 1)) : sky_.sample(sampler.get2d(index, dim + 1));
+    ls.pdf *= pick_sun ? p_sun_ : 1.0f - p_sun_;
+    if (ls.pdf > 0.0f && (ls.radiance.x > 0.0f || ls.radiance.y > 0.0f || ls.radiance.z > 0.0f) &&
+        (sh.leaf || glm::dot(ls.direction, s.geometric_normal) > 0.0f)) {  // not below an opaque surface
       const glm::dvec3 wi = frame.local(ls.direction);
       const glm::vec3 f = sh.eval(wo, wi);
-      if (f.x <= 0.0f && f.y <= 0.0f && f.z <= 0.0f) continue;
-      ++out.rays;
-      if (world_.occluded(spawn_ray(s.position, s.geometric_normal, ls.direction))) continue;
-      const float w = power_heuristic(ls.pdf, sh.pdf(wo, wi));
-      out.radiance += beta * f * ls.radiance * (static_cast<float>(std::fabs(wi.z)) * w / ls.pdf);
+      if (f.x > 0.0f || f.y > 0.0f || f.z > 0.0f) {
+        ++out.rays;
+        if (!world_.occluded(spawn_ray(s.position, s.geometric_normal, ls.direction))) {
+          const float w = power_heuristic(ls.pdf, sh.pdf(wo, wi));
+          out.radiance += beta * f * ls.radiance * (static_cast<float>(std::fabs(wi.z)) * w / ls.pdf);
+        }
+      }
     }
 
     // Continue the path by sampling the BSDF.

@@ -62,7 +62,6 @@ Sky::Sky(const SkyDesc& sky, const SunDesc& sun, const ColorTransform& xyz_to_li
     // 1 - cos α in double (2 sin²(α/2), no cancellation): as a float cos α it was 0.18 % off at
     // α = 0.25°, and with it the sun's pdf and the ground it lights.
     sun_one_minus_cos_ = 2.0 * std::sin(0.5 * alpha) * std::sin(0.5 * alpha);
-    sun_cos_ = static_cast<float>(std::cos(alpha));
     sun_radiance_ = glm::vec3(static_cast<float>(sun.irradiance / (kPi * std::sin(alpha) * std::sin(alpha))));
     sun_irradiance_ = static_cast<float>(sun.irradiance);
     sun_present_ = true;

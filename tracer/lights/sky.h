@@ -40,7 +40,6 @@ class Sky {
   glm::vec3 sun_direction() const { return sun_direction_; }
   glm::vec3 sun_radiance() const { return sun_radiance_; }
   float sun_irradiance() const { return sun_irradiance_; }  // on a plane facing it; 0 without a sun
-  float sun_cos_half_angle() const { return sun_cos_; }
   LightSample sample_sun(glm::vec2 u) const;
   float sun_pdf() const;  // uniform over the disk's cone
   bool in_sun(const glm::vec3& direction) const;
@@ -58,7 +57,6 @@ class Sky {
   bool sun_present_ = false;
   glm::vec3 sun_direction_{0.0f, 0.0f, 1.0f}, sun_radiance_{0.0f};
   float sun_irradiance_ = 0.0f;
-  float sun_cos_ = 1.0f;
   double sun_one_minus_cos_ = 0.0;      // 1 - cos α, the cone's solid angle / 2π
   glm::dvec3 sun_direction_d_{0.0, 0.0, 1.0};
 };
