@@ -100,20 +100,20 @@ OIIO::ImageBuf heatmap_buffer(const CompareImage& a, const CompareImage& b) {
   return buf;
 }
 
-// The variance of rounding v to a half float: 11 significant bits leave a uniform error one
-// ulp wide (ulp²/12); below the smallest normal half the ulp stays that of 2^-14.
-double half_rounding_variance(double v) {
-  const double ulp = std::ldexp(1.0, std::ilogb(std::max(std::fabs(v), 6.1e-5)) - 10);
-  return ulp * ulp / 12.0;
+// One ulp of v stored as a half float (11 significant bits; below the smallest normal half, the
+// ulp of 2^-14) or as a float (24 bits; below FLT_MIN, the ulp of FLT_MIN).
+double ulp(double v, bool half) {
+  return half ? std::ldexp(1.0, std::ilogb(std::max(std::fabs(v), 6.1e-5)) - 10)
+              : std::ldexp(1.0, std::ilogb(std::max(std::fabs(v), 1.1754944e-38)) - 23);
 }
 
-// The floor for values stored as float: one ulp of standard deviation, so that a pixel whose
-// variance is 0 (a constant sky seen directly) still passes when another renderer's arithmetic
-// lands a few ulps away (0.59999996 for 0.6) and fails at any error a user could see. Below the
-// smallest normal float the ulp stays that of FLT_MIN.
-double float_rounding_variance(double v) {
-  const double ulp = std::ldexp(1.0, std::ilogb(std::max(std::fabs(v), 1.1754944e-38)) - 23);
-  return ulp * ulp;
+// The variance rounding adds to a stored value. Half: a uniform error one ulp wide (ulp²/12).
+// Float: a floor of one ulp of standard deviation, so that a pixel whose variance is 0 (a
+// constant sky seen directly) still passes when another renderer's arithmetic lands a few ulps
+// away (0.59999996 for 0.6) and fails at any error a user could see.
+double rounding_variance(double v, bool half) {
+  const double u = ulp(v, half);
+  return half ? u * u / 12.0 : u * u;
 }
 
 // The largest rounding error the pooled tests forgive a value: half a half-float ulp (its
@@ -122,10 +122,7 @@ double float_rounding_variance(double v) {
 // constant sky), its rounding may be the same in every pixel and would not average out over a
 // block, so the pixel's difference is first shrunk towards 0 by the bound: such a pixel may be
 // off by its rounding, and no more.
-double rounding_bound(double v, bool half) {
-  return half ? 0.5 * std::ldexp(1.0, std::ilogb(std::max(std::fabs(v), 6.1e-5)) - 10)
-              : std::ldexp(1.0, std::ilogb(std::max(std::fabs(v), 1.1754944e-38)) - 23);
-}
+double rounding_bound(double v, bool half) { return half ? 0.5 * ulp(v, true) : ulp(v, false); }
 
 double forgive(double d, double bound) { return std::copysign(std::max(0.0, std::fabs(d) - bound), d); }
 
@@ -213,8 +210,7 @@ ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alph
   t.z_critical = t.dof > 0 ? student_t_two_sided_critical(t.alpha_channel, t.dof)
                            : normal_two_sided_critical(t.alpha_channel);
   auto rounding = [&](std::size_t i) {
-    return (b.half_beauty ? half_rounding_variance(b.rgb[i]) : float_rounding_variance(b.rgb[i])) +
-           (a.half_beauty ? half_rounding_variance(a.rgb[i]) : float_rounding_variance(a.rgb[i]));
+    return rounding_variance(b.rgb[i], b.half_beauty) + rounding_variance(a.rgb[i], a.half_beauty);
   };
   // Under the hypothesis that A renders what B does, A's variance is at least B's scaled by the
   // ratio of their samples (quasi-Monte Carlo converges at least as fast as 1/n).

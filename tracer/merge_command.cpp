@@ -94,14 +94,14 @@ int merge_command(const MergeRequest& req) {
       for (const Part& part : parts) {
         const Window& w = part.window();
         if (x < w.x0 || x >= w.x1 || y < w.y0 || y >= w.y1) continue;
-        const std::string pixel = "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")";
+        auto pixel = [&] { return "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")"; };
         if (part.begin() < reached) {
           throw InputError({part.exr, 0, 0}, "overlaps " + previous->exr + ": both hold " +
-                                                 passes_text(part.begin(), std::min(reached, part.end())) + " of " + pixel);
+                                                 passes_text(part.begin(), std::min(reached, part.end())) + " of " + pixel());
         }
         if (part.begin() > reached) {
           throw InputError({part.exr, 0, 0}, "leaves a gap: no part holds " + passes_text(reached, part.begin()) +
-                                                 " of " + pixel);
+                                                 " of " + pixel());
         }
         const Film& film = *part.file.film;
         const std::size_t p = static_cast<std::size_t>(y - w.y0) * w.width() + (x - w.x0);

@@ -234,26 +234,35 @@ TEST(Render, ImagesAreBitIdenticalAtAnyThreadCount) {
   EXPECT_EQ(a_stats.rays, b_stats.rays);
 }
 
-TEST(Render, ObjMeshesAreConvertedToZUpAndUseTheirMaterials) {
-  // A floor quad in a y-up OBJ (group "floor") must lie flat in arbor's z-up world.
-  const std::string obj = ::testing::TempDir() + "floor.obj";
-  {
-    std::ofstream f(obj);
-    f << "v -5 0 -5\nv 5 0 -5\nv 5 0 5\nv -5 0 5\ng floor\nf 1 4 3 2\n";
-  }
+namespace {
+
+// Under the sun at the zenith (irradiance 2), no ground: the OBJ `text`, placed 1 m up, its
+// group "floor" diffuse of albedo 0.5.
+SceneDesc floor_scene(const std::string& name, const std::string& text, const std::string& up) {
+  const std::string obj = ::testing::TempDir() + name;
+  std::ofstream(obj) << text;
   SceneDesc s = ground_view(8, 8, 8);
   s.sun.elevation = 90.0;
   s.sun.irradiance = 2.0;
   s.ground.enabled = false;
   MeshDesc m;
   m.path = obj;
-  m.up = "y";
+  m.up = up;
   m.placement.position = {0.0, 0.0, 1.0};
   MeshMaterialDesc floor;
   floor.kind = "diffuse";
   floor.albedo = {0.5, 0.5, 0.5};
   m.materials["floor"] = floor;
   s.meshes.push_back(m);
+  return s;
+}
+
+}  // namespace
+
+TEST(Render, ObjMeshesAreConvertedToZUpAndUseTheirMaterials) {
+  // A floor quad in a y-up OBJ (group "floor") must lie flat in arbor's z-up world.
+  SceneDesc s = floor_scene("floor.obj", "v -5 0 -5\nv 5 0 -5\nv 5 0 5\nv -5 0 5\ng floor\nf 1 4 3 2\n", "y");
+  const MeshMaterialDesc floor = s.meshes[0].materials["floor"];
   RenderStats stats;
   for (const glm::vec3& v : render(s, stats).beauty) EXPECT_NEAR(v.x, 0.5 * 2.0 / kPi, 4e-3);
   // A group without a material entry is an error naming it.
@@ -271,29 +280,11 @@ TEST(Render, ObjVertexNormalsShadeTheMesh) {
   // A level quad under the sun at the zenith whose vertex normals all lean 60°: it shades as a
   // surface facing 60° from the sun, ρE cos 60° / π, half the flat quad's ρE / π. Without
   // normals on its corners the same quad is flat again.
-  const std::string obj = ::testing::TempDir() + "leaning.obj";
-  {
-    std::ofstream f(obj);
-    f << "v -5 -5 0\nv 5 -5 0\nv 5 5 0\nv -5 5 0\nvn 0.8660254 0 0.5\ng floor\nf 1//1 2//1 3//1 4//1\n";
-  }
-  SceneDesc s = ground_view(8, 8, 8);
-  s.sun.elevation = 90.0;
-  s.sun.irradiance = 2.0;
-  s.ground.enabled = false;
-  MeshDesc m;
-  m.path = obj;
-  m.placement.position = {0.0, 0.0, 1.0};
-  MeshMaterialDesc floor;
-  floor.kind = "diffuse";
-  floor.albedo = {0.5, 0.5, 0.5};
-  m.materials["floor"] = floor;
-  s.meshes.push_back(m);
+  const std::string quad = "v -5 -5 0\nv 5 -5 0\nv 5 5 0\nv -5 5 0\nvn 0.8660254 0 0.5\ng floor\n";
+  SceneDesc s = floor_scene("leaning.obj", quad + "f 1//1 2//1 3//1 4//1\n", "z");
   RenderStats stats;
   for (const glm::vec3& v : render(s, stats).beauty) EXPECT_NEAR(v.x, 0.5 * 0.5 * 2.0 / kPi, 2e-3);
-  {
-    std::ofstream f(obj);
-    f << "v -5 -5 0\nv 5 -5 0\nv 5 5 0\nv -5 5 0\nvn 0.8660254 0 0.5\ng floor\nf 1 2 3 4\n";
-  }
+  s = floor_scene("leaning.obj", quad + "f 1 2 3 4\n", "z");
   for (const glm::vec3& v : render(s, stats).beauty) EXPECT_NEAR(v.x, 0.5 * 2.0 / kPi, 2e-3);
 }
 
