@@ -24,6 +24,7 @@ struct RenderSettings {
   int max_depth = 12;
   int treemaker_spp = 4;            // samples per pixel of the treemaker integrator (anti-aliasing)
   int pass_spp = 16;                // samples a pixel takes per pass (a power of two keeps Sobol' balanced)
+  bool independent_passes = false;  // each pass its own scramble (unbiased variance) instead of one sequence
   double noise_threshold = 0.0;     // adaptive sampling: relative standard error to stop at; 0: off
   int min_spp = 16;                 // adaptive sampling: samples before a pixel may stop (and 2 passes)
   int threads = 0;                  // 0: all cores (command line only)

@@ -92,6 +92,7 @@ class SceneReader : TomlReader {
       else if (k == "max_depth") r.max_depth = static_cast<int>(integer(n, "render.max_depth", 1, 1024));
       else if (k == "treemaker_spp") r.treemaker_spp = static_cast<int>(integer(n, "render.treemaker_spp", 1, 1 << 20));
       else if (k == "pass_spp") r.pass_spp = static_cast<int>(integer(n, "render.pass_spp", 1, 1 << 20));
+      else if (k == "independent_passes") r.independent_passes = boolean(n, "render.independent_passes");
       else if (k == "noise_threshold") r.noise_threshold = number(n, "render.noise_threshold", 0.0, 1.0);
       else if (k == "min_spp") r.min_spp = static_cast<int>(integer(n, "render.min_spp", 0, 1 << 20));
       else unknown(key, "render");

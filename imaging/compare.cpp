@@ -147,6 +147,7 @@ CompareImage read_compare_image(const std::string& path) {
   if (r < 0 || g < 0 || bl < 0) throw InputError({path, 0, 0}, "has no R, G and B channels");
   im.half_beauty = spec.channelformat(r) == OIIO::TypeDesc::HALF;
   im.passes = spec.get_int_attribute("arbor:passes", 0);
+  im.sequence_passes = im.passes >= 2 && spec.get_int_attribute("arbor:independent_passes", 1) == 0;
   im.spp = spec.get_int_attribute("arbor:spp", 0);
   const int vr = image.index("variance.R"), vg = image.index("variance.G"), vb = image.index("variance.B");
   const bool has_var = vr >= 0 && vg >= 0 && vb >= 0;

@@ -18,6 +18,7 @@ struct CompareImage {
   std::vector<float> variance;  // width*height*3, or empty
   bool half_beauty = false;     // R,G,B stored as half floats (adds quantisation noise)
   int passes = 0;               // arbor:passes, the passes the variance was estimated over; 0: unknown
+  bool sequence_passes = false;  // the passes took points of one sequence: the variance is an upper bound
   int spp = 0;                  // arbor:spp, samples a pixel; 0: unknown
 };
 

@@ -130,6 +130,13 @@ int compare_command(const CompareRequest& args) {
                          "render it in at least 8 passes (pass_spp = spp / 8)\n",
                  args.a.c_str(), a.passes, a.passes - 1, a.passes == 2 ? "" : "s");
   }
+  for (const CompareImage* im : {&a, &b}) {
+    if (args.reference_test && im->sequence_passes && !im->variance.empty()) {
+      std::fprintf(stderr, "arbor compare: note: %s took its passes from one sequence, so its variance is an "
+                           "upper bound and the test is conservative (less power); render with [render] "
+                           "independent_passes = true for the honest variance\n", im->path.c_str());
+    }
+  }
   if (args.reference_test && !z.a_has_variance) {
     std::fprintf(stderr, "arbor compare: note: %s has no variance channels; the test used the "
                          "reference's variance alone\n", args.a.c_str());

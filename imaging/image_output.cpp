@@ -62,10 +62,14 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta,
   spec.attribute("arbor:integrator", meta.integrator);
   spec.attribute("arbor:render_seconds", static_cast<float>(meta.stats.seconds));
   spec.attribute("arbor:nonfinite_samples", std::to_string(meta.stats.nonfinite));
-  spec.attribute("arbor:variance", meta.passes >= 2
-                                       ? "variance of the pixel mean, estimated across independent passes"
-                                       : "variance of the pixel mean, sample variance / spp within one pass "
-                                         "(overstates it for QMC samples)");
+  spec.attribute("arbor:variance",
+                 meta.passes < 2 ? "variance of the pixel mean, sample variance / spp within one pass "
+                                   "(overstates it for QMC samples)"
+                 : meta.independent_passes ? "variance of the pixel mean, estimated across independent passes"
+                                           : "variance of the pixel mean, estimated across passes of one "
+                                             "sequence (an upper bound: the passes together are better "
+                                             "stratified than independent ones)");
+  spec.attribute("arbor:independent_passes", meta.independent_passes ? 1 : 0);
   spec.attribute("arbor:passes", meta.passes);
   spec.attribute("arbor:pass_spp", meta.pass_spp);
   spec.attribute("arbor:passes_planned", meta.passes_planned);

@@ -22,6 +22,7 @@ struct ExrMetadata {
   // The passes (docs/rendering.md, "Passes"): pass_spp samples each, passes_planned in all;
   // this image holds passes [pass_begin, pass_begin + passes).
   int pass_spp = 0, passes = 1, passes_planned = 1, pass_begin = 0, pass_end = 1;
+  bool independent_passes = false;  // each pass its own scramble (else one sequence)
   bool incomplete = false;   // stopped by a signal before the passes asked for
   std::string stopped;       // "", "interrupted" or "time limit"
   std::string fingerprint;   // of the scene, its inputs and the settings (film_file.h)

@@ -21,11 +21,20 @@ float sample_tent(float u);
 Image make_image(int width, int height, std::size_t extras);
 
 // The passes of a render: `spp` samples a pixel in passes of `pass_spp` (the last one shorter
-// when pass_spp does not divide spp).
+// when pass_spp does not divide spp). By default the passes take consecutive points of one
+// scrambled sequence per pixel (pass p starts at sample p × pass_spp), so `spp` samples are as
+// well stratified as in one pass; `independent` gives each pass its own scramble, starting at
+// sample 0, so pass means are independent replicates (docs/rendering.md, "Passes").
 struct PassPlan {
   int spp = 1, pass_spp = 1;
+  bool independent = false;
   int passes() const { return (spp + pass_spp - 1) / pass_spp; }
   int size(int pass) const { return pass < passes() - 1 ? pass_spp : spp - (passes() - 1) * pass_spp; }
+  // The scramble pass `pass` draws from (0 is a single-pass render's) and its first sample index.
+  std::uint32_t scramble(int pass) const { return independent ? static_cast<std::uint32_t>(pass) : 0u; }
+  std::uint32_t first_sample(int pass) const {
+    return independent ? 0u : static_cast<std::uint32_t>(pass) * static_cast<std::uint32_t>(pass_spp);
+  }
   // Samples a pixel of passes [begin, end).
   int samples(int begin, int end) const;
 };

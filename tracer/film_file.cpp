@@ -15,7 +15,7 @@ namespace arbor::trace {
 
 namespace {
 
-const char* const kMagic = "arbor film state 1";
+const char* const kMagic = "arbor film state 2";
 static_assert(std::is_trivially_copyable<PixelState>::value, "PixelState is written as bytes");
 
 std::string number_text(double v) {
@@ -50,7 +50,7 @@ void write_film_state(const std::string& path, const FilmHeader& h, const Film& 
        << "scene " << h.scene << "\n"
        << "size " << h.full_width << " " << h.full_height << "\n"
        << "window " << w.x0 << " " << w.y0 << " " << w.x1 << " " << w.y1 << "\n"
-       << "plan " << h.plan.spp << " " << h.plan.pass_spp << "\n"
+       << "plan " << h.plan.spp << " " << h.plan.pass_spp << " " << (h.plan.independent ? 1 : 0) << "\n"
        << "passes " << film.pass_begin() << " " << film.next_pass() << " " << h.pass_end << "\n"
        << "adaptive " << number_text(h.noise_threshold) << " " << h.min_spp << "\n"
        << "extras " << film.extras() << " " << (film.keeps_records() ? 1 : 0) << "\n"
@@ -111,11 +111,12 @@ FilmFile read_film_state(const std::string& path) {
     for (std::string a; aovs >> a;) h.aovs.push_back(a);
   }
   Window w;
-  int begin = 0, next = 0, records = 0;
+  int begin = 0, next = 0, records = 0, independent = 0;
   std::size_t extras = 0;
   bool ok = static_cast<bool>(field("size") >> h.full_width >> h.full_height);
   ok = ok && static_cast<bool>(field("window") >> w.x0 >> w.y0 >> w.x1 >> w.y1);
-  ok = ok && static_cast<bool>(field("plan") >> h.plan.spp >> h.plan.pass_spp);
+  ok = ok && static_cast<bool>(field("plan") >> h.plan.spp >> h.plan.pass_spp >> independent);
+  h.plan.independent = independent != 0;
   ok = ok && static_cast<bool>(field("passes") >> begin >> next >> h.pass_end);
   ok = ok && static_cast<bool>(field("adaptive") >> h.noise_threshold >> h.min_spp);
   ok = ok && static_cast<bool>(field("extras") >> extras >> records);

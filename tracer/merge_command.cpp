@@ -39,7 +39,7 @@ void require_same_render(const Part& a, const Part& b) {
                                         ", " + a.exr + "'s " + ha.fingerprint + ")");
   }
   if (hb.full_width != ha.full_width || hb.full_height != ha.full_height || hb.plan.spp != ha.plan.spp ||
-      hb.plan.pass_spp != ha.plan.pass_spp || b.file.film->extras() != a.file.film->extras() ||
+      hb.plan.pass_spp != ha.plan.pass_spp || hb.plan.independent != ha.plan.independent || b.file.film->extras() != a.file.film->extras() ||
       hb.aovs != ha.aovs || hb.colorspace != ha.colorspace || hb.pixel_type != ha.pixel_type) {
     throw InputError({b.exr, 0, 0}, "has other image settings (size, samples, AOVs or colour space) than " + a.exr);
   }

@@ -65,10 +65,11 @@ RenderOutcome render_passes(const SceneDesc& scene, const RenderJob& job, Film& 
           const std::size_t p = static_cast<std::size_t>(y - win.y0) * ww + (x - win.x0);
           if (film.done(p)) continue;
           const auto key = static_cast<std::uint32_t>(static_cast<std::size_t>(y) * rs.width + x);
-          const PixelSampler sampler(key, rs.seed, static_cast<std::uint32_t>(pass));
+          const PixelSampler sampler(key, rs.seed, job.plan.scramble(pass));
           pixel.reset();
+          const std::uint32_t first_index = job.plan.first_sample(pass);
           for (int i = 0; i < spp; ++i) {
-            const auto index = static_cast<std::uint32_t>(i);
+            const std::uint32_t index = first_index + static_cast<std::uint32_t>(i);
             const glm::vec2 uf = sampler.get2d(index, 0);
             const glm::vec2 pos(x + 0.5f + sample_tent(uf.x), y + 0.5f + sample_tent(uf.y));
             const Ray ray = camera.generate(pos, sampler.get2d(index, 1));
@@ -169,7 +170,7 @@ Image render_image(const SceneDesc& scene, const World& world, const Sky& sky,
   const RenderSettings& r = scene.render;
   const bool treemaker = r.integrator == "treemaker";
   RenderJob job;
-  job.plan = {treemaker ? r.treemaker_spp : r.spp, r.pass_spp};
+  job.plan = {treemaker ? r.treemaker_spp : r.spp, r.pass_spp, r.independent_passes};
   job.pass_end = job.plan.passes();
   job.adaptive = {r.noise_threshold, r.min_spp};
   const std::vector<std::string> names = integrator_aov_names(scene);

@@ -79,6 +79,7 @@ std::string render_fingerprint(const SceneDesc& scene, const RenderRequest& a, c
   std::ostringstream s;
   s.precision(17);
   s << "arbor render 1 " << r.width << "x" << r.height << " spp " << r.spp << " pass_spp " << r.pass_spp
+    << (r.independent_passes ? " independent" : " sequence")
     << " seed " << r.seed << " " << r.integrator << " depth " << r.max_depth << " treemaker_spp "
     << r.treemaker_spp << " noise " << r.noise_threshold << " min " << r.min_spp << " time ";
   if (a.time) s << *a.time;
@@ -140,7 +141,7 @@ int render_command(const RenderRequest& a) {
   }
 
   // The passes and the window of this run.
-  const PassPlan plan{treemaker ? r.treemaker_spp : r.spp, r.pass_spp};
+  const PassPlan plan{treemaker ? r.treemaker_spp : r.spp, r.pass_spp, r.independent_passes};
   int pass_begin = 0, pass_end = plan.passes();
   if (!a.passes.empty()) {
     const std::vector<int> v = parse_integers(a.passes, ':', 2, "--passes", "A:B (passes A to B-1)");

@@ -48,6 +48,7 @@ void write_render(const FilmHeader& h, const Film& film, const RenderWrite& what
     meta.stats.nonfinite = h.nonfinite;
     meta.stats.rays = h.rays;
     meta.pass_spp = h.plan.pass_spp;
+    meta.independent_passes = h.plan.independent;
     meta.passes_planned = h.plan.passes();
     meta.pass_begin = film.pass_begin();
     meta.pass_end = film.next_pass();

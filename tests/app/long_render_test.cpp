@@ -261,6 +261,28 @@ TEST(LongRender, PassRangesAndCropsMergeToTheSingleRender) {
   EXPECT_NE(missing.err.find("whole.exr.state"), std::string::npos) << missing.err;
 }
 
+// [render] independent_passes: the EXR says how its variance was estimated, the image differs
+// from the default's (passes of one sequence), and its work units merge to it exactly.
+TEST(LongRender, IndependentPassesReachTheExrAndMergeExactly) {
+  const std::string dir = fresh_folder("independent");
+  const std::string sequence = scene_file(dir, 16);
+  ASSERT_EQ(run_arbor("render " + sequence + " -o " + dir + "/sequence.exr").code, 0);
+  const std::string scene = scene_file(dir, 16, "independent_passes = true\n");
+  const CliRun whole = run_arbor("render " + scene + " -o " + dir + "/whole.exr");
+  ASSERT_EQ(whole.code, 0) << whole.err;
+  const Exr a = read_exr(dir + "/sequence.exr"), b = read_exr(dir + "/whole.exr");
+  EXPECT_EQ(a.spec.get_int_attribute("arbor:independent_passes", -1), 0);
+  EXPECT_NE(a.spec.get_string_attribute("arbor:variance").find("one sequence (an upper bound"), std::string::npos);
+  EXPECT_EQ(b.spec.get_int_attribute("arbor:independent_passes", -1), 1);
+  EXPECT_NE(b.spec.get_string_attribute("arbor:variance").find("across independent passes"), std::string::npos);
+  EXPECT_FALSE(same_pixels(a, b));
+  const CliRun p0 = run_arbor("render " + scene + " -o " + dir + "/p0.exr --passes 0:2");
+  const CliRun p1 = run_arbor("render " + scene + " -o " + dir + "/p1.exr --passes 2:4");
+  ASSERT_EQ(p0.code + p1.code, 0) << p0.err << p1.err;
+  ASSERT_EQ(run_arbor("merge -o " + dir + "/merged.exr " + dir + "/p1.exr " + dir + "/p0.exr").code, 0);
+  EXPECT_TRUE(same_pixels(read_exr(dir + "/merged.exr"), b));
+}
+
 // A film state that is truncated, or not one, is refused naming it (exit 2), and the EXR beside
 // it is left as it was.
 TEST(LongRender, ABrokenFilmStateIsRefused) {
