@@ -76,7 +76,7 @@ void write_pbrt(const TreeGeometry& g, const BarkLook& bark, const LeafLook& lea
     out += "]\n";
   }
   out += "AttributeEnd\n";
-  const LeafMesh& lm = g.leaves;
+  const LeafMesh lm = leaf_triangles(g);
   if (lm.triangle_count() > 0) {
     out += "AttributeBegin\n  Material \"diffusetransmission\" ";
     put_rgb(out, "reflectance", leaf.reflectance);

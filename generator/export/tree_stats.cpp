@@ -58,8 +58,9 @@ void add_geometry_stats(TreeStats& st, const GeometryStats& g, double seconds) {
   st.geometry = g;
   st.geometry_seconds = seconds;
   st.curve_segments = static_cast<long long>(g.curve_segments);
-  st.leaf_triangles = static_cast<long long>(g.leaf_triangles);
-  st.triangles = static_cast<long long>(g.leaf_triangles + g.grid_triangles);
+  // Leaves keep the skeleton's count of their outlines' triangles (the renderer holds them as
+  // cards, g.leaf_cards, besides the free-form triangles).
+  st.triangles = st.leaf_triangles + static_cast<long long>(g.grid_triangles);
 }
 
 std::string stats_json(const TreeStats& st, const std::string& species, unsigned long long seed,
@@ -79,6 +80,7 @@ std::string stats_json(const TreeStats& st, const std::string& species, unsigned
     size("grids", g.grids);
     size("grid_vertices", g.grid_vertices);
     size("grid_triangles", g.grid_triangles);
+    size("leaf_cards", g.leaf_cards);
     size("tension_raised_limbs", g.tension_raised_limbs);
     size("radius_adjusted_segments", g.radius_adjusted_segments);
     size("geometry_bytes", g.bytes);

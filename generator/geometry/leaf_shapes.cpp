@@ -2,8 +2,12 @@
 // triangle fan from its centre triangulates it exactly.
 #include "generator/geometry/leaf_shapes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include "common/math.h"
 
 namespace arbor::gen {
@@ -79,5 +83,80 @@ const std::vector<LeafShape>& leaf_shapes() {
 }
 
 std::size_t leaf_shape_count() { return leaf_shapes().size(); }
+
+namespace {
+
+float cross2(glm::vec2 a, glm::vec2 b) { return a.x * b.y - a.y * b.x; }
+
+// The fan's parts: a fan triangle is (centre, a, b) with the centre shared by the part's
+// triangles; the single triangle shape is the fan of its centroid.
+LeafOutline outline_of(const LeafShape& shape) {
+  LeafOutline o;
+  std::vector<std::array<std::uint32_t, 3>> tris = shape.triangles;
+  if (tris.size() == 1) {  // one triangle: its centroid's fan of three
+    const auto& t = tris[0];
+    LeafOutline::Part part;
+    part.centre = (shape.vertices[t[0]] + shape.vertices[t[1]] + shape.vertices[t[2]]) / 3.0f;
+    for (std::uint32_t i : t) part.vertices.push_back(shape.vertices[i]);
+    o.parts.push_back(part);
+  } else {
+    for (std::size_t k = 0; k < tris.size();) {  // consecutive triangles sharing a centre
+      LeafOutline::Part part;
+      const std::uint32_t centre = tris[k][0];
+      part.centre = shape.vertices[centre];
+      for (; k < tris.size() && tris[k][0] == centre; ++k) part.vertices.push_back(shape.vertices[tris[k][1]]);
+      o.parts.push_back(part);
+    }
+  }
+  o.lo = o.hi = o.parts[0].vertices[0];
+  for (LeafOutline::Part& part : o.parts) {
+    const glm::vec2 c = part.centre;
+    const float first = std::atan2(part.vertices[0].y - c.y, part.vertices[0].x - c.x);
+    part.inner = 1e30f;
+    for (std::size_t k = 0; k < part.vertices.size(); ++k) {
+      const glm::vec2 a = part.vertices[k], b = part.vertices[(k + 1) % part.vertices.size()];
+      float turn = std::atan2(a.y - c.y, a.x - c.x) - first;
+      if (turn < 0.0f) turn += 6.2831853f;
+      part.turn.push_back(k == 0 ? 0.0f : turn);
+      part.outer = std::max(part.outer, glm::length(a - c));
+      // Distance from the centre to the edge's line (the centre lies inside every fan triangle).
+      part.inner = std::min(part.inner, cross2(b - a, c - a) / glm::length(b - a));
+      o.lo = glm::min(o.lo, a);
+      o.hi = glm::max(o.hi, a);
+    }
+    part.inner *= 0.999f;  // float rounding: a point this near the centre is surely inside
+    part.outer *= 1.001f;
+  }
+  return o;
+}
+
+}  // namespace
+
+bool LeafOutline::contains(glm::vec2 p) const {
+  for (const Part& part : parts) {
+    const glm::vec2 d = p - part.centre;
+    const float r2 = glm::dot(d, d);
+    if (r2 <= part.inner * part.inner) return true;
+    if (r2 > part.outer * part.outer) continue;
+    // The fan triangle whose angular sector holds p, then the side of its outer edge.
+    const glm::vec2 v0 = part.vertices[0] - part.centre;
+    float turn = std::atan2(cross2(v0, d), glm::dot(v0, d));
+    if (turn < 0.0f) turn += 6.2831853f;
+    const auto it = std::upper_bound(part.turn.begin(), part.turn.end(), turn);
+    const std::size_t k = static_cast<std::size_t>(it - part.turn.begin()) - 1;
+    const glm::vec2 a = part.vertices[k], b = part.vertices[(k + 1) % part.vertices.size()];
+    if (cross2(b - a, p - a) >= 0.0f) return true;
+  }
+  return false;
+}
+
+const LeafOutline& leaf_outline(std::size_t shape) {
+  static const std::vector<LeafOutline> outlines = [] {
+    std::vector<LeafOutline> v;
+    for (const LeafShape& s : leaf_shapes()) v.push_back(outline_of(s));
+    return v;
+  }();
+  return outlines[shape];
+}
 
 }  // namespace arbor::gen

@@ -24,4 +24,23 @@ struct LeafShape {
 const std::vector<LeafShape>& leaf_shapes();
 std::size_t leaf_shape_count();
 
+// The outline as a point test, for leaves rendered as one rectangle each (a card) with the shape
+// cut out at the hit: the union of star-shaped parts, each a polygon whose fan from its centre is
+// exactly the shape's triangulation above.
+struct LeafOutline {
+  struct Part {
+    glm::vec2 centre{0.0f};
+    std::vector<glm::vec2> vertices;  // counter-clockwise about the centre
+    std::vector<float> turn;          // each vertex's angle about the centre from the first's, [0, 2π)
+    float inner = 0.0f, outer = 0.0f;  // every point nearer the centre is inside; farther, outside
+  };
+  std::vector<Part> parts;
+  glm::vec2 lo{0.0f}, hi{0.0f};  // bounding box in leaf coordinates
+  // Whether leaf point (x across in [-0.5, 0.5], y along in [0, 1]) lies in the leaf: in one of
+  // the fan's triangles, edges included.
+  bool contains(glm::vec2 p) const;
+};
+
+const LeafOutline& leaf_outline(std::size_t shape);
+
 }  // namespace arbor::gen

@@ -235,52 +235,64 @@ void split_at(LeafTemplate& t, float c) {
   t.triangles = std::move(out);
 }
 
-LeafTemplate leaf_template(const LeafShape& shape, const GeometryOptions& o) {
+// The shape's outline in flat leaf space, split at the given x (the hinges) so that no triangle
+// straddles a panel boundary.
+LeafTemplate leaf_template(const LeafShape& shape, const std::vector<float>& splits) {
   LeafTemplate t;
   for (const glm::vec2& v : shape.vertices) {
     t.vertices.emplace_back(v.x, v.y, 0.0f);
     t.uvs.emplace_back(v.x + 0.5f, v.y);
   }
   t.triangles = shape.triangles;
-  if (o.leaf_style == LeafStyle::Hinged) {
-    const float hinge = static_cast<float>(o.hinge_position);
-    split_at(t, -hinge);
-    split_at(t, hinge);
-    const float angle = static_cast<float>(o.hinge_angle * kPi / 180.0);
-    for (glm::vec3& v : t.vertices) {
-      const float beyond = std::fabs(v.x) - hinge;
-      if (beyond <= 0.0f) continue;
-      const float side = v.x < 0.0f ? -1.0f : 1.0f;
-      v.x = side * (hinge + beyond * std::cos(angle));
-      v.z = beyond * std::sin(angle);
-    }
-  }
+  for (float x : splits) split_at(t, x);
   return t;
 }
 
+// Each leaf as cards: the outline's bounding box, cut at the hinges x = ±hinge_position into
+// three panels when hinged (the side panels folded up by hinge_angle about the hinge lines,
+// Bloomenthal §10), one flat card otherwise.
 void add_leaves(const Skeleton& sk, const GeometryOptions& o, TreeGeometry& g) {
-  std::vector<LeafTemplate> templates;
-  for (const LeafShape& s : leaf_shapes()) templates.push_back(leaf_template(s, o));
-  LeafMesh& m = g.leaves;
+  const bool hinged = o.leaf_style == LeafStyle::Hinged;
+  const float hinge = static_cast<float>(o.hinge_position);
+  const float angle = static_cast<float>(o.hinge_angle * kPi / 180.0);
+  LeafCards& cards = g.cards;
   for (std::size_t li = 0; li < sk.leaves.size(); ++li) {
     const Leaf& leaf = sk.leaves[li];
-    const LeafTemplate& t = templates[static_cast<size_t>(leaf.shape)];
+    const LeafOutline& outline = leaf_outline(static_cast<std::size_t>(leaf.shape));
     const glm::vec3 across = glm::cross(leaf.axis, leaf.normal);
-    const auto first = static_cast<std::uint32_t>(m.positions.size());
-    for (std::size_t k = 0; k < t.vertices.size(); ++k) {
-      const glm::vec3 v = t.vertices[k];
-      m.positions.push_back(leaf.position + leaf.axis * (v.y * leaf.length) +
-                            across * (v.x * leaf.width) + leaf.normal * (v.z * leaf.width));
-      m.uvs.push_back(t.uvs[k]);
+    // Leaf space (x across, y along) to the tree, the side panels folded.
+    auto place = [&](float x, float y) {
+      float lift = 0.0f;
+      const float beyond = std::fabs(x) - hinge;
+      if (hinged && beyond > 0.0f) {
+        x = (x < 0.0f ? -1.0f : 1.0f) * (hinge + beyond * std::cos(angle));
+        lift = beyond * std::sin(angle);
+      }
+      return leaf.position + leaf.axis * (y * leaf.length) + across * (x * leaf.width) + leaf.normal * (lift * leaf.width);
+    };
+    std::vector<float> bounds{outline.lo.x};
+    if (hinged) {
+      for (float x : {-hinge, hinge}) {
+        if (x > outline.lo.x && x < outline.hi.x) bounds.push_back(x);
+      }
     }
-    for (const auto& tri : t.triangles) {
-      m.indices.insert(m.indices.end(), {first + tri[0], first + tri[1], first + tri[2]});
-      m.front_material.push_back(kMaterialLeafFront);
-      m.back_material.push_back(kMaterialLeafBack);
-      m.leaf.push_back(static_cast<std::int32_t>(li));
-      m.color.emplace_back(1.0f);
+    bounds.push_back(outline.hi.x);
+    for (std::size_t k = 0; k + 1 < bounds.size(); ++k) {
+      LeafCard c;
+      c.leaf = static_cast<std::int32_t>(li);
+      c.shape = static_cast<std::uint16_t>(leaf.shape);
+      c.x0 = bounds[k];
+      c.x1 = bounds[k + 1];
+      c.y0 = outline.lo.y;
+      c.y1 = outline.hi.y;
+      cards.corners.insert(cards.corners.end(), {place(c.x0, c.y0), place(c.x1, c.y0), place(c.x1, c.y1), place(c.x0, c.y1)});
+      cards.cards.push_back(c);
     }
   }
+}
+
+void add_free_leaves(const Skeleton& sk, TreeGeometry& g) {
+  LeafMesh& m = g.leaves;
   // Free-form elements (TREE-MAKER): triangles as they are, uv over their own corners.
   for (const LeafTriangle& tri : sk.leaf_triangles) {
     const auto first = static_cast<std::uint32_t>(m.positions.size());
@@ -325,11 +337,13 @@ void finish(TreeGeometry& g) {
     s.grid_triangles += 2u * (d.width - 1u) * (d.height - 1u);
   }
   s.leaf_triangles = g.leaves.triangle_count();
+  s.leaf_cards = g.cards.size();
   s.bytes = bytes_of(g.curves.points) + bytes_of(g.curves.tangents) + bytes_of(g.curves.segments) +
             bytes_of(g.grids.vertices) + bytes_of(g.grids.normals) + bytes_of(g.grids.bark) +
             bytes_of(g.grids.grids) + bytes_of(g.leaves.positions) + bytes_of(g.leaves.uvs) +
             bytes_of(g.leaves.indices) + bytes_of(g.leaves.front_material) +
-            bytes_of(g.leaves.back_material) + bytes_of(g.leaves.leaf) + bytes_of(g.leaves.color);
+            bytes_of(g.leaves.back_material) + bytes_of(g.leaves.leaf) + bytes_of(g.leaves.color) +
+            bytes_of(g.cards.corners) + bytes_of(g.cards.cards);
   bool any = false;
   auto grow = [&](const glm::vec3& p, float r) {
     if (!any) {
@@ -349,6 +363,7 @@ void finish(TreeGeometry& g) {
   }
   for (const glm::vec3& v : g.grids.vertices) grow(v, 0.0f);
   for (const glm::vec3& v : g.leaves.positions) grow(v, 0.0f);
+  for (const glm::vec3& v : g.cards.corners) grow(v, 0.0f);
 }
 
 }  // namespace
@@ -384,6 +399,7 @@ TreeGeometry build_tree_geometry(const Skeleton& sk, const GeometryOptions& o) {
     }
   }
   add_leaves(sk, o, g);
+  add_free_leaves(sk, g);
   add_leaf_lines(sk, g);
   finish(g);
   return g;
@@ -446,6 +462,47 @@ BarkCoordinates grid_bark(const GridSet& g, std::size_t grid, float u, float v) 
 
 glm::vec3 grid_normal(const GridSet& g, std::size_t grid, float u, float v) {
   return glm::normalize(grid_lerp(g.normals, g.grids[grid], u, v));
+}
+
+LeafMesh leaf_triangles(const TreeGeometry& geometry) {
+  LeafMesh m;
+  const LeafCards& lc = geometry.cards;
+  for (std::size_t i = 0; i < lc.size();) {
+    std::size_t end = i + 1;  // the leaf's panels are consecutive cards
+    while (end < lc.size() && lc.cards[end].leaf == lc.cards[i].leaf) ++end;
+    std::vector<float> splits;
+    for (std::size_t k = i; k + 1 < end; ++k) splits.push_back(lc.cards[k].x1);
+    const LeafTemplate t = leaf_template(leaf_shapes()[lc.cards[i].shape], splits);
+    const auto first = static_cast<std::uint32_t>(m.positions.size());
+    for (std::size_t k = 0; k < t.vertices.size(); ++k) {
+      const glm::vec3 v = t.vertices[k];
+      std::size_t c = i;  // the panel that holds x (a hinge vertex: the first, both agree)
+      while (c + 1 < end && v.x > lc.cards[c].x1) ++c;
+      const LeafCard& card = lc.cards[c];
+      const glm::vec3* q = &lc.corners[4 * c];
+      const float u = (v.x - card.x0) / (card.x1 - card.x0), w = (v.y - card.y0) / (card.y1 - card.y0);
+      m.positions.push_back(q[0] + (q[1] - q[0]) * u + (q[3] - q[0]) * w);
+      m.uvs.push_back(t.uvs[k]);
+    }
+    for (const auto& tri : t.triangles) {
+      m.indices.insert(m.indices.end(), {first + tri[0], first + tri[1], first + tri[2]});
+      m.front_material.push_back(kMaterialLeafFront);
+      m.back_material.push_back(kMaterialLeafBack);
+      m.leaf.push_back(lc.cards[i].leaf);
+      m.color.emplace_back(1.0f);
+    }
+    i = end;
+  }
+  const LeafMesh& free = geometry.leaves;
+  const auto first = static_cast<std::uint32_t>(m.positions.size());
+  m.positions.insert(m.positions.end(), free.positions.begin(), free.positions.end());
+  m.uvs.insert(m.uvs.end(), free.uvs.begin(), free.uvs.end());
+  for (std::uint32_t k : free.indices) m.indices.push_back(first + k);
+  m.front_material.insert(m.front_material.end(), free.front_material.begin(), free.front_material.end());
+  m.back_material.insert(m.back_material.end(), free.back_material.begin(), free.back_material.end());
+  m.leaf.insert(m.leaf.end(), free.leaf.begin(), free.leaf.end());
+  m.color.insert(m.color.end(), free.color.begin(), free.color.end());
+  return m;
 }
 
 }  // namespace arbor::gen

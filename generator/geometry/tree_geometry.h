@@ -1,6 +1,7 @@
 // TreeGeometry: what the tracer renders, as plain data with no Embree dependency — limbs as exact
-// round Hermite curve segments, the flared and lobed trunk as a displaced grid, leaves as
-// triangles, per-primitive material ids, and what is needed for bark coordinates at a hit.
+// round Hermite curve segments, the flared and lobed trunk as a displaced grid, leaves as cards
+// (a rectangle each, the outline cut out at the hit) and free-form triangles, per-primitive
+// material ids, and what is needed for bark coordinates at a hit.
 #pragma once
 
 #include <cstddef>
@@ -67,20 +68,40 @@ struct LeafMesh {
   std::size_t triangle_count() const { return indices.size() / 3; }
 };
 
+// A leaf of a LeafShape as one planar rectangle per flat panel (one; three when hinged), its
+// outline cut out by LeafOutline::contains at the hit: 4 corners instead of the 13 to 49 vertices
+// and 12 to 80 triangles of its triangulation. Card i's corners are corners[4i .. 4i+3]: leaf
+// points (x0, y0), (x1, y0), (x1, y1), (x0, y1) — Embree's quad, u across, v along.
+struct LeafCard {
+  std::int32_t leaf = 0;     // Skeleton leaf index
+  std::uint16_t shape = 0;   // leaf_shapes() index
+  float x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // the rectangle in leaf coordinates
+  // The leaf point at quad coordinates (u, v).
+  glm::vec2 leaf_point(float u, float v) const { return {x0 + u * (x1 - x0), y0 + v * (y1 - y0)}; }
+};
+
+struct LeafCards {
+  std::vector<glm::vec3> corners;  // four per card
+  std::vector<LeafCard> cards;
+  std::size_t size() const { return cards.size(); }
+};
+
 struct GeometryStats {
   std::size_t limbs = 0;
   std::size_t curve_segments = 0;
   std::size_t tension_raised_limbs = 0;      // start tension raised to keep radius < curvature radius
   std::size_t radius_adjusted_segments = 0;  // where radius ≥ radius of curvature was reduced
   std::size_t grids = 0, grid_vertices = 0, grid_triangles = 0;
-  std::size_t leaf_triangles = 0;
+  std::size_t leaf_triangles = 0;  // free-form (TREE-MAKER) leaf triangles
+  std::size_t leaf_cards = 0;
   std::size_t bytes = 0;  // of all the arrays above
 };
 
 struct TreeGeometry {
   CurveSet curves;
   GridSet grids;
-  LeafMesh leaves;
+  LeafMesh leaves;  // free-form leaf triangles (TREE-MAKER's tri=)
+  LeafCards cards;  // every leaf of a LeafShape
   GeometryStats stats;
   glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
 };
@@ -97,6 +118,10 @@ struct GeometryOptions {
 };
 
 TreeGeometry build_tree_geometry(const Skeleton& skeleton, const GeometryOptions& options = {});
+
+// Every leaf as triangles (the cards' outlines triangulated as LeafShape gives them, hinged
+// leaves sharing their hinge vertices; then the free-form triangles): for meshes and exports.
+LeafMesh leaf_triangles(const TreeGeometry& geometry);
 
 // Geometry options a species asks for (its leaf hinge), defaults otherwise.
 struct LeafLook;

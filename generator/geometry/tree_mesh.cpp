@@ -109,7 +109,7 @@ TreeMesh tessellate(const TreeGeometry& geometry, double tolerance) {
   }
   for (const DisplacedGrid& g : geometry.grids.grids) add_grid(geometry.grids, g, mesh);
   mesh.bark_triangles = mesh.triangle_count();
-  add_leaves(geometry.leaves, mesh);
+  add_leaves(leaf_triangles(geometry), mesh);
   return mesh;
 }
 

@@ -42,6 +42,7 @@ inline void check_tree(const gen::Skeleton& sk, const gen::GeometryOptions& opti
   for (const glm::vec3& v : g.grids.vertices) require(finite(v), "grid vertices are finite");
   for (const glm::vec3& n : g.grids.normals) require(finite(n), "grid normals are finite");
   for (const glm::vec3& v : g.leaves.positions) require(finite(v), "leaf vertices are finite");
+  for (const glm::vec3& v : g.cards.corners) require(finite(v), "leaf card corners are finite");
 }
 
 // Grows a species of any model when it is small (a few thousand stems) and checks the tree.

@@ -7,6 +7,9 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "common/rng.h"
+#include "generator/geometry/leaf_shapes.h"
+#include "generator/geometry/tree_mesh.h"
 #include "generator/species.h"
 #include "generator/models/weber_penn/weber_penn.h"
 #include "generator/models/weber_penn/weber_penn_formulas.h"
@@ -149,26 +152,44 @@ TEST(TreeGeometry, GridBarkCoordinatesUseDistanceNotFraction) {
   EXPECT_GT(grid_bark(g.grids, 0, 0.0f, 1.0f).along, sk.stems[0].length * 0.99f);
 }
 
-TEST(TreeGeometry, LeavesAreTwoSidedTrianglesAndHingedLeavesFold) {
+TEST(TreeGeometry, LeavesAreCardsWhoseTrianglesAreTwoSidedAndHingedLeavesFold) {
   const Skeleton sk = grow_species("quaking_aspen");
-  const TreeGeometry flat = build_tree_geometry(sk);
-  ASSERT_EQ(flat.leaves.triangle_count(), flat.leaves.front_material.size());
-  for (std::size_t t = 0; t < flat.leaves.triangle_count(); ++t) {
-    ASSERT_EQ(flat.leaves.front_material[t], kMaterialLeafFront);
-    ASSERT_EQ(flat.leaves.back_material[t], kMaterialLeafBack);
+  const TreeGeometry flat_geometry = build_tree_geometry(sk);
+  // One card a flat leaf, no triangles besides (the aspen has no free-form elements).
+  ASSERT_EQ(flat_geometry.cards.size(), sk.leaves.size());
+  ASSERT_EQ(flat_geometry.cards.corners.size(), 4 * sk.leaves.size());
+  EXPECT_EQ(flat_geometry.leaves.triangle_count(), 0u);
+  const LeafMesh flat = leaf_triangles(flat_geometry);
+  // As triangles: the shape's triangulation, every leaf.
+  std::size_t expected = 0;
+  for (const Leaf& l : sk.leaves) expected += leaf_shapes()[static_cast<std::size_t>(l.shape)].triangles.size();
+  ASSERT_EQ(flat.triangle_count(), expected);
+  ASSERT_EQ(flat.triangle_count(), flat.front_material.size());
+  for (std::size_t t = 0; t < flat.triangle_count(); ++t) {
+    ASSERT_EQ(flat.front_material[t], kMaterialLeafFront);
+    ASSERT_EQ(flat.back_material[t], kMaterialLeafBack);
   }
-  // Front faces along the leaf normal.
-  const std::uint32_t* idx = flat.leaves.indices.data();
-  const glm::vec3 a = flat.leaves.positions[idx[0]], b = flat.leaves.positions[idx[1]],
-                  c = flat.leaves.positions[idx[2]];
+  // Front faces along the leaf normal, for the triangles and the card (Embree's quad normal).
+  const std::uint32_t* idx = flat.indices.data();
+  const glm::vec3 a = flat.positions[idx[0]], b = flat.positions[idx[1]], c = flat.positions[idx[2]];
   EXPECT_GT(glm::dot(glm::cross(b - a, c - a), sk.leaves[0].normal), 0.0f);
+  const glm::vec3* q = flat_geometry.cards.corners.data();
+  EXPECT_GT(glm::dot(glm::cross(q[1] - q[0], q[3] - q[0]), sk.leaves[0].normal), 0.0f);
+  // The triangles' vertices are where the leaf puts its outline's points.
+  const Leaf& l0 = sk.leaves[0];
+  const glm::vec2 tip = leaf_shapes()[static_cast<std::size_t>(l0.shape)].vertices[1];
+  const glm::vec3 expect_tip = l0.position + l0.axis * (tip.y * l0.length) + glm::cross(l0.axis, l0.normal) * (tip.x * l0.width);
+  EXPECT_LT(glm::length(flat.positions[1] - expect_tip), 1e-5f * (1.0f + glm::length(expect_tip)));
 
   GeometryOptions hinged;
   hinged.leaf_style = LeafStyle::Hinged;
   hinged.hinge_angle = 30.0;
-  const TreeGeometry folded = build_tree_geometry(sk, hinged);
-  EXPECT_GT(folded.leaves.triangle_count(), flat.leaves.triangle_count());
-  // Folding keeps the area; the side panels rise off the leaf plane.
+  const TreeGeometry folded_geometry = build_tree_geometry(sk, hinged);
+  EXPECT_EQ(folded_geometry.cards.size(), 3 * sk.leaves.size());  // the aspen's ovals span both hinges
+  const LeafMesh folded = leaf_triangles(folded_geometry);
+  EXPECT_GT(folded.triangle_count(), flat.triangle_count());
+  // Folding keeps the area; the side panels rise off the leaf plane; the panels share the hinge
+  // vertices (one vertex each, so a mesh's normals smooth the crease).
   auto area = [](const LeafMesh& m, std::int32_t leaf) {
     double sum = 0.0;
     for (std::size_t t = 0; t < m.triangle_count(); ++t) {
@@ -179,16 +200,51 @@ TEST(TreeGeometry, LeavesAreTwoSidedTrianglesAndHingedLeavesFold) {
     }
     return sum;
   };
-  EXPECT_NEAR(area(folded.leaves, 0), area(flat.leaves, 0), 1e-4 * area(flat.leaves, 0));
+  EXPECT_NEAR(area(folded, 0), area(flat, 0), 1e-4 * area(flat, 0));
   double lift = 0.0;
-  for (std::size_t t = 0; t < folded.leaves.triangle_count(); ++t) {
-    if (folded.leaves.leaf[t] != 0) continue;
+  for (std::size_t t = 0; t < folded.triangle_count(); ++t) {
+    if (folded.leaf[t] != 0) continue;
     for (int k = 0; k < 3; ++k) {
-      const glm::vec3 v = folded.leaves.positions[folded.leaves.indices[3 * t + static_cast<size_t>(k)]];
+      const glm::vec3 v = folded.positions[folded.indices[3 * t + static_cast<size_t>(k)]];
       lift = std::max(lift, double(glm::dot(v - sk.leaves[0].position, sk.leaves[0].normal)));
     }
   }
   EXPECT_GT(lift, 0.1 * sk.leaves[0].width);
+  const TreeMesh mesh = tessellate(folded_geometry, 0.01);
+  EXPECT_EQ(mesh.triangle_count() - mesh.bark_triangles, folded.triangle_count());
+}
+
+TEST(LeafOutline, ContainsIsTheShapesTriangulation) {
+  // Random points over each shape's box and a margin: inside the outline exactly when inside one
+  // of its triangles (points within 1e-5 of an edge left out: either answer is right there).
+  Rng rng(11);
+  for (std::size_t s = 0; s < leaf_shape_count(); ++s) {
+    const LeafShape& shape = leaf_shapes()[s];
+    const LeafOutline& outline = leaf_outline(s);
+    int inside = 0, checked = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const glm::vec2 p(static_cast<float>(rng.uniform() * 1.2 - 0.6), static_cast<float>(rng.uniform() * 1.2 - 0.1));
+      bool in = false, near_edge = false;
+      for (const auto& t : shape.triangles) {
+        const glm::vec2 v[3] = {shape.vertices[t[0]], shape.vertices[t[1]], shape.vertices[t[2]]};
+        bool all = true;
+        for (int k = 0; k < 3; ++k) {
+          const glm::vec2 e = v[(k + 1) % 3] - v[k], d = p - v[k];
+          const float side = (e.x * d.y - e.y * d.x) / glm::length(e);
+          if (std::fabs(side) < 1e-5f) near_edge = true;
+          if (side < 0.0f) all = false;
+        }
+        in = in || all;
+      }
+      if (near_edge) continue;
+      ++checked;
+      inside += in ? 1 : 0;
+      ASSERT_EQ(outline.contains(p), in) << shape.name << " at (" << p.x << ", " << p.y << ")";
+      ASSERT_TRUE(!in || (p.x >= outline.lo.x && p.x <= outline.hi.x && p.y >= outline.lo.y && p.y <= outline.hi.y));
+    }
+    EXPECT_GT(checked, 19000) << shape.name;
+    EXPECT_GT(inside, 2000) << shape.name;
+  }
 }
 
 TEST(TreeGeometry, StatsCountWhatIsThere) {
@@ -198,6 +254,7 @@ TEST(TreeGeometry, StatsCountWhatIsThere) {
   EXPECT_EQ(g.curves.points.size(), 2 * s.curve_segments);
   EXPECT_EQ(s.grids, 5u);  // three trunks from BaseSplits 2, and trunk clones from 0SegSplits
   EXPECT_EQ(s.leaf_triangles, g.leaves.triangle_count());
+  EXPECT_EQ(s.leaf_cards, g.cards.size());
   EXPECT_GT(s.bytes, g.curves.points.size() * sizeof(glm::vec4));
   EXPECT_LE(g.bounds_min.z, 0.0f);
   EXPECT_GT(g.bounds_max.z, 3.0f);

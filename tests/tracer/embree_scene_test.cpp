@@ -203,6 +203,20 @@ TEST(TreePrototype, LeavesReportTheSideTheRayCameFrom) {
   Ray miss = down;
   miss.origin.x = 1.5f;  // past the leaf's tip
   EXPECT_FALSE(tree.intersect(miss, hit));
+  // The leaf is a card with its oval cut out: at the centre uv is (0.5, 0.5); by a corner of the
+  // card, outside the oval (leaf point (0.45, 0.05)), rays pass, closest-hit and shadow alike.
+  ASSERT_TRUE(tree.intersect(down, hit));
+  EXPECT_NEAR(hit.uv.x, 0.5f, 1e-5f);
+  EXPECT_NEAR(hit.uv.y, 0.5f, 1e-5f);
+  Ray corner = down;
+  corner.origin = glm::vec3(1.0f + 0.05f * 0.2f, -0.45f * 0.1f, 2.0f);
+  EXPECT_FALSE(tree.intersect(corner, hit));
+  EXPECT_FALSE(tree.world().occluded(corner));
+  EXPECT_TRUE(tree.world().occluded(down));
+  Ray edge = corner;  // leaf point (0.25, 0.15): inside the oval
+  edge.origin = glm::vec3(1.0f + 0.15f * 0.2f, -0.25f * 0.1f, 2.0f);
+  EXPECT_TRUE(tree.intersect(edge, hit));
+  EXPECT_TRUE(tree.world().occluded(edge));
 }
 
 TEST(TreePrototype, RaysLeavingLimbsAndLeavesDoNotHitThemAgain) {

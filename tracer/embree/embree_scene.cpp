@@ -4,12 +4,30 @@
 
 #include "tracer/embree/embree_internal.h"
 
+#include "generator/geometry/leaf_shapes.h"
+
 #include <algorithm>
 #include <cstring>
 
 #include <glm/geometric.hpp>
 
 namespace arbor::trace {
+
+namespace {
+
+// Embree's filter for leaf cards (closest-hit and occlusion queries alike): a hit on a card
+// counts only inside its leaf's outline, so the ray goes on past the card's corners.
+void cut_out_leaf(const RTCFilterFunctionNArguments* args) {
+  const auto* cards = static_cast<const gen::LeafCards*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const gen::LeafCard& c = cards->cards[RTCHitN_primID(args->hit, args->N, i)];
+    const glm::vec2 p = c.leaf_point(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
+    if (!gen::leaf_outline(c.shape).contains(p)) args->valid[i] = 0;
+  }
+}
+
+}  // namespace
 
 TreePrototype::TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry& geometry)
     : geometry_(geometry) {
@@ -42,6 +60,22 @@ TreePrototype::TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry
     fill(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, lm.indices.data(), 3 * sizeof(std::uint32_t), lm.triangle_count());
     fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, lm.positions.data(), sizeof(glm::vec3), lm.positions.size());
     leaf_id_ = attach(scene_.get(), g);
+  }
+  const gen::LeafCards& lc = geometry.cards;
+  if (lc.size() > 0) {
+    // The corners are shared with the geometry, not copied; the quads' indices are 4i .. 4i+3.
+    RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_QUAD);
+    auto* index = static_cast<std::uint32_t*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(std::uint32_t), lc.size()));
+    if (index) {
+      for (std::uint32_t k = 0; k < 4 * lc.size(); ++k) index[k] = k;
+    }
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, lc.corners.data(), 0,
+                               sizeof(glm::vec3), lc.corners.size());
+    rtcSetGeometryUserData(g, const_cast<gen::LeafCards*>(&lc));
+    rtcSetGeometryIntersectFilterFunction(g, cut_out_leaf);
+    rtcSetGeometryOccludedFilterFunction(g, cut_out_leaf);
+    card_id_ = attach(scene_.get(), g);
   }
   rtcCommitScene(scene_.get());
   device.check("building the tree's BVH");
@@ -84,6 +118,20 @@ void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned prim
     const glm::vec3 along = g.vertices[base + d.width] - g.vertices[base];
     hit.tangent = glm::length(along) > 0.0f ? glm::normalize(along) : glm::vec3(0, 0, 1);
     hit.color = glm::vec3(1.0f);
+  } else if (geom_id == card_id_) {
+    hit.kind = SurfaceKind::Leaf;
+    const gen::LeafCards& lc = geometry_.cards;
+    const gen::LeafCard& card = lc.cards[primitive];
+    const glm::vec3* q = &lc.corners[4 * static_cast<std::size_t>(primitive)];
+    const TriangleSide side = side_seen(q[0], q[1], q[3], ray.direction);
+    hit.material = side.front ? gen::kMaterialLeafFront : gen::kMaterialLeafBack;
+    hit.geometric_normal = side.normal;
+    hit.shading_normal = hit.geometric_normal;
+    hit.leaf = card.leaf;
+    hit.color = glm::vec3(1.0f);
+    const glm::vec2 p = card.leaf_point(u, v);
+    hit.uv = {p.x + 0.5f, p.y};
+    hit.tangent = glm::normalize(q[1] - q[0]);
   } else {
     hit.kind = SurfaceKind::Leaf;
     const gen::LeafMesh& lm = geometry_.leaves;

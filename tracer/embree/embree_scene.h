@@ -31,7 +31,7 @@ class TreePrototype {
  private:
   const gen::TreeGeometry& geometry_;
   SceneHandle scene_;
-  unsigned curve_id_ = ~0u, grid_id_ = ~0u, leaf_id_ = ~0u;
+  unsigned curve_id_ = ~0u, grid_id_ = ~0u, leaf_id_ = ~0u, card_id_ = ~0u;
 };
 
 }  // namespace arbor::trace
