@@ -1,16 +1,33 @@
-// The path tracer's efficiency (issue 13): 1 / (variance × render time) on the default scene at
-// 240×180, 64 spp, 2 threads, without adaptive sampling. The variance is measured, not estimated:
-// two renders with seeds 1 and 2, var = mean over pixels and channels of (a − b)² / 2, the
-// variance of one render's pixel. Each iteration renders both; counters: seconds (one render),
-// samples_per_s, rays_per_s, variance, efficiency. Compare commits by running this benchmark
-// from each (interleaved) and taking the ratio of their efficiency.
+// The path tracer's efficiency on whole scenes (issue 13): samples/s, rays/s and efficiency,
+// 1 / (variance × render time), without adaptive sampling. The variance is measured, not
+// estimated: two renders with seeds 1 and 2, var = mean over pixels and channels of (a − b)² / 2,
+// the variance of one render's pixel. 2 threads; also the geometry arbor holds (its arrays, not
+// Embree's BVH) and the process's peak RSS. Compare commits by running a scene from each
+// (interleaved) and taking the ratio of their efficiency.
+// - scene/default_curves: scenes/default.toml at 240×180, 64 spp (limbs as curves) — the
+//   efficiency issue 13 sets its target on;
+// - scene/default_triangles: the same tree exported by `arbor grow` as OBJ (limbs tessellated,
+//   leaves triangulated) and rendered through [[mesh]] with the species' colours as Lambertian
+//   bark and two-sided leaf materials; same camera, lights and settings;
+// - scene/willow: one Weeping Willow (7 M triangles before leaf cards) at 240×180, 64 spp;
+// - scene/forest_10000: scenes/forest_10000.toml (10,000 Black Tupelos from 8 variants) at its
+//   640×360, 8 spp.
+// bench/run.sh runs each in its own process so that peak_rss_MB is that scene's.
+#include <sys/resource.h>
+
 #include <chrono>
+#include <cstdio>
 #include <memory>
 #include <string>
 
 #include <benchmark/benchmark.h>
 
 #include "formats/scene_desc.h"
+#include "formats/species_file.h"
+#include "generator/export/export_mesh.h"
+#include "generator/geometry/tree_geometry.h"
+#include "generator/geometry/tree_mesh.h"
+#include "generator/grow.h"
 #include "imaging/color.h"
 #include "scene/scene.h"
 #include "tracer/embree/world.h"
@@ -21,18 +38,67 @@ namespace {
 
 using namespace arbor;
 
-const std::string kOcioConfig = std::string(ARBOR_SOURCE_DIR) + "/imaging/ocio/config.ocio";
+const std::string kSource = ARBOR_SOURCE_DIR;
+const std::string kOcioConfig = kSource + "/imaging/ocio/config.ocio";
 
-void efficiency(benchmark::State& state) {
-  trace::SceneDesc s = trace::load_scene(std::string(ARBOR_SOURCE_DIR) + "/scenes/default.toml");
+trace::SceneDesc default_scene() {
+  trace::SceneDesc s = trace::load_scene(kSource + "/scenes/default.toml");
   s.render.width = 240;
   s.render.height = 180;
   s.render.spp = 64;
+  return s;
+}
+
+// The default scene's tree as an OBJ (written once per process) in a [[mesh]].
+trace::SceneDesc default_triangles() {
+  trace::SceneDesc s = default_scene();
+  const trace::TreeDesc tree = s.trees.at(0);
+  const gen::Species species = gen::load_species(tree.species);
+  gen::GrowOptions grow;
+  grow.seed = tree.seed;
+  const gen::TreeGeometry geometry =
+      gen::build_tree_geometry(gen::grow_tree(species, grow), gen::geometry_options_for(species.leaf));
+  const std::string obj = "/tmp/arbor_scene_bench_tree.obj";
+  gen::write_obj(gen::tessellate(geometry), obj);
+  trace::MeshDesc mesh;
+  mesh.path = obj;
+  trace::MeshMaterialDesc bark, leaf;
+  bark.kind = "bark";
+  bark.albedo = species.bark.albedo;
+  leaf.kind = "leaf";
+  leaf.reflectance = species.leaf.reflectance;
+  leaf.back_reflectance = species.leaf.back_reflectance;
+  leaf.transmittance = species.leaf.transmittance;
+  mesh.materials["bark"] = bark;
+  mesh.materials["leaf"] = leaf;
+  s.trees.clear();
+  s.meshes.push_back(mesh);
+  return s;
+}
+
+trace::SceneDesc willow() {
+  trace::SceneDesc s = default_scene();
+  s.trees.at(0).species = kSource + "/species/weeping_willow.toml";
+  s.camera.position = {16.0, -22.0, 3.0};
+  s.camera.look_at = {0.0, 0.0, 5.5};
+  return s;
+}
+
+trace::SceneDesc forest() {
+  trace::SceneDesc s = trace::load_scene(kSource + "/scenes/forest_10000.toml");
+  s.render.spp = 8;
+  return s;
+}
+
+void scene(benchmark::State& state, trace::SceneDesc (*make)()) {
+  trace::SceneDesc s = make();
   s.render.threads = 2;
   s.render.noise_threshold = 0;
   const trace::EmbreeDevice device("threads=2");
-  const std::unique_ptr<const trace::Scene> scene = trace::build_scene(s, kOcioConfig);
-  const trace::World world(*scene, device);
+  const auto build_start = std::chrono::steady_clock::now();
+  const std::unique_ptr<const trace::Scene> built = trace::build_scene(s, kOcioConfig);
+  const trace::World world(*built, device);
+  const double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
   const trace::ColorPipeline color(kOcioConfig);
   const trace::Sky sky(s.sky, s.sun, color.xyz_to_scene_linear());
   const trace::ColorTransform to_output = color.to_output(s.output.colorspace);
@@ -60,16 +126,25 @@ void efficiency(benchmark::State& state) {
     }
     variance = sum / (3.0 * double(images[0].beauty.size()));
   }
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
   const double per_render = seconds / renders;
+  state.counters["build_seconds"] = build_seconds;
   state.counters["seconds"] = per_render;
   state.counters["samples_per_s"] = double(samples) / seconds;
   state.counters["rays_per_s"] = double(rays) / seconds;
   state.counters["variance"] = variance;
   state.counters["efficiency"] = 1.0 / (variance * per_render);
+  state.counters["triangles"] = double(built->stats.triangles);
+  state.counters["geometry_MB"] = double(built->stats.geometry_bytes) / 1e6;
+  state.counters["peak_rss_MB"] = double(usage.ru_maxrss) / 1024.0;
 }
 
 }  // namespace
 
-BENCHMARK(efficiency)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(scene, default_curves, default_scene)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(scene, default_triangles, default_triangles)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK_CAPTURE(scene, willow, willow)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(scene, forest_10000, forest)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 BENCHMARK_MAIN();

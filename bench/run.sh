@@ -27,7 +27,12 @@ runs = {b["name"]: b["real_time"] for b in json.load(open(sys.argv[1]))["benchma
 path, tm = runs["frame/path_64spp/iterations:3"], runs["frame/treemaker"]
 print(f"bench: default-scene frame, path 64 spp / treemaker = {path / tm:.1f}x")
 PY
-"$build/bench/efficiency_bench" --benchmark_out="$out/efficiency_bench.json" --benchmark_out_format=json
+# The path tracer's efficiency on whole scenes (default as curves and as triangles, the willow,
+# the 10,000-tree forest), each in its own process so that its peak RSS is its own.
+for scene in default_curves default_triangles willow forest_10000; do
+  "$build/bench/efficiency_bench" --benchmark_filter="scene/$scene/" \
+    --benchmark_out="$out/efficiency_bench_$scene.json" --benchmark_out_format=json
+done
 "$build/bench/adaptive_bench" --benchmark_out="$out/adaptive_bench.json" --benchmark_out_format=json
 # Adaptive sampling's time against uniform sampling's at the same 95th-percentile error.
 python3 - "$out/adaptive_bench.json" <<'PY'

@@ -237,6 +237,9 @@ void SceneBuilder::add_mesh(const MeshDesc& d) {
   for (const std::uint32_t p : obj.part) mesh.material.push_back(material_of_part[p]);
   if (mesh.indices.empty()) throw InputError({d.path, 0, 0}, "the OBJ mesh has no faces");
   s_.stats.triangles += mesh.indices.size() / 3;
+  s_.stats.geometry_bytes += sizeof(glm::vec3) * (mesh.positions.size() + mesh.normals.size()) +
+                             sizeof(std::uint32_t) * (mesh.indices.size() + mesh.normal_indices.size()) +
+                             sizeof(std::uint16_t) * mesh.material.size();
   s_.meshes.push_back(std::move(mesh));
 }
 
