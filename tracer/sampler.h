@@ -3,6 +3,7 @@
 // same numbers.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include <glm/vec2.hpp>
@@ -56,14 +57,33 @@ class PixelSampler {
   float get1d(std::uint32_t index, std::uint32_t dim) const { return get2d(index, dim).x; }
 
  private:
-  // Second dimension of the Sobol' sequence (generator matrix with v_k = 1 + 2 v_{k-1} pattern).
-  static constexpr std::uint32_t sobol_second(std::uint32_t i) {
+  // Second dimension of the Sobol' sequence (generator matrix with v_k = 1 + 2 v_{k-1} pattern):
+  // the XOR of the direction numbers of i's set bits, looked up a byte at a time.
+  static constexpr std::uint32_t sobol_second_bits(std::uint32_t i) {
     std::uint32_t r = 0;
     for (std::uint32_t v = 1u << 31; i; i >>= 1, v ^= v >> 1) {
       if (i & 1u) r ^= v;
     }
     return r;
   }
+  using ByteTables = std::array<std::array<std::uint32_t, 256>, 4>;
+  static constexpr ByteTables sobol_second_tables() {
+    ByteTables t{};
+    for (std::uint32_t k = 0; k < 4; ++k) {
+      for (std::uint32_t b = 0; b < 256; ++b) t[k][b] = sobol_second_bits(b << (8 * k));
+    }
+    return t;
+  }
+  static std::uint32_t sobol_second(std::uint32_t i) {
+    static constexpr ByteTables t = sobol_second_tables();
+    return t[0][i & 0xffu] ^ t[1][(i >> 8) & 0xffu] ^ t[2][(i >> 16) & 0xffu] ^ t[3][i >> 24];
+  }
+
+ public:
+  // For tests: the table lookup is the bit loop.
+  static bool sobol_tables_agree(std::uint32_t i) { return sobol_second(i) == sobol_second_bits(i); }
+
+ private:
   static constexpr float to_unit(std::uint32_t x) {
     return static_cast<float>(x >> 8) * 0x1.0p-24f;  // 24 bits: strictly below 1 in float
   }

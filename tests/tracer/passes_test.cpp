@@ -168,3 +168,18 @@ TEST(Passes, AdaptiveSamplingStopsConvergedPixelsDeterministically) {
 }
 
 }  // namespace arbor::trace
+
+namespace arbor::trace {
+
+TEST(Sampler, TheSecondSobolDimensionsTablesAreItsBitLoop) {
+  std::uint32_t x = 12345u;
+  for (int k = 0; k < 200000; ++k) {
+    x = x * 1664525u + 1013904223u;
+    ASSERT_TRUE(PixelSampler::sobol_tables_agree(x)) << x;
+  }
+  for (std::uint32_t i : {0u, 1u, 255u, 256u, 65535u, 0x80000000u, 0xffffffffu}) {
+    EXPECT_TRUE(PixelSampler::sobol_tables_agree(i)) << i;
+  }
+}
+
+}  // namespace arbor::trace
