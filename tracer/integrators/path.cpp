@@ -46,9 +46,12 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
     ++out.rays;
     if (!world_.intersect(ray, hit)) {
       // Escaped: sky and sun, weighted against their own sampling where NEE could have found them.
-      const glm::vec3 sky = sky_.radiance(ray.direction);
-      const float w_sky = bsdf_pdf > 0.0f ? power_heuristic(bsdf_pdf, (1.0f - p_sun_) * sky_.pdf(ray.direction)) : 1.0f;
-      out.radiance += beta * sky * w_sky;
+      if (bsdf_pdf > 0.0f) {
+        const LightSample sky = sky_.lookup(ray.direction);
+        out.radiance += beta * sky.radiance * power_heuristic(bsdf_pdf, (1.0f - p_sun_) * sky.pdf);
+      } else {
+        out.radiance += beta * sky_.radiance(ray.direction);
+      }
       if (sky_.in_sun(ray.direction)) {
         const float w_sun = bsdf_pdf > 0.0f ? power_heuristic(bsdf_pdf, p_sun_ * sky_.sun_pdf()) : 1.0f;
         out.radiance += beta * sky_.sun_radiance() * w_sun;

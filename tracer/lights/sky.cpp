@@ -150,12 +150,23 @@ glm::vec3 Sky::from_map(glm::vec2 p) const {
   return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
 }
 
-glm::vec3 Sky::radiance(const glm::vec3& d) const {
-  if (!present_) return glm::vec3(0.0f);
-  const glm::vec2 p = to_map(d);
+glm::vec3 Sky::map_at(glm::vec2 p) const {
   const int i = std::clamp(static_cast<int>(p.x * width_), 0, width_ - 1);
   const int j = std::clamp(static_cast<int>(p.y * height_), 0, height_ - 1);
   return map_[static_cast<size_t>(j) * width_ + i];
+}
+
+glm::vec3 Sky::radiance(const glm::vec3& d) const { return present_ ? map_at(to_map(d)) : glm::vec3(0.0f); }
+
+LightSample Sky::lookup(const glm::vec3& d) const {
+  LightSample s;
+  s.direction = d;
+  if (!present_) return s;
+  const glm::vec2 p = to_map(d);
+  s.radiance = map_at(p);
+  const float sin_theta = std::sin(p.y * kPif);
+  s.pdf = sin_theta > 0.0f ? distribution_.pdf(p) / (2.0f * kPif * kPif * sin_theta) : 0.0f;
+  return s;
 }
 
 LightSample Sky::sample(glm::vec2 u) const {
@@ -167,18 +178,13 @@ LightSample Sky::sample(glm::vec2 u) const {
   if (pdf_map <= 0.0f) return s;
   // The density of the direction actually returned: a point on a cell edge can round into the
   // neighbouring cell, and MIS needs sample() and pdf() to agree exactly.
-  s.pdf = pdf(s.direction);
-  s.radiance = radiance(s.direction);
+  const LightSample at = lookup(s.direction);
+  s.pdf = at.pdf;
+  s.radiance = at.radiance;
   return s;
 }
 
-float Sky::pdf(const glm::vec3& d) const {
-  if (!present_) return 0.0f;
-  const glm::vec2 p = to_map(d);
-  const float sin_theta = std::sin(p.y * kPif);
-  if (sin_theta <= 0.0f) return 0.0f;
-  return distribution_.pdf(p) / (2.0f * kPif * kPif * sin_theta);
-}
+float Sky::pdf(const glm::vec3& d) const { return lookup(d).pdf; }
 
 bool Sky::in_sun(const glm::vec3& d) const {
   if (!sun_present_) return false;

@@ -30,6 +30,9 @@ class Sky {
   glm::vec3 radiance(const glm::vec3& direction) const;  // sky only, not the sun
   LightSample sample(glm::vec2 u) const;
   float pdf(const glm::vec3& direction) const;
+  // radiance() and pdf() of one direction together (its map coordinates found once); direction
+  // is `direction`.
+  LightSample lookup(const glm::vec3& direction) const;
   bool empty() const { return !present_; }
   // Irradiance of the sky (without the sun) on an upward-facing horizontal plane, unoccluded:
   // ∫ L(ω) max(0, cos θ) dω over the map. A constant sky of radiance L gives πL.
@@ -47,6 +50,7 @@ class Sky {
  private:
   glm::vec2 to_map(const glm::vec3& d) const;
   glm::vec3 from_map(glm::vec2 p) const;
+  glm::vec3 map_at(glm::vec2 p) const;  // the map's cell at map coordinates p
 
   int width_ = 0, height_ = 0;
   std::vector<glm::vec3> map_;
