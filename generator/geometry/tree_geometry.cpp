@@ -26,7 +26,19 @@ std::size_t bytes_of(const std::vector<T>& v) {
 // Sub-pieces per spline segment: radius laws that are not linear in z need more.
 int pieces_for(const Skeleton& sk, const Limb& limb, std::size_t segment) {
   const Stem& s = sk.stems[static_cast<size_t>(limb.segment_stem(segment))];
+  // Periodic taper (Weber & Penn §4.3, nTaper in (2, 3]) swells the limb between joins where the
+  // radius has unbounded slope: enough pieces to follow each swelling.
+  if (s.taper > 2.0f) return 32;
   return s.taper > 1.0f ? 8 : 1;
+}
+
+// A Hermite end slope for the radius limited so that the piece's cubic radius stays between its
+// end radii (Fritsch & Carlson 1980: slopes of the secant's sign, at most 3 × the secant). The
+// finite differences of a law with unbounded slope (periodic taper's joins) would otherwise
+// swing the cubic far past the limb (the Saguaro's arms ended in discs 6 times their width).
+double monotone_slope(double slope, double secant) {
+  if (!std::isfinite(slope) || secant == 0.0 || (slope > 0.0) != (secant > 0.0)) return 0.0;
+  return std::fabs(slope) > 3.0 * std::fabs(secant) ? 3.0 * secant : slope;
 }
 
 // Embree needs radius < radius of curvature everywhere on a round curve. Returns the largest
@@ -97,8 +109,8 @@ void add_limb_curves(const Skeleton& sk, const Limb& limb, std::int32_t limb_ind
     // differences inside the piece.
     const double e = 1e-4 * h;
     const double ra = allowed_radius(sk, limb, a), rb = allowed_radius(sk, limb, b - 1e-6 * h);
-    const double dra = (allowed_radius(sk, limb, a + e) - ra) / e * h;
-    const double drb = (rb - allowed_radius(sk, limb, b - e)) / e * h;
+    const double dra = monotone_slope((allowed_radius(sk, limb, a + e) - ra) / e * h, rb - ra);
+    const double drb = monotone_slope((rb - allowed_radius(sk, limb, b - e)) / e * h, rb - ra);
     c.points.emplace_back(glm::vec3(pa), static_cast<float>(ra));
     c.points.emplace_back(glm::vec3(pb), static_cast<float>(rb));
     c.tangents.emplace_back(glm::vec3(da), static_cast<float>(dra));

@@ -261,3 +261,21 @@ TEST(TreeGeometry, StatsCountWhatIsThere) {
 }
 
 }  // namespace arbor::gen
+
+namespace arbor::gen {
+
+TEST(TreeGeometry, PeriodicTaperKeepsTheCurvesWithinTheLimbsRadius) {
+  // Weber & Penn's nTaper in (2, 3] (the Saguaro's 2.2) swells a limb periodically; its radius
+  // law has unbounded slope where the swellings meet. No curve may grow past the thickest limb.
+  const Skeleton sk = grow_species("saguaro_cactus");
+  const TreeGeometry g = build_tree_geometry(sk);
+  float thickest = 0.0f;
+  for (const SkeletonPoint& p : sk.points) thickest = std::max(thickest, p.radius);
+  float widest = 0.0f;
+  for (std::size_t i = 0; i < g.curves.size(); ++i) {
+    for (int k = 0; k <= 32; ++k) widest = std::max(widest, g.curves.position(i, k / 32.0f).w);
+  }
+  EXPECT_LT(widest, 1.05f * thickest) << "thickest skeleton radius " << thickest;
+}
+
+}  // namespace arbor::gen
