@@ -57,7 +57,7 @@ trace::SceneDesc default_triangles() {
   gen::GrowOptions grow;
   grow.seed = tree.seed;
   const gen::TreeGeometry geometry =
-      gen::build_tree_geometry(gen::grow_tree(species, grow), gen::geometry_options_for(species.leaf));
+      gen::build_tree_geometry(gen::grow_tree(species, grow), gen::geometry_options_for(species));
   const std::string obj = "/tmp/arbor_scene_bench_tree.obj";
   gen::write_obj(gen::tessellate(geometry), obj);
   trace::MeshDesc mesh;

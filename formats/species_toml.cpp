@@ -93,6 +93,26 @@ class TomlSpecies : TomlReader {
     }
   }
 
+  void roots(Species& sp, const toml::table& t) {
+    for (auto&& [key, node] : t) {
+      const std::string k(key.str());
+      if (k != "buttresses" && k != "height" && k != "spread") {
+        throw InputError(at(key.source()), "unknown key '" + k + "' in [roots]");
+      }
+      const double v = number(node, "roots." + k);
+      if (k == "buttresses") {
+        if (v != std::floor(v) || v < 0.0 || v > 16.0) throw InputError(at(node.source()), "roots.buttresses must be a whole number in [0, 16]");
+        sp.roots.buttresses = static_cast<int>(v);
+      } else if (k == "height") {
+        if (!(v > 0.0 && v <= 50.0)) throw InputError(at(node.source()), "roots.height must be in (0, 50] trunk radii");
+        sp.roots.height = v;
+      } else {
+        if (!(v > 0.0 && v <= 20.0)) throw InputError(at(node.source()), "roots.spread must be in (0, 20] trunk radii");
+        sp.roots.spread = v;
+      }
+    }
+  }
+
   void leaf(Species& sp, const toml::table& t) {
     for (auto&& [key, node] : t) {
       const std::string k(key.str());
@@ -175,7 +195,7 @@ class TomlSpecies : TomlReader {
       const std::string k(key.str());
       if (k == "model") {
         has_model = true;
-      } else if (sp.model() == Model::Fractal && k != "name" && k != "bark" && k != "leaf") {
+      } else if (sp.model() == Model::Fractal && k != "name" && k != "bark" && k != "leaf" && k != "roots") {
         fractal_key(sp, k, node, key);
       } else if (k == "name") {
         sp.name = text(node, "name");
@@ -185,6 +205,8 @@ class TomlSpecies : TomlReader {
         bark(sp, table(node, "bark"));
       } else if (k == "leaf") {
         leaf(sp, table(node, "leaf"));
+      } else if (k == "roots") {
+        roots(sp, table(node, "roots"));
       } else if (const ParamInfo* info = find_tree_param(k)) {
         param(sp, *info, -1, node, k);
       } else if (find_level_param(k)) {

@@ -34,6 +34,14 @@ struct LeafLook {
   double hinge_angle = 0.0;  // degrees; > 0: Bloomenthal's hinged three-polygon leaf (§10)
 };
 
+// Root buttresses at the trunk's base (Bloomenthal 1985, "the base of a tree": planar blobby
+// contours around the points where the roots cross each plane). 0 buttresses: none.
+struct RootLook {
+  int buttresses = 0;
+  double height = 3.0;  // × the trunk's base radius: where the roots have merged into the trunk
+  double spread = 2.0;  // × the trunk's base radius: how far beyond the trunk they reach at the ground
+};
+
 // The models, in the order of ModelParams' alternatives.
 enum class Model { WeberPenn, LSystem, SkeletonFile, Fractal, TreeMaker };
 
@@ -57,6 +65,7 @@ struct Species {
 
   BarkLook bark;
   LeafLook leaf;
+  RootLook roots;
   // The TREE-MAKER shading weights the species states (a template's `light {}`); those it does
   // not state take arbor's defaults (materials/treemaker_weights.h) when the scene is built.
   TmLight treemaker_light;

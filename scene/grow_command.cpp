@@ -54,7 +54,7 @@ int grow_command(const GrowRequest& a) {
   if (!a.out.empty() || a.stats || a.json) {
     const auto geometry_start = std::chrono::steady_clock::now();
     const gen::TreeGeometry geometry =
-        gen::build_tree_geometry(skeleton, gen::geometry_options_for(species.leaf));
+        gen::build_tree_geometry(skeleton, gen::geometry_options_for(species));
     gen::add_geometry_stats(
         stats, geometry.stats,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - geometry_start).count());

@@ -88,7 +88,7 @@ class SceneBuilder {
     }
     TreePrototypeData p;
     p.geometry = std::make_unique<gen::TreeGeometry>(
-        gen::build_tree_geometry(skeleton, gen::geometry_options_for(sp.leaf)));
+        gen::build_tree_geometry(skeleton, gen::geometry_options_for(sp)));
     p.extent = tree_extent(skeleton, *p.geometry);
     s_.stats.curve_segments += p.geometry->stats.curve_segments;
     s_.stats.triangles += p.geometry->stats.leaf_triangles + p.geometry->stats.grid_triangles;

@@ -139,7 +139,52 @@ void add_limb_curves(const Skeleton& sk, const Limb& limb, std::int32_t limb_ind
 
 bool displaced(const Skeleton& sk, const Limb& limb, const GeometryOptions& o) {
   return o.displace_trunk && limb.level == 0 &&
-         (sk.trunk.flare > 0.0f || (sk.trunk.lobes > 0 && sk.trunk.lobe_depth > 0.0f));
+         (sk.trunk.flare > 0.0f || (sk.trunk.lobes > 0 && sk.trunk.lobe_depth > 0.0f) || o.buttresses > 0);
+}
+
+// Root buttresses (Bloomenthal 1985, the base of a tree: "planar blobby" contours, after Blinn,
+// around the points where the roots cross each plane). In the ring `h` metres up the trunk, below
+// H = buttress_height × the base radius R, root k crosses the plane at distance
+// R (0.6 + spread s²) in direction φ_k (s = 1 - h/H rising smoothly to 1 at the ground, φ_k evenly
+// spaced with a fixed jitter), as a blob of radius R (0.35 + 0.25 s) and weight s. The contour is
+// the equipotential F = 1/e of F(p) = exp(-(|p|/ρ0)²) + Σ s exp(-|p - c_k|²/σ²), ρ0 the trunk's
+// own contour (flare and lobes): without roots exactly ρ0, with them never inside it, merging
+// smoothly into the trunk at H. Returns the contour's radius in direction θ: the outermost
+// crossing along the ray, so the ring stays star-shaped about the axis.
+double buttress_contour(const GeometryOptions& o, double base_radius, double h, double theta, double rho0) {
+  const double height = o.buttress_height * base_radius;
+  if (o.buttresses <= 0 || h >= height) return rho0;
+  const double e = 1.0 - h / height;
+  const double s = e * e * (3.0 - 2.0 * e);
+  const double reach = base_radius * (0.6 + o.buttress_spread * s * s);
+  const double sigma = base_radius * (0.35 + 0.25 * s);
+  const double threshold = std::exp(-1.0);
+  auto field = [&](double rho) {
+    double f = std::exp(-(rho / rho0) * (rho / rho0));
+    for (int k = 0; k < o.buttresses; ++k) {
+      const double jitter = 0.35 * (std::fmod(0.618034 * (k + 1), 1.0) - 0.5);
+      const double phi = 2.0 * kPi * (k + jitter) / o.buttresses;
+      const double dx = rho * std::cos(theta) - reach * std::cos(phi), dy = rho * std::sin(theta) - reach * std::sin(phi);
+      f += s * std::exp(-(dx * dx + dy * dy) / (sigma * sigma));
+    }
+    return f;
+  };
+  const double far = rho0 + reach + 3.0 * sigma;
+  const int steps = 64;
+  double lo = rho0, hi = far;
+  for (int i = steps - 1; i >= 0; --i) {  // from outside in: the first point inside the contour
+    const double rho = rho0 + (far - rho0) * i / steps;
+    if (field(rho) >= threshold) {
+      lo = rho;
+      hi = rho0 + (far - rho0) * (i + 1) / steps;
+      break;
+    }
+  }
+  for (int i = 0; i < 40; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (field(mid) >= threshold ? lo : hi) = mid;
+  }
+  return lo;
 }
 
 // Weber & Penn §4.4 flare and lobes as real displacement of a trunk limb's surface.
@@ -157,7 +202,7 @@ void add_trunk_grid(const Skeleton& sk, const Limb& limb, std::int32_t limb_inde
     const double step = o.grid_step * r * (z < 0.125 ? 0.5 : 1.0);
     ts.push_back(std::min(total, t + std::max(step, total * 1e-4)));
   }
-  const int sides = std::clamp(o.grid_sides > 0 ? o.grid_sides : std::max(64, 16 * sk.trunk.lobes),
+  const int sides = std::clamp(o.grid_sides > 0 ? o.grid_sides : std::max({64, 16 * sk.trunk.lobes, 32 * o.buttresses}),
                                8, 4096);
   const std::vector<FrameSample> frames =
       rotation_minimizing_frames(spline, ts, limb.knot_normals.front());
@@ -178,7 +223,8 @@ void add_trunk_grid(const Skeleton& sk, const Limb& limb, std::int32_t limb_inde
       const double angle = 2.0 * kPi * j / sides;
       const double lobe = wp::lobe_scale(sk.trunk.lobes, sk.trunk.lobe_depth, angle);
       const glm::dvec3 radial = n * std::cos(angle) + b * std::sin(angle);
-      gs.vertices.emplace_back(centre + radial * (r * flare * lobe));
+      const double rho = buttress_contour(o, base_radius, arc, angle, r * flare * lobe);
+      gs.vertices.emplace_back(centre + radial * rho);
       gs.bark.emplace_back(static_cast<float>(arc), static_cast<float>(r * angle));
     }
   }
@@ -417,12 +463,15 @@ TreeGeometry build_tree_geometry(const Skeleton& sk, const GeometryOptions& o) {
   return g;
 }
 
-GeometryOptions geometry_options_for(const LeafLook& leaf) {
+GeometryOptions geometry_options_for(const Species& species) {
   GeometryOptions o;
-  if (leaf.hinge_angle > 0.0) {
+  if (species.leaf.hinge_angle > 0.0) {
     o.leaf_style = LeafStyle::Hinged;
-    o.hinge_angle = leaf.hinge_angle;
+    o.hinge_angle = species.leaf.hinge_angle;
   }
+  o.buttresses = species.roots.buttresses;
+  o.buttress_height = species.roots.height;
+  o.buttress_spread = species.roots.spread;
   return o;
 }
 

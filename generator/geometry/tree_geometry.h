@@ -115,6 +115,8 @@ struct GeometryOptions {
   LeafStyle leaf_style = LeafStyle::Flat;
   double hinge_angle = 20.0;    // degrees each side panel folds up (Bloomenthal §10)
   double hinge_position = 1.0 / 6.0;  // hinges at x = ±this, across a leaf of unit width
+  int buttresses = 0;           // root buttresses at the trunk's base (RootLook)
+  double buttress_height = 3.0, buttress_spread = 2.0;  // × the trunk's base radius
 };
 
 TreeGeometry build_tree_geometry(const Skeleton& skeleton, const GeometryOptions& options = {});
@@ -123,9 +125,9 @@ TreeGeometry build_tree_geometry(const Skeleton& skeleton, const GeometryOptions
 // leaves sharing their hinge vertices; then the free-form triangles): for meshes and exports.
 LeafMesh leaf_triangles(const TreeGeometry& geometry);
 
-// Geometry options a species asks for (its leaf hinge), defaults otherwise.
-struct LeafLook;
-GeometryOptions geometry_options_for(const LeafLook& leaf);
+// Geometry options a species asks for (its leaf hinge, its root buttresses), defaults otherwise.
+struct Species;
+GeometryOptions geometry_options_for(const Species& species);
 
 // Bloomenthal §8 bark coordinates: arc length along the limb and circumferential distance
 // (radius × azimuth from the frame normal), continuous along a limb.

@@ -97,7 +97,7 @@ TEST(ObjMesh, HugePolygonsAreFannedInLinearTime) {
 TEST(ObjMesh, ReadsArborsOwnExport) {
   const gen::Species s = gen::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/dogwood.tmpl");
   const gen::TreeMesh tree = gen::tessellate(
-      gen::build_tree_geometry(gen::grow_tree(s, gen::GrowOptions{}), gen::geometry_options_for(s.leaf)));
+      gen::build_tree_geometry(gen::grow_tree(s, gen::GrowOptions{}), gen::geometry_options_for(s)));
   const std::string path = ::testing::TempDir() + "export_roundtrip.obj";
   gen::write_obj(tree, path);
   const ObjMesh m = load_obj(path);

@@ -50,7 +50,7 @@ inline void grow_and_check(const gen::Species& species) {
   gen::GrowOptions o;
   o.max_stems = 2000;
   o.max_leaves = 20000;
-  check_tree(gen::grow_tree(species, o), gen::geometry_options_for(species.leaf));
+  check_tree(gen::grow_tree(species, o), gen::geometry_options_for(species));
 }
 
 }  // namespace arbor::fuzz

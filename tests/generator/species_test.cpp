@@ -118,6 +118,19 @@ TEST(SpeciesToml, LeafHingeAngleIsReadAndBounded) {
   expect_toml_error(std::string(kMinimal) + "[leaf]\nhinge_angle = 120\n", 3, 15, "[0, 90]");
 }
 
+TEST(SpeciesToml, RootButtressesAreReadAndBounded) {
+  const Species s =
+      parse_species_toml(std::string(kMinimal) + "[roots]\nbuttresses = 5\nheight = 4\nspread = 1.5\n", "r");
+  EXPECT_EQ(s.roots.buttresses, 5);
+  EXPECT_DOUBLE_EQ(s.roots.height, 4.0);
+  EXPECT_DOUBLE_EQ(s.roots.spread, 1.5);
+  EXPECT_EQ(parse_species_toml(kMinimal, "r").roots.buttresses, 0);  // off by default
+  expect_toml_error(std::string(kMinimal) + "[roots]\nbuttresses = 2.5\n", 3, 14, "whole number in [0, 16]");
+  expect_toml_error(std::string(kMinimal) + "[roots]\nbuttresses = 17\n", 3, 14, "[0, 16]");
+  expect_toml_error(std::string(kMinimal) + "[roots]\nheight = 0\n", 3, 10, "(0, 50]");
+  expect_toml_error(std::string(kMinimal) + "[roots]\nreach = \"far\"\n", 3, 1, "unknown key 'reach' in [roots]");
+}
+
 TEST(SpeciesToml, LeafMustNotCreateEnergy) {
   expect_toml_error(std::string(kMinimal) +
                         "[leaf]\nreflectance = [0.6, 0.2, 0.1]\ntransmittance = [0.5, 0.1, 0.1]\n",

@@ -279,3 +279,83 @@ TEST(TreeGeometry, PeriodicTaperKeepsTheCurvesWithinTheLimbsRadius) {
 }
 
 }  // namespace arbor::gen
+
+namespace arbor::gen {
+
+TEST(TreeGeometry, RootButtressesWidenTheTrunksBaseAndMergeIntoIt) {
+  Skeleton sk = grow_species("quaking_aspen");
+  sk.trunk = {};  // no flare or lobes: only the buttresses displace the trunk
+  GeometryOptions o;
+  o.buttresses = 6;
+  const TreeGeometry g = build_tree_geometry(sk, o);
+  ASSERT_EQ(g.grids.grids.size(), 1u);
+  const DisplacedGrid& d = g.grids.grids[0];
+  const double r0 = sk.stems[0].base_radius;
+  const glm::vec3 axis = sk.points[sk.stems[0].first_point].position;
+  // Radii of ring i about the trunk's axis there (the spline; the trunk leans a little).
+  auto ring = [&](std::uint32_t i) {
+    const std::size_t row = d.first_vertex + static_cast<std::size_t>(i) * d.width;
+    glm::dvec3 centre(0.0);
+    for (std::uint32_t j = 0; j + 1 < d.width; ++j) centre += glm::dvec3(g.grids.vertices[row + j]);
+    centre /= double(d.width - 1);
+    if (i == 0) centre = glm::dvec3(axis);
+    std::vector<double> r;
+    for (std::uint32_t j = 0; j + 1 < d.width; ++j) {
+      r.push_back(glm::length(glm::dvec3(g.grids.vertices[row + j]) - centre));
+    }
+    return r;
+  };
+  // At the ground: six ridges reaching well past the trunk, nowhere inside it.
+  const std::vector<double> base = ring(0);
+  int peaks = 0;
+  for (std::size_t k = 0; k < base.size(); ++k) {
+    const double prev = base[(k + base.size() - 1) % base.size()], next = base[(k + 1) % base.size()];
+    if (base[k] > prev && base[k] >= next && base[k] > 1.5 * r0) ++peaks;
+  }
+  EXPECT_EQ(peaks, 6);
+  EXPECT_GT(*std::max_element(base.begin(), base.end()), 2.5 * r0);
+  EXPECT_GE(*std::min_element(base.begin(), base.end()), 0.999 * r0);
+  // Above 3 base radii (the default height) the trunk is round again, its own radius.
+  int above = 0;
+  for (std::uint32_t i = 0; i < d.height; ++i) {
+    const glm::vec3 v = g.grids.vertices[d.first_vertex + static_cast<std::size_t>(i) * d.width];
+    if (v.z - axis.z < 3.2 * r0 || v.z - axis.z > 6.0 * r0) continue;
+    const std::vector<double> r = ring(i);
+    const auto [lo, hi] = std::minmax_element(r.begin(), r.end());
+    EXPECT_LT(*hi - *lo, 1e-4 * r0) << "ring " << i;
+    ++above;
+  }
+  EXPECT_GT(above, 3);
+  // On the aspen's own flared, lobed trunk: every vertex at least as far out as without
+  // buttresses (the same rings: ring spacing does not depend on them), and the same above.
+  const Skeleton lobed = grow_species("quaking_aspen");
+  GeometryOptions sides;
+  sides.grid_sides = 192;
+  const TreeGeometry plain = build_tree_geometry(lobed, sides);
+  sides.buttresses = 6;
+  const TreeGeometry rooted = build_tree_geometry(lobed, sides);
+  const DisplacedGrid& pd = plain.grids.grids.at(0);
+  ASSERT_EQ(rooted.grids.grids.at(0).height, pd.height);
+  int widened = 0;
+  for (std::uint32_t i = 0; i < pd.height; ++i) {
+    const std::size_t row = pd.first_vertex + static_cast<std::size_t>(i) * pd.width;
+    glm::dvec3 centre(0.0);
+    for (std::uint32_t j = 0; j + 1 < pd.width; ++j) centre += glm::dvec3(plain.grids.vertices[row + j]);
+    centre /= double(pd.width - 1);
+    for (std::uint32_t j = 0; j + 1 < pd.width; ++j) {
+      const double without = glm::length(glm::dvec3(plain.grids.vertices[row + j]) - centre);
+      const double with = glm::length(glm::dvec3(rooted.grids.vertices[row + j]) - centre);
+      ASSERT_GE(with, without * (1.0 - 1e-6)) << "ring " << i << " side " << j;
+      if (plain.grids.vertices[row + j].z - axis.z > 3.2 * r0) ASSERT_NEAR(with, without, 1e-6 * without);
+      widened += with > 1.01 * without ? 1 : 0;
+    }
+  }
+  EXPECT_GT(widened, 1000);
+  // Shading normals face outward at the base.
+  for (std::uint32_t j = 0; j + 1 < d.width; ++j) {
+    const glm::vec3 v = g.grids.vertices[d.first_vertex + j];
+    EXPECT_GT(glm::dot(g.grids.normals[d.first_vertex + j], glm::vec3(v.x - axis.x, v.y - axis.y, 0.0f)), 0.0f) << j;
+  }
+}
+
+}  // namespace arbor::gen

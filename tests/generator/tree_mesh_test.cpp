@@ -171,7 +171,7 @@ TEST(TreeMesh, EveryShippedSpeciesTessellatesToFiniteUnitNormals) {
     o.seed = 1;
     // The willow's 490,000 leaves take long to tessellate: a tenth of them shows the same limbs.
     if (std::string(name) == "weeping_willow.toml") o.quality = 0.1;
-    const TreeMesh mesh = tessellate(build_tree_geometry(grow_tree(s, o), geometry_options_for(s.leaf)));
+    const TreeMesh mesh = tessellate(build_tree_geometry(grow_tree(s, o), geometry_options_for(s)));
     std::size_t bad_positions = 0, bad_normals = 0, bad_uvs = 0;
     for (const glm::vec3& p : mesh.positions) bad_positions += !(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
     for (const glm::vec3& n : mesh.normals) bad_normals += !(std::fabs(glm::length(n) - 1.0f) < 1e-3f);

@@ -316,7 +316,7 @@ TEST(Render, ATreesCurvesAndItsOwnMeshExportCoverTheSamePixels) {
   const gen::Species species = gen::load_species(t.species);
   gen::GrowOptions grow;
   grow.seed = t.seed;
-  const gen::TreeGeometry g = gen::build_tree_geometry(gen::grow_tree(species, grow), gen::geometry_options_for(species.leaf));
+  const gen::TreeGeometry g = gen::build_tree_geometry(gen::grow_tree(species, grow), gen::geometry_options_for(species));
   const std::string obj = ::testing::TempDir() + "saguaro.obj";
   gen::write_obj(gen::tessellate(g), obj);
   s.trees.clear();
