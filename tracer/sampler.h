@@ -56,6 +56,9 @@ class PixelSampler {
   }
   float get1d(std::uint32_t index, std::uint32_t dim) const { return get2d(index, dim).x; }
 
+  // For tests: the second dimension's byte tables give what its bit loop gives.
+  static bool sobol_tables_agree(std::uint32_t i) { return sobol_second(i) == sobol_second_bits(i); }
+
  private:
   // Second dimension of the Sobol' sequence (generator matrix with v_k = 1 + 2 v_{k-1} pattern):
   // the XOR of the direction numbers of i's set bits, looked up a byte at a time.
@@ -79,11 +82,6 @@ class PixelSampler {
     return t[0][i & 0xffu] ^ t[1][(i >> 8) & 0xffu] ^ t[2][(i >> 16) & 0xffu] ^ t[3][i >> 24];
   }
 
- public:
-  // For tests: the table lookup is the bit loop.
-  static bool sobol_tables_agree(std::uint32_t i) { return sobol_second(i) == sobol_second_bits(i); }
-
- private:
   static constexpr float to_unit(std::uint32_t x) {
     return static_cast<float>(x >> 8) * 0x1.0p-24f;  // 24 bits: strictly below 1 in float
   }

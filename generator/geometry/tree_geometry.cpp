@@ -3,6 +3,7 @@
 #include "generator/geometry/tree_geometry.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -159,12 +160,20 @@ double buttress_contour(const GeometryOptions& o, double base_radius, double h, 
   const double reach = base_radius * (0.6 + o.buttress_spread * s * s);
   const double sigma = base_radius * (0.35 + 0.25 * s);
   const double threshold = std::exp(-1.0);
+  // The roots' crossing points in this plane (at most 16), found once for the search below.
+  std::array<glm::dvec2, 16> roots{};
+  const int n = std::min(o.buttresses, static_cast<int>(roots.size()));
+  for (int k = 0; k < n; ++k) {
+    const double jitter = 0.35 * (std::fmod(0.618034 * (k + 1), 1.0) - 0.5);
+    const double phi = 2.0 * kPi * (k + jitter) / o.buttresses;
+    roots[static_cast<std::size_t>(k)] = {reach * std::cos(phi), reach * std::sin(phi)};
+  }
+  const double ct = std::cos(theta), st = std::sin(theta);
   auto field = [&](double rho) {
     double f = std::exp(-(rho / rho0) * (rho / rho0));
-    for (int k = 0; k < o.buttresses; ++k) {
-      const double jitter = 0.35 * (std::fmod(0.618034 * (k + 1), 1.0) - 0.5);
-      const double phi = 2.0 * kPi * (k + jitter) / o.buttresses;
-      const double dx = rho * std::cos(theta) - reach * std::cos(phi), dy = rho * std::sin(theta) - reach * std::sin(phi);
+    for (int k = 0; k < n; ++k) {
+      const glm::dvec2 c = roots[static_cast<std::size_t>(k)];
+      const double dx = rho * ct - c.x, dy = rho * st - c.y;
       f += s * std::exp(-(dx * dx + dy * dy) / (sigma * sigma));
     }
     return f;
