@@ -53,8 +53,10 @@ struct SunDesc {
 };
 
 struct SkyDesc {
-  std::string model = "preetham";  // "preetham" | "constant" | "envmap" | "none"
+  std::string model = "preetham";  // "preetham" | "nishita" | "constant" | "envmap" | "none"
   double turbidity = 3.0;
+  // nishita: multipliers of the standard atmosphere's profiles, the observer's altitude (m)
+  double air_density = 1.0, dust_density = 1.0, ozone_density = 1.0, altitude = 0.0;
   Rgb color{1.0, 1.0, 1.0};
   std::string path;          // envmap
   double rotation = 0.0;     // envmap, degrees about z
@@ -77,6 +79,7 @@ struct BarkOverride {
 };
 struct LeafOverride {
   std::optional<Rgb> reflectance, back_reflectance, transmittance;
+  std::optional<double> cuticle_ior, cuticle_roughness;  // 1: no cuticle; [0, 1]
   std::string albedo_map;  // image over the leaf's uv multiplying R, back R and T; empty: none
 };
 
@@ -120,6 +123,7 @@ struct MeshMaterialDesc {
   Rgb albedo{0.5, 0.5, 0.5};     // bark, diffuse
   Rgb reflectance{0.06, 0.2, 0.04}, back_reflectance{0.1, 0.24, 0.07},
       transmittance{0.05, 0.18, 0.03};  // leaf
+  double cuticle_ior = 1.45, cuticle_roughness = 0.4;  // leaf: the species' defaults
 };
 
 struct MeshDesc {

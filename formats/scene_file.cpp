@@ -133,8 +133,12 @@ class SceneReader : TomlReader {
   void sky(const toml::table& t, SkyDesc& s) const {
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
-      if (k == "model") s.model = choice(n, "sky.model", {"preetham", "constant", "envmap", "none"});
+      if (k == "model") s.model = choice(n, "sky.model", {"preetham", "nishita", "constant", "envmap", "none"});
       else if (k == "turbidity") s.turbidity = number(n, "sky.turbidity", 1.7, 10.0);
+      else if (k == "air_density") s.air_density = number(n, "sky.air_density", 0.0, 10.0);
+      else if (k == "dust_density") s.dust_density = number(n, "sky.dust_density", 0.0, 100.0);
+      else if (k == "ozone_density") s.ozone_density = number(n, "sky.ozone_density", 0.0, 10.0);
+      else if (k == "altitude") s.altitude = number(n, "sky.altitude", 0.0, 50000.0);
       else if (k == "color") s.color = triple(n, "sky.color", 0.0, 1e6);
       else if (k == "path") s.path = file(n, "sky.path");
       else if (k == "rotation") s.rotation = number(n, "sky.rotation", -360.0, 360.0);
@@ -175,6 +179,8 @@ class SceneReader : TomlReader {
       else if (k == "back_reflectance") l.back_reflectance = triple(n, owner + ".leaf.back_reflectance", 0.0, 1.0);
       else if (k == "transmittance") l.transmittance = triple(n, owner + ".leaf.transmittance", 0.0, 1.0);
       else if (k == "albedo_map") l.albedo_map = file(n, owner + ".leaf.albedo_map");
+      else if (k == "cuticle_ior") l.cuticle_ior = number(n, owner + ".leaf.cuticle_ior", 1.0, 3.0);
+      else if (k == "cuticle_roughness") l.cuticle_roughness = number(n, owner + ".leaf.cuticle_roughness", 0.0, 1.0);
       else unknown(key, owner + ".leaf");
     }
   }
@@ -259,6 +265,8 @@ class SceneReader : TomlReader {
       else if (k == "reflectance") m.reflectance = triple(n, owner + ".reflectance", 0.0, 1.0);
       else if (k == "back_reflectance") m.back_reflectance = triple(n, owner + ".back_reflectance", 0.0, 1.0);
       else if (k == "transmittance") m.transmittance = triple(n, owner + ".transmittance", 0.0, 1.0);
+      else if (k == "cuticle_ior") m.cuticle_ior = number(n, owner + ".cuticle_ior", 1.0, 3.0);
+      else if (k == "cuticle_roughness") m.cuticle_roughness = number(n, owner + ".cuticle_roughness", 0.0, 1.0);
       else unknown(key, owner);
     }
     for (size_t i = 0; i < 3; ++i) {

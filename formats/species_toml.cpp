@@ -119,7 +119,15 @@ class TomlSpecies : TomlReader {
       if (k == "reflectance") sp.leaf.reflectance = colour(node, "leaf.reflectance");
       else if (k == "back_reflectance") sp.leaf.back_reflectance = colour(node, "leaf.back_reflectance");
       else if (k == "transmittance") sp.leaf.transmittance = colour(node, "leaf.transmittance");
-      else if (k == "hinge_angle") {
+      else if (k == "cuticle_ior") {
+        const double v = number(node, "leaf.cuticle_ior");
+        if (!(v >= 1.0 && v <= 3.0)) throw InputError(at(node.source()), "leaf.cuticle_ior must be in [1, 3] (1: no cuticle)");
+        sp.leaf.cuticle_ior = v;
+      } else if (k == "cuticle_roughness") {
+        const double v = number(node, "leaf.cuticle_roughness");
+        if (!(v >= 0.0 && v <= 1.0)) throw InputError(at(node.source()), "leaf.cuticle_roughness must be in [0, 1]");
+        sp.leaf.cuticle_roughness = v;
+      } else if (k == "hinge_angle") {
         const double a = number(node, "leaf.hinge_angle");
         if (a < 0.0 || a > 90.0) throw InputError(at(node.source()), "leaf.hinge_angle must be in [0, 90] degrees");
         sp.leaf.hinge_angle = a;

@@ -78,6 +78,7 @@ SurfaceBsdf Material::bsdf(const SurfacePoint& p) const {
       const glm::vec3 side = p.leaf_back ? leaf.back : leaf.front;
       b.leaf_bsdf.reflectance = glm::dvec3(leaf.tinted ? side * t : side);
       b.leaf_bsdf.transmittance = glm::dvec3(leaf.tinted ? leaf.transmittance * t : leaf.transmittance);
+      b.leaf_bsdf.coat = leaf.cuticle.get();
       break;
     }
   }

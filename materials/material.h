@@ -2,6 +2,8 @@
 // point of it becomes a BSDF value. The tracer only finds hits and passes their geometry here.
 #pragma once
 
+#include <memory>
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -40,10 +42,12 @@ struct BarkMaterial {
 };
 
 // A thin leaf: diffuse reflection (front and back differ) and diffuse transmission, both
-// multiplied by the leaf's albedo map over its uv and the primitive's colour.
+// multiplied by the leaf's albedo map over its uv and the primitive's colour, under an optional
+// glossy cuticle on both faces (untinted: the wax reflects white).
 struct LeafMaterial {
   glm::vec3 front{0.1f}, back{0.1f}, transmittance{0.1f};
   const ColorMap* albedo_map = nullptr;
+  std::shared_ptr<const CuticleCoat> cuticle;  // null: no coat
   bool tinted = true;  // false: R and T as given (mesh leaves have no uv or colour)
 
   glm::vec3 tint(const SurfacePoint& p) const;

@@ -115,6 +115,15 @@ class SceneBuilder {
     return s_.bump_maps.back().second.get();
   }
 
+  // One coat per (ior, roughness): its albedo table is computed once however many trees share it.
+  std::shared_ptr<const mat::CuticleCoat> cuticle(double ior, double roughness) {
+    for (const auto& [key, coat] : cuticles_) {
+      if (key.first == ior && key.second == roughness) return coat;
+    }
+    cuticles_.emplace_back(std::make_pair(ior, roughness), mat::CuticleCoat::make(ior, roughness));
+    return cuticles_.back().second;
+  }
+
   TreeLook look_for(const gen::Species& sp, const BarkOverride& bark, const LeafOverride& leaf,
                     const TreemakerOverride& tm, const SourceLocation& where) {
     TreeLook look;
@@ -141,6 +150,8 @@ class SceneBuilder {
     l.front = to_vec3(leaf.reflectance.value_or(sp.leaf.reflectance));
     l.back = to_vec3(leaf.back_reflectance.value_or(sp.leaf.back_reflectance));
     l.transmittance = to_vec3(leaf.transmittance.value_or(sp.leaf.transmittance));
+    l.cuticle = cuticle(leaf.cuticle_ior.value_or(sp.leaf.cuticle_ior),
+                        leaf.cuticle_roughness.value_or(sp.leaf.cuticle_roughness));
     for (int i = 0; i < 3; ++i) {
       if (l.front[i] + l.transmittance[i] > 1.0f + 1e-6f || l.back[i] + l.transmittance[i] > 1.0f + 1e-6f) {
         throw InputError(where, "leaf reflectance + transmittance must be at most 1 in every "
@@ -175,6 +186,7 @@ class SceneBuilder {
   std::string ocio_config_;
   std::vector<std::pair<std::string, std::unique_ptr<gen::Species>>> species_;
   std::vector<std::pair<std::string, int>> prototype_keys_;
+  std::vector<std::pair<std::pair<double, double>, std::shared_ptr<const mat::CuticleCoat>>> cuticles_;
 };
 
 void SceneBuilder::add_mesh(const MeshDesc& d) {
@@ -203,6 +215,7 @@ void SceneBuilder::add_mesh(const MeshDesc& d) {
         material.leaf.front = to_vec3(md.reflectance);
         material.leaf.back = to_vec3(md.back_reflectance);
         material.leaf.transmittance = to_vec3(md.transmittance);
+        material.leaf.cuticle = cuticle(md.cuticle_ior, md.cuticle_roughness);
       } else {
         material.albedo = to_vec3(md.albedo);
       }

@@ -61,6 +61,7 @@ bump_height = 0.01
 roughness = 20.0
 [tree.leaf]
 reflectance = [0.1, 0.2, 0.1]
+cuticle_ior = 1.5
 [[forest]]
 species = "/abs/tupelo.toml"
 count = 20
@@ -74,6 +75,7 @@ up = "y"
 kind = "leaf"
 reflectance = [0.1, 0.1, 0.1]
 transmittance = [0.2, 0.2, 0.2]
+cuticle_roughness = 0.2
 [output]
 exr = "out/a.exr"
 png = "out/a.png"
@@ -94,6 +96,10 @@ pixel_type = "float"
   EXPECT_DOUBLE_EQ(*s.trees[0].bark.roughness, 20.0);
   EXPECT_DOUBLE_EQ((*s.trees[0].leaf.reflectance)[1], 0.2);
   EXPECT_FALSE(s.trees[0].leaf.transmittance.has_value());
+  EXPECT_DOUBLE_EQ(*s.trees[0].leaf.cuticle_ior, 1.5);
+  EXPECT_FALSE(s.trees[0].leaf.cuticle_roughness.has_value());  // the species' own
+  EXPECT_DOUBLE_EQ(s.meshes[0].materials.at("leafy").cuticle_roughness, 0.2);
+  EXPECT_DOUBLE_EQ(s.meshes[0].materials.at("leafy").cuticle_ior, 1.45);
   EXPECT_EQ(s.forests[0].species, "/abs/tupelo.toml");
   EXPECT_DOUBLE_EQ(s.forests[0].area[2], 5.0);
   EXPECT_EQ(s.meshes[0].materials.at("leafy").kind, "leaf");
@@ -155,6 +161,9 @@ TEST(SceneFile, ValuesAreRangeAndTypeChecked) {
   expect_error("[sun]\nirradiance = -1.0\n", 2, 14, "out of range");
   expect_error("[ground]\nalbedo = [0.5, 1.5, 0.5]\n", 2, 16, "ground.albedo");
   expect_error("[ground]\nenabled = 1\n", 2, 11, "true or false");
+  expect_error("[[tree]]\nspecies = \"a.toml\"\n[tree.leaf]\ncuticle_ior = 0.5\n", 4, 15, "tree.leaf.cuticle_ior");
+  expect_error("[[forest]]\nspecies = \"a.toml\"\n[forest.leaf]\ncuticle_roughness = -0.1\n", 4, 21,
+               "forest.leaf.cuticle_roughness");
   expect_error("[output]\naovs = [\"albedo\", \"motion\"]\n", 2, 19, "output.aovs");
 }
 

@@ -118,6 +118,20 @@ TEST(SpeciesToml, LeafHingeAngleIsReadAndBounded) {
   expect_toml_error(std::string(kMinimal) + "[leaf]\nhinge_angle = 120\n", 3, 15, "[0, 90]");
 }
 
+TEST(SpeciesToml, LeafCuticleIsReadAndBoundedWithAGlossyDefault) {
+  const Species s =
+      parse_species_toml(std::string(kMinimal) + "[leaf]\ncuticle_ior = 1.5\ncuticle_roughness = 0.25\n", "c");
+  EXPECT_DOUBLE_EQ(s.leaf.cuticle_ior, 1.5);
+  EXPECT_DOUBLE_EQ(s.leaf.cuticle_roughness, 0.25);
+  const Species d = parse_species_toml(kMinimal, "c");
+  EXPECT_DOUBLE_EQ(d.leaf.cuticle_ior, 1.45);  // wax, docs/species-format.md
+  EXPECT_DOUBLE_EQ(d.leaf.cuticle_roughness, 0.4);
+  EXPECT_NO_THROW(parse_species_toml(std::string(kMinimal) + "[leaf]\ncuticle_ior = 1.0\n", "c"));  // matte
+  expect_toml_error(std::string(kMinimal) + "[leaf]\ncuticle_ior = 0.9\n", 3, 15, "[1, 3]");
+  expect_toml_error(std::string(kMinimal) + "[leaf]\ncuticle_roughness = 1.2\n", 3, 21, "[0, 1]");
+  expect_toml_error(std::string(kMinimal) + "[leaf]\ncuticle_roughness = nan\n", 3, 21, "finite");
+}
+
 TEST(SpeciesToml, RootButtressesAreReadAndBounded) {
   const Species s =
       parse_species_toml(std::string(kMinimal) + "[roots]\nbuttresses = 5\nheight = 4\nspread = 1.5\n", "r");

@@ -346,7 +346,9 @@ TEST(TreeGeometry, RootButtressesWidenTheTrunksBaseAndMergeIntoIt) {
       const double without = glm::length(glm::dvec3(plain.grids.vertices[row + j]) - centre);
       const double with = glm::length(glm::dvec3(rooted.grids.vertices[row + j]) - centre);
       ASSERT_GE(with, without * (1.0 - 1e-6)) << "ring " << i << " side " << j;
-      if (plain.grids.vertices[row + j].z - axis.z > 3.2 * r0) ASSERT_NEAR(with, without, 1e-6 * without);
+      if (plain.grids.vertices[row + j].z - axis.z > 3.2 * r0) {
+        ASSERT_NEAR(with, without, 1e-6 * without);
+      }
       widened += with > 1.01 * without ? 1 : 0;
     }
   }

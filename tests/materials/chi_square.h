@@ -20,8 +20,9 @@ struct ChiSquareResult {
 
 inline ChiSquareResult chi_square(const std::function<BsdfSample(Rng&)>& sample,
                                   const std::function<double(const Dir&)>& pdf, int samples,
-                                  std::uint64_t seed) {
-  const int n_cos = 20, n_phi = 16;  // cos θ in [-1, 1]
+                                  std::uint64_t seed, int n_cos = 20, int n_phi = 16, int sub = 8) {
+  // n_cos cells over cos θ in [-1, 1], n_phi over φ; a peaked lobe wants more cells and a finer
+  // sub-grid for the cells' integrals.
   std::vector<double> observed(n_cos * n_phi, 0.0), expected(n_cos * n_phi, 0.0);
   Rng rng(seed);
   for (int i = 0; i < samples; ++i) {
@@ -33,19 +34,19 @@ inline ChiSquareResult chi_square(const std::function<BsdfSample(Rng&)>& sample,
     const int p = std::min(n_phi - 1, static_cast<int>(phi / (2.0 * kPi) * n_phi));
     observed[c * n_phi + p] += 1.0;
   }
-  // ∫ pdf dω over a cell = ∫∫ pdf d(cos θ) dφ: midpoint rule on an 8 × 8 sub-grid.
+  // ∫ pdf dω over a cell = ∫∫ pdf d(cos θ) dφ: midpoint rule on a sub × sub grid.
   for (int c = 0; c < n_cos; ++c) {
     for (int p = 0; p < n_phi; ++p) {
       double integral = 0.0;
-      for (int a = 0; a < 8; ++a) {
-        for (int b = 0; b < 8; ++b) {
-          const double z = -1.0 + 2.0 * (c + (a + 0.5) / 8.0) / n_cos;
-          const double phi = 2.0 * kPi * (p + (b + 0.5) / 8.0) / n_phi;
+      for (int a = 0; a < sub; ++a) {
+        for (int b = 0; b < sub; ++b) {
+          const double z = -1.0 + 2.0 * (c + (a + 0.5) / sub) / n_cos;
+          const double phi = 2.0 * kPi * (p + (b + 0.5) / sub) / n_phi;
           const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
           integral += pdf(Dir(r * std::cos(phi), r * std::sin(phi), z));
         }
       }
-      expected[c * n_phi + p] = integral / 64.0 * (2.0 / n_cos) * (2.0 * kPi / n_phi) * samples;
+      expected[c * n_phi + p] = integral / double(sub * sub) * (2.0 / n_cos) * (2.0 * kPi / n_phi) * samples;
     }
   }
   ChiSquareResult result;

@@ -26,7 +26,8 @@ if [ -n "$perturbation" ]; then
     ground2) edit='s/^albedo = \[0.16, 0.14, 0.10\]$/albedo = [0.1568, 0.1372, 0.098]/' ;;
     # The aspen's own looks (species/quaking_aspen.toml) times 0.92 or 0.98, as [tree] overrides.
     bark8) append=$'\n[tree.bark]\nalbedo = [0.5336, 0.5244, 0.4784]\n' ;;
-    leaf2) append=$'\n[tree.leaf]\nreflectance = [0.0686, 0.2156, 0.0392]\nback_reflectance = [0.1078, 0.2548, 0.0784]\ntransmittance = [0.0588, 0.196, 0.0294]\n' ;;
+    # Into the scene's own (matte) [tree.leaf] table.
+    leaf2) edit='s/^cuticle_ior = 1.0$/cuticle_ior = 1.0\nreflectance = [0.0686, 0.2156, 0.0392]\nback_reflectance = [0.1078, 0.2548, 0.0784]\ntransmittance = [0.0588, 0.196, 0.0294]/' ;;
     *) echo "reference_test.sh: unknown perturbation $perturbation" >&2; exit 2 ;;
   esac
   # The copy lives elsewhere: make its relative species paths absolute.

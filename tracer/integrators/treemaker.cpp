@@ -56,17 +56,17 @@ TreemakerIntegrator::TreemakerIntegrator(const World& world, const Sky& sky)
     : world_(world), sky_(sky) {
   if (sky.has_sun()) {
     to_light_ = sky.sun_direction();
-    sun_irradiance_ = sky.sun_irradiance();
+    sun_irradiance_ = sky.sun_irradiance_color();
   }
   sky_irradiance_ = sky.irradiance_up();
-  max_intensity_ = (glm::vec3(sun_irradiance_) + sky_irradiance_) / static_cast<float>(kPi);
+  max_intensity_ = (sun_irradiance_ + sky_irradiance_) / static_cast<float>(kPi);
 }
 
 glm::vec3 TreemakerIntegrator::diffuse_radiance(const WorldHit& hit, std::uint32_t& rays) const {
   const SurfaceHit& s = hit.surface;
   glm::vec3 e = sky_irradiance_;
   const float cos_sun = glm::dot(s.geometric_normal, to_light_);
-  if (sun_irradiance_ > 0.0f && cos_sun > 0.0f) {
+  if (sun_irradiance_ != glm::vec3(0.0f) && cos_sun > 0.0f) {
     // The paper casts the tree's points onto the ground along the sun direction and paints them
     // in the ground's shadow colour; for a distant sun a shadow ray from the ground point finds
     // exactly the points that projection covers. The shadow colour is the ground lit by the sky

@@ -79,7 +79,7 @@ class TreemakerIntegrator {
   const World& world_;
   const Sky& sky_;
   glm::vec3 to_light_{0.0f, 0.0f, 1.0f};
-  float sun_irradiance_ = 0.0f;
+  glm::vec3 sun_irradiance_{0.0f};  // the sun's colour on a plane facing it
   glm::vec3 sky_irradiance_{0.0f};
   glm::vec3 max_intensity_{0.0f};
 };

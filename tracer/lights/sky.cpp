@@ -6,10 +6,14 @@
 
 #include <OpenImageIO/imagebuf.h>
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "common/error.h"
 #include "imaging/color.h"
 #include "common/math.h"
+#include "tracer/lights/nishita.h"
 
 
 namespace arbor::trace {
@@ -64,6 +68,7 @@ Sky::Sky(const SkyDesc& sky, const SunDesc& sun, const ColorTransform& xyz_to_li
     sun_one_minus_cos_ = 2.0 * std::sin(0.5 * alpha) * std::sin(0.5 * alpha);
     sun_radiance_ = glm::vec3(static_cast<float>(sun.irradiance / (kPi * std::sin(alpha) * std::sin(alpha))));
     sun_irradiance_ = static_cast<float>(sun.irradiance);
+    sun_irradiance_color_ = glm::vec3(sun_irradiance_);
     sun_present_ = true;
   }
   if (sky.model == "none") return;
@@ -89,6 +94,8 @@ Sky::Sky(const SkyDesc& sky, const SunDesc& sun, const ColorTransform& xyz_to_li
         map_[static_cast<size_t>(j) * width_ + i] = glm::max(c, glm::vec3(0.0f)) * static_cast<float>(sky.scale);
       }
     }
+  } else if (sky.model == "nishita") {
+    nishita(sky, sun, xyz_to_linear, width);
   } else {
     width_ = width;
     height_ = width / 2;
@@ -136,6 +143,53 @@ Sky::Sky(const SkyDesc& sky, const SunDesc& sun, const ColorTransform& xyz_to_li
   }
   irradiance_up_ = glm::vec3(e);
   present_ = !distribution_.empty();
+}
+
+void Sky::nishita(const SkyDesc& sky, const SunDesc& sun, const ColorTransform& xyz_to_linear, int width) {
+  width_ = width;
+  height_ = width / 2;
+  map_.assign(static_cast<size_t>(width_) * height_, glm::vec3(0.0f));
+  Atmosphere atmosphere;
+  atmosphere.air_density = sky.air_density;
+  atmosphere.dust_density = sky.dust_density;
+  atmosphere.ozone_density = sky.ozone_density;
+  atmosphere.altitude = sky.altitude;
+  // [sun] irradiance is the sun's outside the atmosphere (as CIE Y); what reaches the ground is
+  // what the atmosphere lets through, coloured by it. As with Preetham's sky, the sky is lit by
+  // that sun even when [sun] enabled = false (which removes only its disk).
+  const NishitaSky model(atmosphere, sun_direction_d_, sun.irradiance);
+  auto convert = [&](const glm::dvec3& xyz) {
+    float rgb[3] = {static_cast<float>(xyz.x), static_cast<float>(xyz.y), static_cast<float>(xyz.z)};
+    xyz_to_linear(rgb);
+    return glm::dvec3(rgb[0], rgb[1], rgb[2]);
+  };
+  // White balance: the sun outside the atmosphere is white in the rendering space (as the other
+  // models' sun is), so the colours are the atmosphere's alone — a channel scale in that space.
+  const glm::dvec3 space = convert(model.extraterrestrial_xyz());
+  const double space_y = model.extraterrestrial_xyz().y;
+  const glm::dvec3 balance = glm::all(glm::greaterThan(space, glm::dvec3(0.0))) ? space_y / space : glm::dvec3(1.0);
+  auto to_linear = [&](const glm::dvec3& xyz) {
+    return glm::max(glm::vec3(convert(xyz) * balance), glm::vec3(0.0f));
+  };
+  // Rows are independent: in parallel, each texel the same whatever the thread.
+  tbb::parallel_for(tbb::blocked_range<int>(0, height_ / 2 + 1), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j < rows.end(); ++j) {
+      for (int i = 0; i < width_; ++i) {
+        const glm::vec3 d = from_map({(i + 0.5f) / width_, (j + 0.5f) / height_});
+        if (d.z <= 0.0f) continue;
+        map_[static_cast<size_t>(j) * width_ + i] = to_linear(model.radiance_xyz(glm::dvec3(d)));
+      }
+    }
+  });
+  if (sun_present_) {
+    const glm::vec3 e = to_linear(model.sun_irradiance_xyz());
+    const double alpha = 0.5 * sun.angular_diameter * kPi / 180.0;
+    sun_radiance_ = e / static_cast<float>(kPi * std::sin(alpha) * std::sin(alpha));
+    sun_irradiance_color_ = e;
+    sun_irradiance_ = (e.x + e.y + e.z) / 3.0f;
+    sun_present_ = sun_irradiance_ > 0.0f;  // a sun below the horizon lights nothing directly
+    if (!sun_present_) sun_radiance_ = sun_irradiance_color_ = glm::vec3(0.0f);
+  }
 }
 
 glm::vec2 Sky::to_map(const glm::vec3& d) const {

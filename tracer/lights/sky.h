@@ -1,5 +1,6 @@
-// The lights of a scene: the sky (Preetham, constant, environment map or none) as one importance-
-// sampled lat-long radiance map, and the sun as a disk of given angular diameter and irradiance.
+// The lights of a scene: the sky (Preetham, Nishita, constant, environment map or none) as one
+// importance-sampled lat-long radiance map, and the sun as a disk of given angular diameter and
+// irradiance (with Nishita's sky, attenuated and coloured by the same atmosphere).
 #pragma once
 
 #include <string>
@@ -42,12 +43,16 @@ class Sky {
   bool has_sun() const { return sun_present_; }
   glm::vec3 sun_direction() const { return sun_direction_; }
   glm::vec3 sun_radiance() const { return sun_radiance_; }
-  float sun_irradiance() const { return sun_irradiance_; }  // on a plane facing it; 0 without a sun
+  // On a plane facing it, at the ground (after the atmosphere, for Nishita's sky): the mean of
+  // its colour's channels, and the colour; 0 without a sun.
+  float sun_irradiance() const { return sun_irradiance_; }
+  glm::vec3 sun_irradiance_color() const { return sun_irradiance_color_; }
   LightSample sample_sun(glm::vec2 u) const;
   float sun_pdf() const;  // uniform over the disk's cone
   bool in_sun(const glm::vec3& direction) const;
 
  private:
+  void nishita(const SkyDesc& sky, const SunDesc& sun, const ColorTransform& xyz_to_linear, int width);
   glm::vec2 to_map(const glm::vec3& d) const;
   glm::vec3 from_map(glm::vec2 p) const;
   glm::vec3 map_at(glm::vec2 p) const;  // the map's cell at map coordinates p
@@ -61,6 +66,7 @@ class Sky {
   bool sun_present_ = false;
   glm::vec3 sun_direction_{0.0f, 0.0f, 1.0f}, sun_radiance_{0.0f};
   float sun_irradiance_ = 0.0f;
+  glm::vec3 sun_irradiance_color_{0.0f};
   double sun_one_minus_cos_ = 0.0;      // 1 - cos α, the cone's solid angle / 2π
   glm::dvec3 sun_direction_d_{0.0, 0.0, 1.0};
 };

@@ -1,0 +1,230 @@
+// The single-scattering sky of Nishita et al. 1993: the radiance seen along a view ray is the
+// integral over the ray of the sunlight scattered towards the observer at each point — the
+// scattering coefficient × phase function × the sun's irradiance attenuated from the top of the
+// atmosphere to the point and from the point to the observer — here with ozone absorption added to
+// the attenuation (Nishita et al. have molecules and aerosols only) and evaluated at 25 wavelengths.
+#include "tracer/lights/nishita.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "common/math.h"
+
+namespace arbor::trace {
+
+namespace {
+
+constexpr double kEarthRadius = 6360e3;     // m
+constexpr double kTop = 60e3;               // m: the atmosphere's thickness
+constexpr double kTopRadius = kEarthRadius + kTop;
+constexpr double kRayleighHeight = 8000.0;  // m, scale height of the molecules
+constexpr double kMieHeight = 1200.0;       // m, scale height of the aerosols
+// Aerosols at sea level: scattering 2e-5 m⁻¹ (an aerosol optical depth of 0.024 at any wavelength,
+// a very clear day), single-scattering albedo 0.9, asymmetry g = 0.76.
+constexpr double kMieScattering = 2.0e-5, kMieExtinction = kMieScattering / 0.9, kMieG = 0.76;
+// Ozone: a layer between 10 and 40 km peaking at 25 km (a tent of unit peak), holding 300 Dobson
+// units (1 DU = 2.687e20 molecules m⁻²) in all: peak number density 300 × 2.687e20 / 15 km.
+constexpr double kOzonePeakDensity = 300.0 * 2.687e20 / 15e3;  // molecules m⁻³
+constexpr double kSunTemperature = 5778.0;  // K: the extraterrestrial sun as a black body
+
+// The Rayleigh phase function, 3/(16π) (1 + cos² θ).
+double rayleigh_phase(double c) { return 3.0 / (16.0 * kPi) * (1.0 + c * c); }
+
+// The Cornette–Shanks phase function (the one Nishita et al. use for aerosols), normalised over
+// the sphere: 3/(8π) (1 − g²)(1 + cos² θ) / ((2 + g²)(1 + g² − 2g cos θ)^(3/2)).
+double mie_phase(double c) {
+  const double g = kMieG, g2 = g * g;
+  return 3.0 / (8.0 * kPi) * (1.0 - g2) * (1.0 + c * c) / ((2.0 + g2) * std::pow(1.0 + g2 - 2.0 * g * c, 1.5));
+}
+
+// Distance from radius r along cos zenith μ to the top of the atmosphere (r inside it).
+double to_top(double r, double mu) {
+  const double disc = r * r * (mu * mu - 1.0) + kTopRadius * kTopRadius;
+  return std::max(0.0, -r * mu + std::sqrt(std::max(0.0, disc)));
+}
+
+// Whether a ray from radius r along cos zenith μ meets the Earth.
+bool hits_earth(double r, double mu) {
+  return mu < 0.0 && r * r * (mu * mu - 1.0) + kEarthRadius * kEarthRadius >= 0.0;
+}
+
+// The black-body spectral radiance shape at `nm` (any scale).
+double planck(double nm) {
+  const double l = nm * 1e-9;
+  return 1.0 / (l * l * l * l * l * (std::exp(1.4387769e-2 / (l * kSunTemperature)) - 1.0));
+}
+
+// One lobe of Wyman, Sloan & Shirley's fit: a Gaussian with different widths on either side.
+double lobe(double x, double mu, double s1, double s2) {
+  const double t = (x - mu) / (x < mu ? s1 : s2);
+  return std::exp(-0.5 * t * t);
+}
+
+}  // namespace
+
+double NishitaSky::rayleigh_scattering(double nm) {
+  // β = 8π³ (n² − 1)² / (3 N λ⁴) × (6 + 3ρ) / (6 − 7ρ) (the King correction for depolarisation
+  // ρ = 0.0279), with the refractive index of standard air (15 °C, 101 325 Pa) by Peck & Reeder's
+  // dispersion formula (1972, J. Opt. Soc. Am. 62, 958), and N = 2.547e25 m⁻³ molecules of it:
+  // 1.16e-5 m⁻¹ at 550 nm, a Rayleigh optical depth of 0.093 for the 8 km scale height.
+  const double s2 = 1.0 / (nm * 1e-3 * nm * 1e-3);  // (1/λ in µm)²
+  const double n1 = (8060.51 + 2480990.0 / (132.274 - s2) + 17455.7 / (39.32957 - s2)) * 1e-8;
+  const double N = 2.547e25, rho = 0.0279, l = nm * 1e-9;
+  const double n2 = n1 * (2.0 + n1);  // n² − 1
+  return 8.0 * kPi * kPi * kPi * n2 * n2 / (3.0 * N * l * l * l * l) * (6.0 + 3.0 * rho) / (6.0 - 7.0 * rho);
+}
+
+double NishitaSky::ozone_cross_section(double nm) {
+  // The Chappuis band: peak 5e-25 m² (5e-21 cm²) near 600 nm, modelled as a Gaussian of standard
+  // deviation 50 nm — within about 20 % of measured cross-sections from 500 to 650 nm, where ozone
+  // matters for the sky's colour; far smaller elsewhere, as measured.
+  const double t = (nm - 600.0) / 50.0;
+  return 5.0e-25 * std::exp(-0.5 * t * t);
+}
+
+glm::dvec3 NishitaSky::cie_xyz_bar(double nm) {
+  // Wyman, Sloan & Shirley 2013, "Simple analytic approximations to the CIE XYZ color matching
+  // functions", the multi-lobe fit (their eq. 2 and table 1).
+  const double x = 1.056 * lobe(nm, 599.8, 37.9, 31.0) + 0.362 * lobe(nm, 442.0, 16.0, 26.7) -
+                   0.065 * lobe(nm, 501.1, 20.4, 26.2);
+  const double y = 0.821 * lobe(nm, 568.8, 46.9, 40.5) + 0.286 * lobe(nm, 530.9, 16.3, 31.1);
+  const double z = 1.217 * lobe(nm, 437.0, 11.8, 36.0) + 0.681 * lobe(nm, 459.0, 26.0, 13.8);
+  return {x, y, z};
+}
+
+NishitaSky::NishitaSky(const Atmosphere& atmosphere, const glm::dvec3& sun_direction, double sun_irradiance)
+    : a_(atmosphere), sun_(glm::normalize(sun_direction)), r0_(kEarthRadius + atmosphere.altitude) {
+  const double dl = 400.0 / (kWavelengths - 1);
+  double y = 0.0;
+  for (int k = 0; k < kWavelengths; ++k) {
+    const double nm = wavelength(k);
+    beta_r_[k] = rayleigh_scattering(nm);
+    sigma_o_[k] = ozone_cross_section(nm) * kOzonePeakDensity;
+    cmf_[k] = cie_xyz_bar(nm) * dl;
+    solar_[k] = planck(nm);
+    y += solar_[k] * cmf_[k].y;
+  }
+  // Scaled so that the sun outside the atmosphere has CIE Y = its irradiance.
+  for (double& s : solar_) s *= y > 0.0 ? sun_irradiance / y : 0.0;
+  for (int k = 0; k < kWavelengths; ++k) space_xyz_ += solar_[k] * cmf_[k];
+
+  sun_table_.resize(static_cast<size_t>(kRows) * kCols);
+  for (int i = 0; i < kRows; ++i) {
+    const double u = double(i) / (kRows - 1), r = kEarthRadius + kTop * u * u;
+    // Below the horizon a ray meets the Earth; those cells hold the grazing ray's depth so that
+    // interpolation next to the horizon stays finite (depth_to_sun tests the Earth itself).
+    const double mu_horizon = -std::sqrt(std::max(0.0, 1.0 - (kEarthRadius / r) * (kEarthRadius / r)));
+    for (int j = 0; j < kCols; ++j) {
+      double mu = -1.0 + 2.0 * j / (kCols - 1);
+      if (hits_earth(r, mu)) mu = mu_horizon + 1e-6;
+      sun_table_[static_cast<size_t>(i) * kCols + j] = integrate_to_space(r, mu, 96);
+    }
+  }
+  if (!hits_earth(r0_, sun_.z)) {
+    const auto tau = optical_depth(integrate_to_space(r0_, sun_.z, 512));
+    for (int k = 0; k < kWavelengths; ++k) sun_xyz_ += solar_[k] * std::exp(-tau[k]) * cmf_[k];
+  }
+}
+
+NishitaSky::Depth NishitaSky::densities(double r) const {
+  const double h = std::max(0.0, r - kEarthRadius);
+  Depth d;
+  d.rayleigh = a_.air_density * std::exp(-h / kRayleighHeight);
+  d.mie = a_.dust_density * std::exp(-h / kMieHeight);
+  d.ozone = a_.ozone_density * std::max(0.0, 1.0 - std::fabs(h - 25e3) / 15e3);
+  return d;
+}
+
+NishitaSky::Depth NishitaSky::integrate_to_space(double r, double mu, int steps) const {
+  // Midpoints of steps growing quadratically from the start, where the air is densest.
+  const double length = to_top(r, mu), s = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+  Depth sum;
+  for (int i = 0; i < steps; ++i) {
+    const double a = double(i) / steps, b = double(i + 1) / steps;
+    const double t = length * 0.25 * (a + b) * (a + b), dt = length * (b * b - a * a);
+    const double x = t * s, z = r + t * mu;
+    const Depth d = densities(std::sqrt(x * x + z * z));
+    sum.rayleigh += d.rayleigh * dt;
+    sum.mie += d.mie * dt;
+    sum.ozone += d.ozone * dt;
+  }
+  return sum;
+}
+
+NishitaSky::Depth NishitaSky::depth_to_space(double r, double mu) const {
+  if (hits_earth(r, mu)) {
+    const double inf = std::numeric_limits<double>::infinity();
+    return {inf, inf, inf};
+  }
+  return integrate_to_space(r, mu, 512);
+}
+
+NishitaSky::Depth NishitaSky::depth_to_sun(double r, double mu) const {
+  if (hits_earth(r, mu)) {
+    const double inf = std::numeric_limits<double>::infinity();
+    return {inf, inf, inf};
+  }
+  const double u = std::sqrt(std::clamp((r - kEarthRadius) / kTop, 0.0, 1.0)) * (kRows - 1);
+  const double v = (std::clamp(mu, -1.0, 1.0) + 1.0) * 0.5 * (kCols - 1);
+  const int i = std::min(kRows - 2, static_cast<int>(u)), j = std::min(kCols - 2, static_cast<int>(v));
+  const double fu = u - i, fv = v - j;
+  const Depth& d00 = sun_table_[static_cast<size_t>(i) * kCols + j];
+  const Depth& d01 = sun_table_[static_cast<size_t>(i) * kCols + j + 1];
+  const Depth& d10 = sun_table_[static_cast<size_t>(i + 1) * kCols + j];
+  const Depth& d11 = sun_table_[static_cast<size_t>(i + 1) * kCols + j + 1];
+  auto mix = [&](double Depth::*f) {
+    return (1.0 - fu) * ((1.0 - fv) * d00.*f + fv * d01.*f) + fu * ((1.0 - fv) * d10.*f + fv * d11.*f);
+  };
+  return {mix(&Depth::rayleigh), mix(&Depth::mie), mix(&Depth::ozone)};
+}
+
+std::array<double, NishitaSky::kWavelengths> NishitaSky::optical_depth(const Depth& d) const {
+  std::array<double, kWavelengths> tau{};
+  for (int k = 0; k < kWavelengths; ++k) {
+    tau[k] = beta_r_[k] * d.rayleigh + kMieExtinction * d.mie + sigma_o_[k] * d.ozone;
+  }
+  return tau;
+}
+
+double NishitaSky::transmittance(const glm::dvec3& direction, int k) const {
+  return std::exp(-optical_depth(depth_to_space(r0_, glm::normalize(direction).z))[static_cast<size_t>(k)]);
+}
+
+glm::dvec3 NishitaSky::radiance_xyz(const glm::dvec3& view, int steps) const {
+  if (view.z < 0.0) return glm::dvec3(0.0);
+  const glm::dvec3 d = glm::normalize(view);
+  const double cos_scatter = glm::dot(d, sun_);
+  const double pr = rayleigh_phase(cos_scatter), pm = mie_phase(cos_scatter);
+  const double length = to_top(r0_, d.z);
+  std::array<double, kWavelengths> l{};
+  Depth seen;  // from the observer to the current point
+  for (int i = 0; i < steps; ++i) {
+    const double a = double(i) / steps, b = double(i + 1) / steps;
+    const double t = length * 0.25 * (a + b) * (a + b), dt = length * (b * b - a * a);
+    const glm::dvec3 p = glm::dvec3(0.0, 0.0, r0_) + d * t;
+    const double r = glm::length(p);
+    const Depth rho = densities(r);
+    // The depth to the midpoint: everything before it and half of this step.
+    const Depth to_point{seen.rayleigh + 0.5 * rho.rayleigh * dt, seen.mie + 0.5 * rho.mie * dt,
+                         seen.ozone + 0.5 * rho.ozone * dt};
+    seen.rayleigh += rho.rayleigh * dt;
+    seen.mie += rho.mie * dt;
+    seen.ozone += rho.ozone * dt;
+    const Depth sun = depth_to_sun(r, glm::dot(p, sun_) / r);
+    if (!std::isfinite(sun.rayleigh)) continue;  // the point is in the Earth's shadow
+    const double mie = kMieScattering * rho.mie * pm * dt, mie_depth = kMieExtinction * (to_point.mie + sun.mie);
+    for (int k = 0; k < kWavelengths; ++k) {
+      const double tau = beta_r_[k] * (to_point.rayleigh + sun.rayleigh) + mie_depth +
+                         sigma_o_[k] * (to_point.ozone + sun.ozone);
+      l[k] += (beta_r_[k] * rho.rayleigh * pr * dt + mie) * std::exp(-tau);
+    }
+  }
+  glm::dvec3 xyz(0.0);
+  for (int k = 0; k < kWavelengths; ++k) xyz += l[k] * solar_[k] * cmf_[k];
+  return xyz;
+}
+
+}  // namespace arbor::trace
