@@ -27,9 +27,9 @@ runs = {b["name"]: b["real_time"] for b in json.load(open(sys.argv[1]))["benchma
 path, tm = runs["frame/path_64spp/iterations:3"], runs["frame/treemaker"]
 print(f"bench: default-scene frame, path 64 spp / treemaker = {path / tm:.1f}x")
 PY
-# The path tracer's efficiency on whole scenes (default as curves and as triangles, the willow,
-# the 10,000-tree forest), each in its own process so that its peak RSS is its own.
-for scene in default_curves default_triangles willow forest_10000; do
+# The path tracer's efficiency on whole scenes (issue 13's default as curves, with glossy leaves and
+# as triangles, the willow, the 10,000-tree forest), each in its own process so that its peak RSS is its own.
+for scene in default_curves default_glossy default_triangles willow forest_10000; do
   "$build/bench/efficiency_bench" --benchmark_filter="scene/$scene/" \
     --benchmark_out="$out/efficiency_bench_$scene.json" --benchmark_out_format=json
 done

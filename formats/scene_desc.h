@@ -66,6 +66,10 @@ struct SkyDesc {
 struct GroundDesc {
   bool enabled = true;
   Rgb albedo{0.16, 0.14, 0.10};
+  // Patches of a second albedo (grass on soil, say) by smooth procedural noise: patch_cover of
+  // the ground (0: none), blobs about patch_scale metres across.
+  Rgb patch_albedo{0.06, 0.11, 0.035};
+  double patch_cover = 0.0, patch_scale = 3.0;
 };
 
 // Overrides of a species' bark and leaves; unset fields keep the species' values.
@@ -123,7 +127,7 @@ struct MeshMaterialDesc {
   Rgb albedo{0.5, 0.5, 0.5};     // bark, diffuse
   Rgb reflectance{0.06, 0.2, 0.04}, back_reflectance{0.1, 0.24, 0.07},
       transmittance{0.05, 0.18, 0.03};  // leaf
-  double cuticle_ior = 1.45, cuticle_roughness = 0.4;  // leaf: the species' defaults
+  double cuticle_ior = 1.45, cuticle_roughness = 0.5;  // leaf: the species' defaults
 };
 
 struct MeshDesc {

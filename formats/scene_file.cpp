@@ -155,6 +155,9 @@ class SceneReader : TomlReader {
       const std::string k(key.str());
       if (k == "enabled") g.enabled = boolean(n, "ground.enabled");
       else if (k == "albedo") g.albedo = triple(n, "ground.albedo", 0.0, 1.0);
+      else if (k == "patch_albedo") g.patch_albedo = triple(n, "ground.patch_albedo", 0.0, 1.0);
+      else if (k == "patch_cover") g.patch_cover = number(n, "ground.patch_cover", 0.0, 1.0);
+      else if (k == "patch_scale") g.patch_scale = number(n, "ground.patch_scale", 0.01, 1e4);
       else unknown(key, "ground");
     }
   }

@@ -28,13 +28,13 @@ struct BarkLook {
 
 // Default leaves of the species: front reflectance, the lighter back, diffuse transmittance, and
 // the waxy cuticle on both faces (materials/cuticle.h; docs/species-format.md gives the sources of
-// the defaults: cuticular wax has a refractive index near 1.45; 0.4 is a moderately glossy leaf).
+// the defaults: cuticular wax has a refractive index near 1.45; 0.5 is a moderately glossy leaf).
 struct LeafLook {
   Rgb reflectance{0.06, 0.20, 0.04};
   Rgb back_reflectance{0.10, 0.24, 0.07};
   Rgb transmittance{0.05, 0.18, 0.03};
   double cuticle_ior = 1.45;       // 1: no cuticle (a matte leaf)
-  double cuticle_roughness = 0.4;  // [0, 1]; GGX α = roughness²
+  double cuticle_roughness = 0.5;  // [0, 1]; GGX α = roughness²
   double hinge_angle = 0.0;  // degrees; > 0: Bloomenthal's hinged three-polygon leaf (§10)
 };
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -60,12 +61,42 @@ glm::vec3 LeafMaterial::reflectance(const SurfacePoint& p) const {
   return tinted ? side * tint(p) : side;
 }
 
+double GroundMaterial::noise(double x, double y) {
+  // Three octaves of gradient noise on the plane, each at its own height of the noise's lattice.
+  return 0.6 * gradient_noise(x, y, 0.37) + 0.3 * gradient_noise(2.03 * x, 2.03 * y, 1.91) +
+         0.1 * gradient_noise(4.11 * x, 4.11 * y, 3.43);
+}
+
+void GroundMaterial::set_cover(float c) {
+  cover = c;
+  if (c <= 0.0f) return;
+  std::vector<double> v;
+  v.reserve(512 * 512);
+  for (int i = 0; i < 512; ++i) {
+    for (int j = 0; j < 512; ++j) v.push_back(noise(i * 0.137, j * 0.137));  // 70 × 70 scales
+  }
+  std::sort(v.begin(), v.end());
+  auto quantile = [&](double q) { return v[std::min(v.size() - 1, static_cast<size_t>(q * v.size()))]; };
+  threshold = c >= 1.0f ? -1e9 : quantile(1.0 - c);
+  edge = 0.25 * (quantile(0.84) - quantile(0.16));  // a quarter of the noise's spread
+}
+
+float GroundMaterial::patch(glm::vec2 xy) const {
+  if (cover <= 0.0f) return 0.0f;
+  // A smoothstep of the noise across [threshold − edge, threshold + edge]: soft-edged patches.
+  const double e = std::clamp((noise(xy.x / scale, xy.y / scale) - threshold) / (2.0 * edge) + 0.5, 0.0, 1.0);
+  return static_cast<float>(e * e * (3.0 - 2.0 * e));
+}
+
 SurfaceBsdf Material::bsdf(const SurfacePoint& p) const {
   SurfaceBsdf b;
   b.normal = p.shading_normal;
   switch (kind) {
     case Kind::Diffuse:
       b.diffuse.albedo = glm::dvec3(albedo);
+      break;
+    case Kind::Ground:
+      b.diffuse.albedo = glm::dvec3(albedo_at(p));
       break;
     case Kind::Bark:
       b.diffuse.albedo = glm::dvec3(bark.albedo_at(p));
@@ -90,6 +121,10 @@ SurfaceBsdf Material::bsdf(const SurfacePoint& p) const {
 glm::vec3 Material::albedo_at(const SurfacePoint& p) const {
   switch (kind) {
     case Kind::Diffuse: return albedo;
+    case Kind::Ground: {
+      const float w = ground.patch(p.ground);
+      return w > 0.0f ? albedo + (ground.patch_albedo - albedo) * w : albedo;
+    }
     case Kind::Bark: return bark.albedo_at(p);
     case Kind::Leaf: return leaf.reflectance(p);
   }

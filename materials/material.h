@@ -21,6 +21,7 @@ struct SurfacePoint {
   float along = 0.0f, azimuth = 0.0f, radius = 0.0f;  // bark coordinates (metres, radians, metres)
   glm::vec2 uv{0.0f};          // over the unit leaf
   glm::vec3 color{1.0f};       // the primitive's colour, multiplying the albedo
+  glm::vec2 ground{0.0f};      // world x, y of a ground point (its patches)
   bool leaf_back = false;      // a leaf seen from its back (the back reflectance applies)
 };
 
@@ -76,10 +77,27 @@ struct SurfaceBsdf {
   }
 };
 
+// The ground: Lambertian, its albedo mixed with a second one in soft-edged patches where smooth
+// 2D noise of the position exceeds the threshold that leaves `cover` of the plane patched.
+struct GroundMaterial {
+  glm::vec3 patch_albedo{0.0f};
+  float scale = 3.0f;        // metres
+  float cover = 0.0f;        // fraction of the ground patched; set by set_cover
+  double threshold = 1e9, edge = 0.1;  // of the noise, from the cover
+
+  // Finds the noise's threshold that leaves `cover` of the plane patched (its quantile over a
+  // fixed 512 × 512 sample of the noise, so the same for every scene), and the edges' width.
+  void set_cover(float cover);
+  // The patch's weight in [0, 1] at world (x, y).
+  float patch(glm::vec2 xy) const;
+  static double noise(double x, double y);  // the patches' noise, at coordinates in `scale`s
+};
+
 // What one surface of a scene is made of.
 struct Material {
-  enum class Kind { Diffuse, Bark, Leaf } kind = Kind::Diffuse;
-  glm::vec3 albedo{0.5f};  // Diffuse
+  enum class Kind { Diffuse, Bark, Leaf, Ground } kind = Kind::Diffuse;
+  glm::vec3 albedo{0.5f};  // Diffuse, Ground
+  GroundMaterial ground;   // Ground
   BarkMaterial bark;       // Bark
   LeafMaterial leaf;       // Leaf
 

@@ -300,6 +300,12 @@ std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::strin
   if (desc.ground.enabled) {
     scene->has_ground = true;
     scene->ground.albedo = to_vec3(desc.ground.albedo);
+    if (desc.ground.patch_cover > 0.0) {
+      scene->ground.kind = mat::Material::Kind::Ground;
+      scene->ground.ground.patch_albedo = to_vec3(desc.ground.patch_albedo);
+      scene->ground.ground.set_cover(static_cast<float>(desc.ground.patch_cover));
+      scene->ground.ground.scale = static_cast<float>(desc.ground.patch_scale);
+    }
   }
   scene->stats.prototypes = scene->prototypes.size();
   scene->stats.instances = scene->instances.size();

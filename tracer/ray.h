@@ -58,6 +58,7 @@ struct WorldHit {
     p.radius = surface.bark.radius;
     p.uv = surface.uv;
     p.color = surface.color;
+    if (ground) p.ground = glm::vec2(surface.position.x, surface.position.y);
     p.leaf_back = mesh ? !mesh_front : surface.material == gen::kMaterialLeafBack;
     return p;
   }

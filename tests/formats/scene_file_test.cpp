@@ -161,6 +161,9 @@ TEST(SceneFile, ValuesAreRangeAndTypeChecked) {
   expect_error("[sun]\nirradiance = -1.0\n", 2, 14, "out of range");
   expect_error("[ground]\nalbedo = [0.5, 1.5, 0.5]\n", 2, 16, "ground.albedo");
   expect_error("[ground]\nenabled = 1\n", 2, 11, "true or false");
+  expect_error("[ground]\npatch_cover = 1.5\n", 2, 15, "ground.patch_cover");
+  expect_error("[ground]\npatch_scale = 0\n", 2, 15, "ground.patch_scale");
+  expect_error("[ground]\npatch_albedo = [0.1, 0.1]\n", 2, 16, "ground.patch_albedo");
   expect_error("[[tree]]\nspecies = \"a.toml\"\n[tree.leaf]\ncuticle_ior = 0.5\n", 4, 15, "tree.leaf.cuticle_ior");
   expect_error("[[forest]]\nspecies = \"a.toml\"\n[forest.leaf]\ncuticle_roughness = -0.1\n", 4, 21,
                "forest.leaf.cuticle_roughness");

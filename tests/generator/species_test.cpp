@@ -125,7 +125,7 @@ TEST(SpeciesToml, LeafCuticleIsReadAndBoundedWithAGlossyDefault) {
   EXPECT_DOUBLE_EQ(s.leaf.cuticle_roughness, 0.25);
   const Species d = parse_species_toml(kMinimal, "c");
   EXPECT_DOUBLE_EQ(d.leaf.cuticle_ior, 1.45);  // wax, docs/species-format.md
-  EXPECT_DOUBLE_EQ(d.leaf.cuticle_roughness, 0.4);
+  EXPECT_DOUBLE_EQ(d.leaf.cuticle_roughness, 0.5);
   EXPECT_NO_THROW(parse_species_toml(std::string(kMinimal) + "[leaf]\ncuticle_ior = 1.0\n", "c"));  // matte
   expect_toml_error(std::string(kMinimal) + "[leaf]\ncuticle_ior = 0.9\n", 3, 15, "[1, 3]");
   expect_toml_error(std::string(kMinimal) + "[leaf]\ncuticle_roughness = 1.2\n", 3, 21, "[0, 1]");

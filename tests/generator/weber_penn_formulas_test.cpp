@@ -165,11 +165,25 @@ TEST(Sway, IsZeroWithoutWindAndFollowsThePaper) {
   EXPECT_EQ(calm.y, 0.0);
   const double a0 = 4.0 * 10.0 * 0.5 / 0.1;
   const double a1 = 5.0 / 50.0 * a0, a2 = 2.0 / 50.0 * a0 + a1 / 2.0;
-  const double b = 0.4 + 0.2 / 10.0 * 3.0 / 15.0;
+  // The phase rate as arbor reads it: length / radius × time / 15 (the paper prints radius / length).
+  const double b = 0.4 + 10.0 / 0.2 * 3.0 / 15.0;
   const Sway s = sway_angles(5, 2, 10, 0.2, 0.1, 0.5, 5, 3.0, 0.4, 1.1);
   EXPECT_NEAR(s.x, (a1 * std::sin(b) + a2 * std::sin(0.7 * b)) / 5.0, 1e-12);
-  const double by = 1.1 + 0.2 / 10.0 * 3.0 / 15.0;
+  const double by = 1.1 + 10.0 / 0.2 * 3.0 / 15.0;
   EXPECT_NEAR(s.y, (a1 * std::sin(by) + a2 * std::sin(0.7 * by)) / 5.0, 1e-12);
+}
+
+TEST(Sway, PeriodsAreSecondsForATrunkAndLessForATwig) {
+  // The slower of the two terms, sin(0.7 b), has period 2π / (0.7 rate): a 12 m trunk of radius
+  // 0.25 m about 2.8 s, a 0.3 m twig of radius 3 mm about 1.3 s.
+  auto period = [](double length, double radius) { return 2.0 * kPi / (0.7 * length / radius / 15.0); };
+  EXPECT_NEAR(period(12.0, 0.25), 2.8, 0.1);
+  EXPECT_NEAR(period(0.3, 0.003), 1.35, 0.05);
+  // Half a period of the twig's faster term moves it by degrees.
+  const double half = kPi / (0.3 / 0.003 / 15.0);
+  const Sway a = sway_angles(5, 2, 0.3, 0.003, 0.002, 0.2, 3, 0.0, 0.0, 0.0);
+  const Sway b = sway_angles(5, 2, 0.3, 0.003, 0.002, 0.2, 3, half, 0.0, 0.0);
+  EXPECT_GT(std::fabs(a.x - b.x), 1.0);  // degrees
 }
 
 TEST(AttractionUp, IsLargestForHorizontalStemsFacingUp) {

@@ -123,3 +123,52 @@ TEST(Material, TheBsdfAndTheAlbedoAovComeFromOneDispatch) {
 }
 
 }  // namespace arbor::mat
+
+namespace arbor::mat {
+
+TEST(GroundMaterial, PatchesCoverTheAskedFractionWithSoftEdges) {
+  GroundMaterial g;
+  g.scale = 3.0f;
+  for (float cover : {0.2f, 0.5f, 0.8f}) {
+    g.set_cover(cover);
+    int inside = 0, soft = 0, n = 0;
+    for (int i = 0; i < 400; ++i) {
+      for (int j = 0; j < 400; ++j) {
+        const float w = g.patch({i * 0.5f - 100.0f, j * 0.5f - 100.0f});  // 200 m × 200 m
+        ASSERT_GE(w, 0.0f);
+        ASSERT_LE(w, 1.0f);
+        inside += w > 0.5f ? 1 : 0;
+        soft += (w > 0.0f && w < 1.0f) ? 1 : 0;
+        ++n;
+      }
+    }
+    EXPECT_NEAR(double(inside) / n, cover, 0.05) << "cover " << cover;
+    EXPECT_GT(soft, n / 50);   // the edges blend
+    EXPECT_LT(soft, n / 2);    // but most of the ground is one or the other
+  }
+  g.set_cover(0.0f);
+  EXPECT_EQ(g.patch({1.0f, 2.0f}), 0.0f);
+}
+
+TEST(GroundMaterial, TheAlbedoMixesTheTwoColoursByThePatch) {
+  Material ground;
+  ground.kind = Material::Kind::Ground;
+  ground.albedo = glm::vec3(0.16f, 0.14f, 0.10f);
+  ground.ground.patch_albedo = glm::vec3(0.06f, 0.11f, 0.035f);
+  ground.ground.set_cover(0.5f);
+  SurfacePoint p;
+  bool saw_soil = false, saw_grass = false;
+  for (int i = 0; i < 2000 && !(saw_soil && saw_grass); ++i) {
+    p.ground = glm::vec2(i * 0.37f, i * 0.11f);
+    const float w = ground.ground.patch(p.ground);
+    const glm::vec3 a = ground.albedo_at(p);
+    EXPECT_NEAR(a.x, 0.16f + (0.06f - 0.16f) * w, 1e-6f);
+    EXPECT_EQ(glm::vec3(ground.bsdf(p).diffuse.albedo), a);
+    saw_soil = saw_soil || w == 0.0f;
+    saw_grass = saw_grass || w == 1.0f;
+  }
+  EXPECT_TRUE(saw_soil);
+  EXPECT_TRUE(saw_grass);
+}
+
+}  // namespace arbor::mat

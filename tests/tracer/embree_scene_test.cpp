@@ -124,7 +124,9 @@ TEST(TreePrototype, RaysFindTheTrunkLobesAndFlare) {
                                                "/species/quaking_aspen.toml");
   gen::GrowOptions o;
   o.quality = 0.1;
-  const gen::Skeleton sk = gen::grow_weber_penn(aspen.weber_penn(), o);
+  gen::WeberPennParams calm = aspen.weber_penn();
+  calm.wind_speed = calm.wind_gust = 0.0;  // a straight trunk: its rings are horizontal
+  const gen::Skeleton sk = gen::grow_weber_penn(calm, o);
   const gen::TreeGeometry g = gen::build_tree_geometry(sk);
   EmbreeDevice device("threads=1");
   const GeometryWorld tree(g, device);

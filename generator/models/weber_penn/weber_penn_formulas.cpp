@@ -147,7 +147,12 @@ Sway sway_angles(double wind_speed, double wind_gust, double stem_length, double
   const double a0 = 4.0 * stem_length * (1.0 - z) / radius_z;  // degrees
   const double a1 = wind_speed / 50.0 * a0;
   const double a2 = wind_gust / 50.0 * a0 + a1 / 2.0;
-  const double rate = stem_radius / stem_length * time / 15.0;  // radians
+  // The paper prints radius_stem / length_stem × time / 15, which sways a 12 m trunk of radius
+  // 0.25 m with a period of 2 hours and a twig in 3 hours: nothing moves in an animation. arbor
+  // reads it as length / radius (an erratum, our choice, docs/species-format.md): periods of about
+  // 2 s for that trunk and 1 s for a twig, thinner and longer stems swaying faster, as real
+  // branches do (their natural frequencies are a few tenths of a hertz to a few hertz).
+  const double rate = stem_length / std::max(stem_radius, 1e-6) * time / 15.0;  // radians
   const double bx = offset_x + rate;
   const double by = offset_y + rate;
   s.x = (a1 * std::sin(bx) + a2 * std::sin(0.7 * bx)) / curve_res;
