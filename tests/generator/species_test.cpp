@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "expect_input_error.h"
@@ -53,6 +54,29 @@ TEST(SpeciesToml, ShippedSpeciesLoad) {
   EXPECT_DOUBLE_EQ(willow.weber_penn().level[1].rotate, -120.0);
   EXPECT_DOUBLE_EQ(willow.weber_penn().prune_power_low, 0.001);
   EXPECT_DOUBLE_EQ(willow.weber_penn().level[3].branches, 300.0);
+}
+
+TEST(SpeciesToml, ShippedWeberPennSpeciesSwayInTheirBreezeExceptTheCactus) {
+  // Issue 14: --time must change the shipped trees. Half a second moves some limb of each by a
+  // centimetre or more; the Saguaro has no wind.
+  for (const char* name : {"quaking_aspen", "black_tupelo", "weeping_willow", "ca_black_oak", "sassafras",
+                           "lombardy_poplar", "black_spruce", "balsam_fir", "queen_palm", "saguaro_cactus"}) {
+    const Species sp = load_species(species_dir() + name + ".toml");
+    GrowOptions now, later;
+    later.time = 0.5;
+    const Skeleton a = grow_tree(sp, now), b = grow_tree(sp, later);
+    ASSERT_EQ(a.points.size(), b.points.size()) << name;
+    double moved = 0.0;
+    for (size_t i = 0; i < a.points.size(); ++i) {
+      moved = std::max(moved, double(glm::length(a.points[i].position - b.points[i].position)));
+    }
+    if (std::string(name) == "saguaro_cactus") {
+      EXPECT_EQ(moved, 0.0);
+    } else {
+      EXPECT_GT(moved, 0.01) << name;
+      EXPECT_LT(moved, 3.0) << name;  // a breeze, not a storm
+    }
+  }
 }
 
 TEST(SpeciesToml, MinimalFileGetsDefaults) {

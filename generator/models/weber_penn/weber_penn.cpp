@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "common/error.h"
@@ -129,8 +130,23 @@ class Grower {
     return wp::leaves_per_branch(p_.leaves, offset, parent_length, o_.quality);
   }
 
-  // §4.6: probe the stem and its clones; shorten until inside, then blend by PruneRatio.
+  // §4.6: probe the stem and its clones; shorten until inside, then blend by PruneRatio. With
+  // wind, the lengths found for the tree at rest are replayed (grow_weber_penn), so that the sway
+  // bends the same branches at every time instead of pruning different ones.
   void prune(StemSpec& s) {
+    if (replay_) {
+      const auto it = replay_->find(s.key);
+      if (it != replay_->end()) {
+        s.length = it->second;
+        size_stem(s);
+        return;
+      }
+    }
+    prune_probe(s);
+    if (record_) (*record_)[s.key] = s.length;
+  }
+
+  void prune_probe(StemSpec& s) {
     const double original = s.length;
     double length = original;
     bool fits = false;
@@ -478,6 +494,11 @@ class Grower {
   double leaf_scale_ = 1.0;
   bool wind_ = false;
   std::vector<wp::SplitDiffusion> split_error_;
+
+ public:
+  // Pruned lengths by stem key: recorded from a growth at rest, replayed in one with wind.
+  std::unordered_map<std::uint64_t, double>* record_ = nullptr;
+  const std::unordered_map<std::uint64_t, double>* replay_ = nullptr;
 };
 
 }  // namespace
@@ -511,7 +532,24 @@ Skeleton grow_weber_penn(const WeberPennParams& params, const GrowOptions& optio
   skeleton.stems.reserve(static_cast<size_t>(std::min(estimate.stems, 1e6)));
   skeleton.leaves.reserve(static_cast<size_t>(std::min(estimate.leaves, 4e6)));
   if (options.progress) options.progress->set_total(static_cast<std::uint64_t>(estimate.stems));
+  // Pruning probes the stems without sway, but a child starts where its swayed parent put it, so
+  // with wind the envelope would cut different branches at different times. Prune the tree at rest
+  // first and give the swaying tree the same lengths (§4.7: "the same basic geometry, perturbed
+  // only by the wind").
+  std::unordered_map<std::uint64_t, double> pruned;
+  const bool sway_pruned = params.prune_ratio > 0.0 && (params.wind_speed != 0.0 || params.wind_gust != 0.0);
+  if (sway_pruned) {
+    WeberPennParams calm = params;
+    calm.wind_speed = calm.wind_gust = 0.0;
+    GrowOptions quiet = options;
+    quiet.progress = nullptr;
+    Skeleton at_rest;
+    Grower rest(calm, quiet, at_rest);
+    rest.record_ = &pruned;
+    rest.grow();
+  }
   Grower grower(params, options, skeleton);
+  if (sway_pruned) grower.replay_ = &pruned;
   grower.grow();
   int max_level = 0;
   for (const Stem& s : skeleton.stems) max_level = std::max(max_level, s.level);
