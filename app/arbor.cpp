@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
   arbor::trace::RenderRequest render;
   CLI::App* render_cmd = app.add_subcommand("render", "Render a scene file to EXR/PNG (path tracer, or TREE-MAKER's shading)");
   render_cmd->add_option("SCENE", render.scene, "scene file (.toml)")->required();
-  render_cmd->add_option("-o,--output", render.exr, "EXR to write (overrides [output] exr)");
+  render_cmd->add_option("-o,--output", render.exr, "EXR to write: replaces the scene's [output] exr and png (a PNG is then written only with --png)");
   render_cmd->add_option("--png", render.png, "PNG to write through the display view");
   render_cmd->add_option("--spp", render.spp, "samples per pixel of the integrator in use "
                          "(overrides render.spp, or render.treemaker_spp for treemaker)")->check(CLI::Range(1, 1 << 20));

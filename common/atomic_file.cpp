@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
+#include <filesystem>
+#include <system_error>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -124,11 +126,18 @@ bool same_file(const std::string& a, const std::string& b) {
   return canonical_name(a) == canonical_name(b);
 }
 
-void check_output_folder(const std::string& path) {
+void prepare_output_folder(const std::string& path) {
   const std::string dir = folder_of(resolve_output_path(path));
   struct stat st;
-  if (::stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
-    throw RuntimeFailure("cannot write " + path + ": its folder " + dir + " does not exist");
+  if (::stat(dir.c_str(), &st) != 0) {
+    // A missing folder is made, with its missing parents (as mkdir -p), before anything renders.
+    std::error_code error;
+    std::filesystem::create_directories(dir, error);
+    if (error) {
+      throw RuntimeFailure("cannot write " + path + ": cannot create its folder " + dir + ": " + error.message());
+    }
+  } else if (!S_ISDIR(st.st_mode)) {
+    throw RuntimeFailure("cannot write " + path + ": " + dir + " is not a folder");
   }
   if (::access(dir.c_str(), W_OK) != 0) {
     throw RuntimeFailure("cannot write " + path + ": its folder " + dir + " is not writable");

@@ -48,8 +48,9 @@ void refuse_overwriting(const std::string& what, const std::string& out,
                         const std::vector<std::string>& inputs,
                         const std::vector<std::string>& outputs = {});
 
-// RuntimeFailure unless the folder `path` would be written in exists and is writable.
-void check_output_folder(const std::string& path);
+// Makes the folder `path` would be written in, with its parents, when it is missing (as mkdir -p);
+// RuntimeFailure when it cannot be made, is not a folder, or is not writable.
+void prepare_output_folder(const std::string& path);
 
 // Installs SIGINT and SIGTERM handlers that remove every temporary an AtomicFile holds, then
 // end the process by the same signal (exit status 128 + signal). A signal inherited as ignored

@@ -24,7 +24,7 @@ void check_image_output(const std::string& path, const CompareRequest& a, const 
     throw InputError({}, std::string(option) + " " + path +
                                     ": no image format for this extension (use .png, .exr, .tif or .jpg)");
   }
-  check_output_folder(path);
+  prepare_output_folder(path);
 }
 
 }  // namespace

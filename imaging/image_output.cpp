@@ -62,7 +62,8 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta,
   spec.attribute("arbor:integrator", meta.integrator);
   spec.attribute("arbor:render_seconds", static_cast<float>(meta.stats.seconds));
   spec.attribute("arbor:nonfinite_samples", std::to_string(meta.stats.nonfinite));
-  spec.attribute("arbor:variance",
+  // What the variance channels hold, only when there are some.
+  if (variance) spec.attribute("arbor:variance",
                  meta.passes < 2 ? "variance of the pixel mean, sample variance / spp within one pass "
                                    "(overstates it for QMC samples)"
                  : meta.independent_passes ? "variance of the pixel mean, estimated across independent passes"

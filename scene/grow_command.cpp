@@ -26,7 +26,7 @@ int grow_command(const GrowRequest& a) {
   }
   if (!a.out.empty()) {
     refuse_overwriting("-o", a.out, {a.species});
-    check_output_folder(a.out);
+    prepare_output_folder(a.out);
   }
   gen::Species species = gen::load_species(a.species);
   for (const std::string& w : species.warnings) std::fprintf(stderr, "%s\n", w.c_str());

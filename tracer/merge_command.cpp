@@ -60,7 +60,7 @@ int merge_command(const MergeRequest& req) {
   refuse_overwriting("the merged EXR's film state", state_path(req.exr), inputs, {req.exr});
   if (!req.png.empty()) refuse_overwriting("the merged PNG", req.png, inputs, {req.exr, state_path(req.exr)});
   for (const std::string& out : {req.exr, req.png}) {
-    if (!out.empty()) check_output_folder(out);
+    if (!out.empty()) prepare_output_folder(out);
   }
 
   std::vector<Part> parts;

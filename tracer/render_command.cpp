@@ -120,7 +120,11 @@ int render_command(const RenderRequest& a) {
   if (a.time) {
     for (TreeDesc& t : scene.trees) t.time = *a.time;
   }
-  if (!a.exr.empty()) scene.output.exr = a.exr;
+  // -o replaces the scene's outputs: its PNG too, which is then written only with --png.
+  if (!a.exr.empty()) {
+    scene.output.exr = a.exr;
+    scene.output.png.clear();
+  }
   if (!a.png.empty()) scene.output.png = a.png;
   if (a.checkpoint_seconds) scene.output.checkpoint_seconds = *a.checkpoint_seconds;
   if (!treemaker &&
@@ -180,11 +184,12 @@ int render_command(const RenderRequest& a) {
   if (!scene.output.png.empty()) {
     refuse_overwriting("the PNG output", scene.output.png, inputs, {exr, exr.empty() ? "" : state_path(exr)});
   }
-  for (const std::string& out : {exr, scene.output.png}) {
-    if (!out.empty()) check_output_folder(out);
-  }
   const ColorPipeline color(a.ocio_config);
   color.check(scene.output);
+  // Last of the checks (nothing is left behind when an earlier one fails): make missing folders.
+  for (const std::string& out : {exr, scene.output.png}) {
+    if (!out.empty()) prepare_output_folder(out);
+  }
   const std::vector<std::string> extra_names = integrator_aov_names(scene);
 
   FilmHeader header;

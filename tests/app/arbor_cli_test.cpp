@@ -13,6 +13,8 @@
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
+#include <filesystem>
+#include <unistd.h>
 #include <gtest/gtest.h>
 
 #include "app/cli.h"
@@ -111,10 +113,12 @@ TEST(ArborCli, AbsurdTreesAreRefusedUnlessForced) {
 }
 
 TEST(ArborCli, FailedWriteExitsOneAndLeavesNoFile) {
-  const CliRun r = run_arbor("grow " + species("quaking_aspen.toml") + " -o /no/such/dir/tree.obj");
+  // A folder that cannot be made: a file stands where it would be.
+  const std::string blocker = write_temp("blocker.txt", "a file, not a folder\n");
+  const CliRun r = run_arbor("grow " + species("quaking_aspen.toml") + " -o " + blocker + "/dir/tree.obj");
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find("cannot write /no/such/dir/tree.obj"), std::string::npos) << r.err;
-  EXPECT_FALSE(exists("/no/such/dir/tree.obj"));
+  EXPECT_NE(r.err.find("cannot write " + blocker + "/dir/tree.obj"), std::string::npos) << r.err;
+  EXPECT_FALSE(exists(blocker + "/dir/tree.obj"));
 }
 
 TEST(ArborCli, CompareMetricsJsonAndImages) {
@@ -341,9 +345,52 @@ TEST(ArborCli, RenderWritesExrAndPngAndNothingOnFailure) {
   EXPECT_TRUE(exists(dir + "tiny.exr"));
   EXPECT_TRUE(exists(dir + "tiny.png"));
   EXPECT_NE(r.err.find("samples/s"), std::string::npos);
-  const CliRun bad = run_arbor("render " + scene + " -o /no/such/dir/tiny.exr");
+  // A folder that cannot be made (a file is in its way): exit 1, nothing written.
+  const CliRun bad = run_arbor("render " + scene + " -o " + dir + "tiny.png/sub/tiny.exr");
   EXPECT_EQ(bad.code, 1);
-  EXPECT_FALSE(exists("/no/such/dir/tiny.exr"));
+  EXPECT_NE(bad.err.find("cannot create its folder"), std::string::npos) << bad.err;
+  EXPECT_FALSE(exists(dir + "tiny.png/sub/tiny.exr"));
+}
+
+// Issue 15: -o replaces the scene's outputs (its PNG is written only with --png); missing output
+// folders are made; arbor:variance is only written with the variance channels it describes.
+TEST(ArborCli, MinusOReplacesTheScenesOutputsAndMissingFoldersAreMade) {
+  const std::string dir = ::testing::TempDir() + "outputs_" + std::to_string(::getpid()) + "/";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string scene = write_temp(
+      "outputs.toml",
+      "[render]\nwidth = 16\nheight = 12\nspp = 2\n[camera]\nposition = [10.0, -14.0, 3.0]\n"
+      "look_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) +
+      "/species/quaking_aspen.toml\"\n[output]\nexr = \"" + dir + "named.exr\"\npng = \"" + dir +
+      "named.png\"\naovs = [\"albedo\"]\n");
+  const CliRun a = run_arbor("render " + scene + " -o " + dir + "fresh/deeper/a.exr");
+  ASSERT_EQ(a.code, 0) << a.err;
+  EXPECT_TRUE(exists(dir + "fresh/deeper/a.exr"));
+  EXPECT_FALSE(exists(dir + "named.png"));  // the scene's PNG is not written behind -o's back
+  EXPECT_FALSE(exists(dir + "named.exr"));
+  const CliRun b = run_arbor("render " + scene + " -o " + dir + "b.exr --png " + dir + "png/b.png");
+  ASSERT_EQ(b.code, 0) << b.err;
+  EXPECT_TRUE(exists(dir + "png/b.png"));
+  EXPECT_FALSE(exists(dir + "named.png"));
+  // No variance channels, no arbor:variance; with them, it says how they were estimated.
+  OIIO::ImageBuf plain(dir + "fresh/deeper/a.exr");
+  ASSERT_TRUE(plain.init_spec(dir + "fresh/deeper/a.exr", 0, 0));
+  EXPECT_EQ(plain.spec().find_attribute("arbor:variance"), nullptr);
+  std::string text = slurp(scene);
+  text.replace(text.find("aovs = [\"albedo\"]"), 17, "aovs = [\"variance\"]");
+  const std::string with_variance = write_temp("outputs_variance.toml", text);
+  const CliRun v = run_arbor("render " + with_variance + " -o " + dir + "v.exr");
+  ASSERT_EQ(v.code, 0) << v.err;
+  OIIO::ImageBuf with(dir + "v.exr");
+  ASSERT_TRUE(with.init_spec(dir + "v.exr", 0, 0));
+  EXPECT_NE(with.spec().find_attribute("arbor:variance"), nullptr);
+  // Without -o the scene's own outputs are written, folders made.
+  const CliRun c = run_arbor("render " + scene);
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_TRUE(exists(dir + "named.exr"));
+  EXPECT_TRUE(exists(dir + "named.png"));
+  std::filesystem::remove_all(dir);
 }
 
 // $OCIO names the config of the whole run (read once, at start): an unreadable one is an input

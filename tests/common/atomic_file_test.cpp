@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include <filesystem>
 #include <gtest/gtest.h>
 
 #include "common/error.h"
@@ -168,10 +169,19 @@ TEST(AtomicFile, SameFileSeesThroughSpellingsAndLinks) {
   EXPECT_FALSE(same_file("", dir + "/a.exr"));
 }
 
-TEST(AtomicFile, OutputFolderMustExist) {
-  EXPECT_THROW(check_output_folder("/no/such/folder/out.png"), RuntimeFailure);
-  EXPECT_NO_THROW(check_output_folder(::testing::TempDir() + "out.png"));
-  EXPECT_NO_THROW(check_output_folder("relative.png"));
+TEST(AtomicFile, MissingOutputFoldersAreMadeAndFilesInTheWayAreErrors) {
+  // Issue 15: `render -o out/x.exr` in a fresh clone, where out/ does not exist yet.
+  const std::string dir = ::testing::TempDir() + "arbor_folders_" + std::to_string(::getpid());
+  std::filesystem::remove_all(dir);
+  EXPECT_NO_THROW(prepare_output_folder(dir + "/a/b/out.png"));
+  EXPECT_TRUE(std::filesystem::is_directory(dir + "/a/b"));
+  // A file where a folder should be: no folder can be made there.
+  { std::ofstream(dir + "/file") << "x"; }
+  EXPECT_THROW(prepare_output_folder(dir + "/file/out.png"), RuntimeFailure);
+  EXPECT_THROW(prepare_output_folder(dir + "/file/deeper/out.png"), RuntimeFailure);
+  EXPECT_NO_THROW(prepare_output_folder(::testing::TempDir() + "out.png"));
+  EXPECT_NO_THROW(prepare_output_folder("relative.png"));
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
