@@ -69,6 +69,17 @@ TreeDesc aspen() {
   return t;
 }
 
+// An aspen whose surfaces scatter everything: bark albedo 1 without relief (shading normals off
+// the geometry lose energy by design), leaves with R + T = 1.
+TreeDesc white_aspen() {
+  TreeDesc t = aspen();
+  t.bark.albedo = Rgb{1.0, 1.0, 1.0};
+  t.bark.bump_height = 0.0;
+  t.leaf.reflectance = t.leaf.back_reflectance = Rgb{0.5, 0.6, 0.7};
+  t.leaf.transmittance = Rgb{0.5, 0.4, 0.3};
+  return t;
+}
+
 Image render(const SceneDesc& scene, RenderStats& stats) {
   const EmbreeDevice device(scene.render.threads > 0 ? "threads=" + std::to_string(scene.render.threads) : "");
   const TestWorld test_world(scene, device);
@@ -85,12 +96,7 @@ TEST(Render, WhiteFurnaceOnARealTreeIsOneEverywhere) {
   SceneDesc s = small_scene(32, 24, 64);
   s.render.pass_spp = 4;  // 16 passes: each pixel's variance estimate has 15 degrees of freedom
   white_furnace(s);
-  TreeDesc t = aspen();
-  t.bark.albedo = Rgb{1.0, 1.0, 1.0};
-  t.bark.bump_height = 0.0;  // shading normals off the geometry lose energy by design
-  t.leaf.reflectance = Rgb{0.5, 0.6, 0.7};
-  t.leaf.back_reflectance = Rgb{0.5, 0.6, 0.7};
-  t.leaf.transmittance = Rgb{0.5, 0.4, 0.3};
+  TreeDesc t = white_aspen();
   t.leaf.cuticle_ior = 1.0;  // the bare diffuse leaf (the next test adds the cuticle)
   s.trees.push_back(t);
   RenderStats stats;
@@ -120,11 +126,7 @@ TEST(Render, WhiteFurnaceWithGlossyLeavesStaysOne) {
   SceneDesc s = small_scene(32, 24, 256);
   s.render.pass_spp = 16;  // 16 passes
   white_furnace(s);
-  TreeDesc t = aspen();
-  t.bark.albedo = Rgb{1.0, 1.0, 1.0};
-  t.bark.bump_height = 0.0;
-  t.leaf.reflectance = t.leaf.back_reflectance = Rgb{0.5, 0.6, 0.7};
-  t.leaf.transmittance = Rgb{0.5, 0.4, 0.3};
+  TreeDesc t = white_aspen();
   t.leaf.cuticle_ior = 1.45;
   t.leaf.cuticle_roughness = 0.3;
   s.trees.push_back(t);
