@@ -59,7 +59,7 @@ CLI::Validator finite_in(double lo, double hi) {
 int main(int argc, char** argv) {
   CLI::App app{"arbor " ARBOR_VERSION_STRING
                ": grows trees from procedural models and renders them (physically based)"};
-  app.set_version_flag("--version", std::string("arbor ") + ARBOR_VERSION_STRING);
+  app.set_version_flag("--version", std::string("arbor ") + ARBOR_VERSION_STRING + " (commit " + ARBOR_COMMIT + ")");
   app.require_subcommand(1);
 
   arbor::trace::GrowRequest grow;

@@ -56,6 +56,7 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta,
   spec.attribute("oiio:ColorSpace", o.colorspace);
   spec.attribute("arbor:colorspace", o.colorspace);
   spec.attribute("arbor:version", ARBOR_VERSION_STRING);
+  spec.attribute("arbor:commit", ARBOR_COMMIT);
   spec.attribute("arbor:scene", meta.scene);
   spec.attribute("arbor:seed", std::to_string(meta.seed));
   spec.attribute("arbor:spp", meta.spp);
