@@ -149,6 +149,9 @@ CompareImage read_compare_image(const std::string& path) {
   im.passes = spec.get_int_attribute("arbor:passes", 0);
   im.sequence_passes = im.passes >= 2 && spec.get_int_attribute("arbor:independent_passes", 1) == 0;
   im.spp = spec.get_int_attribute("arbor:spp", 0);
+  // Integer pixels are display-encoded (sRGB PNGs, JPEGs): not the same quantity as an EXR's
+  // scene-linear values.
+  im.display_encoded = !spec.channelformat(r).is_floating_point();
   const int vr = image.index("variance.R"), vg = image.index("variance.G"), vb = image.index("variance.B");
   const bool has_var = vr >= 0 && vg >= 0 && vb >= 0;
   const std::size_t n = static_cast<std::size_t>(spec.width) * spec.height;

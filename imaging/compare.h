@@ -20,6 +20,7 @@ struct CompareImage {
   int passes = 0;               // arbor:passes, the passes the variance was estimated over; 0: unknown
   bool sequence_passes = false;  // the passes took points of one sequence: the variance is an upper bound
   int spp = 0;                  // arbor:spp, samples a pixel; 0: unknown
+  bool display_encoded = false;  // integer pixels (a PNG, JPEG, 8/16-bit TIFF): display-referred
 };
 
 // InputError when the file cannot be read, lacks R/G/B, or holds a NaN or infinity.

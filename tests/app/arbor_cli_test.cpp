@@ -356,6 +356,24 @@ TEST(ArborCli, RenderWritesExrAndPngAndNothingOnFailure) {
   EXPECT_FALSE(exists(dir + "tiny.png/sub/tiny.exr"));
 }
 
+// Issue 15: a display-encoded PNG and a scene-linear EXR are refused together; like with like works.
+TEST(ArborCli, CompareRefusesAPngAgainstAnExr) {
+  const std::string dir = ::testing::TempDir();
+  const std::string scene = write_temp(
+      "cmp_kinds.toml",
+      "[render]\nwidth = 12\nheight = 8\nspp = 2\n[camera]\nposition = [10.0, -14.0, 3.0]\n"
+      "look_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) +
+      "/species/quaking_aspen.toml\"\n");
+  ASSERT_EQ(run_arbor("render " + scene + " -o " + dir + "kinds.exr --png " + dir + "kinds.png").code, 0);
+  const CliRun mixed = run_arbor("compare " + dir + "kinds.png " + dir + "kinds.exr");
+  EXPECT_EQ(mixed.code, 2);
+  EXPECT_NE(mixed.err.find("display-encoded"), std::string::npos) << mixed.err;
+  EXPECT_NE(mixed.err.find(dir + "kinds.png"), std::string::npos) << mixed.err;
+  EXPECT_EQ(run_arbor("compare " + dir + "kinds.exr " + dir + "kinds.png").code, 2);
+  EXPECT_EQ(run_arbor("compare " + dir + "kinds.png " + dir + "kinds.png").code, 0);
+  EXPECT_EQ(run_arbor("compare " + dir + "kinds.exr " + dir + "kinds.exr").code, 0);
+}
+
 // Issue 15: -o replaces the scene's outputs (its PNG is written only with --png); missing output
 // folders are made; arbor:variance is only written with the variance channels it describes.
 TEST(ArborCli, MinusOReplacesTheScenesOutputsAndMissingFoldersAreMade) {
