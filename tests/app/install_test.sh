@@ -8,7 +8,7 @@ build="$1" work="$2"
 rm -rf "$work" && mkdir -p "$work/prefix" "$work/elsewhere"
 cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
 for f in bin/arbor share/arbor/ocio/config.ocio share/arbor/species/quaking_aspen.toml \
-         share/arbor/scenes/default.toml; do
+         share/arbor/scenes/default.toml share/bash-completion/completions/arbor; do
   [ -e "$work/prefix/$f" ] || { echo "install_test.sh: $f was not installed" >&2; exit 1; }
 done
 cd "$work/elsewhere"
@@ -20,4 +20,16 @@ if strings "$work/prefix/bin/arbor" | grep -q "$(dirname "$build")/imaging/ocio"
   echo "install_test.sh: the binary names the source tree's OCIO config" >&2
   exit 1
 fi
-echo "install_test.sh: the installed arbor rendered from $work/elsewhere"
+# The bash completion: subcommands, options from the subcommand's own --help, files by kind.
+complete_words() {  # prints what completing the last word of "$@" offers
+  bash -c 'source "$1"; shift; COMP_WORDS=("$@"); COMP_CWORD=$(( $# - 1 )); _arbor; printf "%s\n" "${COMPREPLY[@]}"' \
+    _ "$work/prefix/share/bash-completion/completions/arbor" "$@"
+}
+touch tree.toml notes.txt
+complete_words "$work/prefix/bin/arbor" ren | grep -qx render || { echo "install_test.sh: no subcommand completion" >&2; exit 1; }
+complete_words "$work/prefix/bin/arbor" render --sp | grep -qx -- --spp || { echo "install_test.sh: no option completion" >&2; exit 1; }
+complete_words "$work/prefix/bin/arbor" render t | grep -qx tree.toml || { echo "install_test.sh: no scene file completion" >&2; exit 1; }
+if complete_words "$work/prefix/bin/arbor" render n | grep -q notes.txt; then
+  echo "install_test.sh: render completes a file that is not a scene" >&2; exit 1
+fi
+echo "install_test.sh: the installed arbor rendered from $work/elsewhere, and its completion works"
