@@ -107,6 +107,9 @@ int main(int argc, char** argv) {
   render_cmd->add_flag("--resume", render.resume,
                        "continue the render from the film state beside its EXR (OUT.exr.state), to the "
                        "image an uninterrupted render gives");
+  render_cmd->add_flag("--transparent", render.transparent,
+                       "camera rays that escape to the sky add nothing and leave alpha 0 (premultiplied "
+                       "RGBA, for compositing; sets output.transparent_sky)");
   render_cmd->add_option("--time-limit", render.time_limit,
                          "seconds: stop after the last pass that fits (at least one pass is rendered; 0: no limit)")
       ->check(finite_in(0.0, 1e9));

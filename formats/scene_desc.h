@@ -144,10 +144,20 @@ struct OutputDesc {
   std::string colorspace = "ACEScg";
   std::string display = "sRGB";
   std::string view = "ACES 1.0 SDR-video";
-  std::vector<std::string> aovs;  // of "albedo", "normal", "depth", "variance", "samples", "treemaker"
+  // of "albedo", "normal", "depth", "variance", "samples", "object_id", "material_id",
+  // "crypto_object", "crypto_material", "treemaker"
+  std::vector<std::string> aovs;
+  bool transparent_sky = false;  // camera rays that escape add nothing: alpha 0, premultiplied
   double checkpoint_seconds = 0.0;  // rewrite the outputs this often as passes finish; 0: never
   SourceLocation treemaker_aov_where;  // where "treemaker" is listed (only that integrator has it)
   std::string pixel_type = "half";
+  // Whether the AOVs need the compositing ids (object_id, material_id, crypto_*).
+  bool wants_ids() const {
+    for (const std::string& a : aovs) {
+      if (a == "object_id" || a == "material_id" || a == "crypto_object" || a == "crypto_material") return true;
+    }
+    return false;
+  }
   // The keys' positions, for errors found later (by the OCIO config); the file's when unset.
   SourceLocation colorspace_where, display_where, view_where;
 };

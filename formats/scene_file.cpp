@@ -318,11 +318,13 @@ class SceneReader : TomlReader {
       else if (k == "view") { o.view = text(n, "output.view"); o.view_where = at(n.source()); }
       else if (k == "checkpoint_seconds") o.checkpoint_seconds = number(n, "output.checkpoint_seconds", 0.0, 1e7);
       else if (k == "pixel_type") o.pixel_type = choice(n, "output.pixel_type", {"half", "float"});
+      else if (k == "transparent_sky") o.transparent_sky = boolean(n, "output.transparent_sky");
       else if (k == "aovs") {
         const toml::array* a = n.as_array();
         if (!a) fail(n, "output.aovs must be an array of strings");
         for (const toml::node& e : *a) {
-          o.aovs.push_back(choice(e, "output.aovs", {"albedo", "normal", "depth", "variance", "samples", "treemaker"}));
+          o.aovs.push_back(choice(e, "output.aovs", {"albedo", "normal", "depth", "variance", "samples", "object_id",
+                                                     "material_id", "crypto_object", "crypto_material", "treemaker"}));
           if (o.aovs.back() == "treemaker") o.treemaker_aov_where = at(e.source());
         }
       } else unknown(key, "output");

@@ -5,6 +5,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "formats/scene_desc.h"
 
@@ -28,9 +29,25 @@ class ColorPipeline {
   void check(const OutputDesc& output) const;
   // scene_linear → `colorspace`, per pixel.
   ColorTransform to_output(const std::string& colorspace) const;
-  // CIE XYZ (D65) → scene_linear, for the sky models; the config must define
-  // "Linear CIE-XYZ-D65" (InputError otherwise).
+  // InputError unless `display` is a display of the config and `view` one of its views, listing
+  // what the config has; `display_where`/`view_where` locate the names (a scene key, or none).
+  void check_display_view(const std::string& display, const std::string& view,
+                          const SourceLocation& display_where, const SourceLocation& view_where) const;
+  // CIE XYZ (D65) → scene_linear, for the sky models. Found, in this order: a scene-referred
+  // colour space named or aliased "Linear CIE-XYZ-D65" (arbor's), the cie_xyz_d65_interchange
+  // role, "XYZ" (Blender's role and space), "Linear CIE-XYZ D65" or "lin_ciexyzd65_scene"; the
+  // aces_interchange role, reached from XYZ by the ACES primaries (Bradford-adapted); the
+  // scene_linear space's chromaticities when it is a space arbor knows (Rec.709, ACEScg,
+  // ACES2065-1, Rec.2020, Display P3 linear). Each way is checked (linear, D65 white to neutral);
+  // InputError naming every way tried and why it failed when none works.
   ColorTransform xyz_to_scene_linear() const;
+  // Which way xyz_to_scene_linear() went, for messages and tests.
+  std::string xyz_route() const;
+  // The colour space's name and aliases (just `colorspace` when the config lacks it).
+  std::vector<std::string> names_of(const std::string& colorspace) const;
+  // The space's CIE xy chromaticities (red, green, blue, white: 8 numbers) measured through the
+  // config (D65-adapted primaries and a D65 white); empty when the space is not linear in XYZ.
+  std::vector<float> chromaticities(const std::string& colorspace) const;
 
  private:
   struct Impl;

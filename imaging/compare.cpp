@@ -1,6 +1,8 @@
 // Image comparison for `arbor compare` and the render tests.
 #include "imaging/compare.h"
 
+#include "imaging/color.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -306,6 +308,8 @@ void write_compare_pictures(const CompareImage& a, const CompareImage& b,
   const OIIO::ImageBuf heat = heatmap_buffer(a, b);
   OIIO::ImageBuf row;
   if (!pictures.side_by_side.empty()) {
+    // A display or view the config lacks is named with what it offers, before any work.
+    ColorPipeline(pictures.ocio_config).check_display_view(pictures.display, pictures.view, {}, {});
     OIIO::ColorConfig config(pictures.ocio_config);
     const std::vector<std::string> names = config.getColorSpaceNames();
     auto shown = [&](const CompareImage& im) {

@@ -20,6 +20,14 @@ struct Image {
   std::vector<glm::vec3> normal;    // first hit, world space
   std::vector<float> depth;         // distance to the first hit along the camera ray
   std::vector<float> samples;       // finite samples the pixel took
+  std::vector<float> alpha;         // 1; with a transparent sky, the share of camera rays that hit something
+  // Compositing ids (1-based into object_names / material_names) with the share of the pixel's
+  // samples that saw each, id_slots a pixel, most covering first (ties: lower id), 0 when empty;
+  // id_slots is 0 when the render kept no ids.
+  std::size_t id_slots = 0;
+  std::vector<std::uint32_t> object_ids, material_ids;
+  std::vector<float> object_cover, material_cover;
+  std::vector<std::string> object_names, material_names;
   // Integrator-specific AOVs (the treemaker integrator's), pixel means: extra_names.size()
   // floats per pixel; colour triples are in the output colour space, like the beauty.
   std::vector<std::string> extra_names;

@@ -1,7 +1,9 @@
 // The image writers: EXR with AOVs and metadata, PNG through an OCIO display view.
 #include "imaging/image_output.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 
 #include <OpenImageIO/color.h>
@@ -10,115 +12,270 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include <Imath/half.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfChromaticitiesAttribute.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIO.h>
+#include <OpenEXR/ImfIntAttribute.h>
+#include <OpenEXR/ImfFloatAttribute.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfVecAttribute.h>
+
 #include "arbor/version.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/json.h"
+#include "imaging/cryptomatte.h"
 #include "imaging/image_file.h"
 
 namespace arbor::trace {
 
-void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta,
-               const std::string& path) {
-  std::vector<std::string> names{"R", "G", "B"};
-  std::vector<OIIO::TypeDesc> formats(3, o.pixel_type == "float" ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF);
-  auto wants = [&](const char* aov) {
-    for (const std::string& a : o.aovs) {
-      if (a == aov) return true;
+namespace {
+
+// An OpenEXR output stream into memory: the file is encoded whole, then written by AtomicFile.
+class MemoryStream final : public Imf::OStream {
+ public:
+  MemoryStream() : Imf::OStream("memory") {}
+  void write(const char c[], int n) override {
+    if (pos_ + static_cast<std::uint64_t>(n) > bytes_.size()) bytes_.resize(pos_ + static_cast<std::uint64_t>(n));
+    std::memcpy(bytes_.data() + pos_, c, static_cast<std::size_t>(n));
+    pos_ += static_cast<std::uint64_t>(n);
+  }
+  std::uint64_t tellp() override { return pos_; }
+  void seekp(std::uint64_t pos) override { pos_ = pos; }
+  const std::vector<char>& bytes() const { return bytes_; }
+
+ private:
+  std::vector<char> bytes_;
+  std::uint64_t pos_ = 0;
+};
+
+// One channel of the file: its name, type and a plane of the image's pixels.
+struct Plane {
+  std::string name;
+  Imf::PixelType type;
+  std::vector<float> values;
+};
+
+struct KnownSpace {
+  const char* names[6];
+  const char* interop_id;  // the Color Interop Forum's id (the colorInteropID attribute)
+  float chromaticities[8];
+};
+
+// The spaces whose chromaticities are stated rather than measured through the config, by the
+// names configs give them (arbor's, the ACES configs', Blender's).
+const KnownSpace kKnownSpaces[] = {
+    {{"ACEScg", "ACES - ACEScg", "lin_ap1", "lin_ap1_scene", "Linear ACEScg", nullptr},
+     "lin_ap1_scene", {0.713f, 0.293f, 0.165f, 0.830f, 0.128f, 0.044f, 0.32168f, 0.33767f}},
+    {{"ACES2065-1", "ACES - ACES2065-1", "lin_ap0", "lin_ap0_scene", "Linear ACES", nullptr},
+     "lin_ap0_scene", {0.7347f, 0.2653f, 0.0f, 1.0f, 0.0001f, -0.077f, 0.32168f, 0.33767f}},
+    {{"Linear Rec.709 (sRGB)", "lin_rec709", "Linear Rec.709", "lin_rec709_scene", "Linear", "Utility - Linear - sRGB"},
+     "lin_rec709_scene", {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f}},
+};
+
+const KnownSpace* known_space(const std::vector<std::string>& names) {
+  for (const KnownSpace& k : kKnownSpaces) {
+    for (const char* n : k.names) {
+      if (!n) break;
+      for (const std::string& name : names) {
+        if (name == n) return &k;
+      }
     }
-    return false;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta, const std::string& path) {
+  const std::size_t n = static_cast<std::size_t>(img.width) * img.height;
+  const Imf::PixelType colour = o.pixel_type == "float" ? Imf::FLOAT : Imf::HALF;
+  auto wants = [&](const char* aov) { return std::find(o.aovs.begin(), o.aovs.end(), aov) != o.aovs.end(); };
+  std::vector<Plane> planes;
+  auto plane = [&](const std::string& name, Imf::PixelType type) -> std::vector<float>& {
+    planes.push_back({name, type, std::vector<float>(n, 0.0f)});
+    return planes.back().values;
   };
-  const bool albedo = wants("albedo"), normal = wants("normal"), depth = wants("depth"),
-             variance = wants("variance");
-  if (albedo) for (const char* c : {"albedo.R", "albedo.G", "albedo.B"}) { names.emplace_back(c); formats.push_back(formats[0]); }
-  if (normal) for (const char* c : {"N.X", "N.Y", "N.Z"}) { names.emplace_back(c); formats.push_back(formats[0]); }
+  auto triple = [&](const char* a, const char* b, const char* c, Imf::PixelType type,
+                    const std::vector<glm::vec3>& v) {
+    const char* names[3] = {a, b, c};
+    for (int k = 0; k < 3; ++k) {
+      std::vector<float>& out = plane(names[k], type);
+      for (std::size_t p = 0; p < n; ++p) out[p] = v[p][k];
+    }
+  };
+  triple("R", "G", "B", colour, img.beauty);
+  // Alpha: the share of camera rays that hit something (RGB is premultiplied by it).
+  plane("A", colour) = img.alpha.size() == n ? img.alpha : std::vector<float>(n, 1.0f);
+  if (wants("albedo")) triple("albedo.R", "albedo.G", "albedo.B", colour, img.albedo);
+  if (wants("normal")) triple("N.X", "N.Y", "N.Z", colour, img.normal);
   // Depth and variance keep full precision: reference tests divide by the variance.
-  if (depth) { names.emplace_back("Z"); formats.push_back(OIIO::TypeDesc::FLOAT); }
-  if (variance) for (const char* c : {"variance.R", "variance.G", "variance.B"}) { names.emplace_back(c); formats.push_back(OIIO::TypeDesc::FLOAT); }
-  const bool samples = wants("samples");
-  if (samples) { names.emplace_back("samples"); formats.push_back(OIIO::TypeDesc::FLOAT); }
+  if (wants("depth")) plane("Z", Imf::FLOAT) = img.depth;
+  const bool variance = wants("variance");
+  if (variance) triple("variance.R", "variance.G", "variance.B", Imf::FLOAT, img.variance);
+  if (wants("samples")) plane("samples", Imf::FLOAT) = img.samples;
+  const bool ids = wants("object_id") || wants("material_id") || wants("crypto_object") || wants("crypto_material");
+  if (ids && img.id_slots == 0) throw std::logic_error("write_exr: id AOVs asked of an image without ids");
+  const std::size_t slots = img.id_slots;
+  // object_id / material_id: the id that covers most of the pixel (0: none), as a float (exact
+  // to 2^24), for a quick mask; Cryptomatte for anti-aliased mattes.
+  auto top_id = [&](const char* name, const std::vector<std::uint32_t>& v) {
+    std::vector<float>& out = plane(name, Imf::FLOAT);
+    for (std::size_t p = 0; p < n; ++p) out[p] = static_cast<float>(v[p * slots]);
+  };
+  if (wants("object_id")) top_id("object_id", img.object_ids);
+  if (wants("material_id")) top_id("material_id", img.material_ids);
+  // Cryptomatte: ranks 0..5 in three RGBA channel sets (id, coverage, id, coverage).
+  constexpr std::size_t kRanks = 6;
+  auto crypto = [&](const std::string& layer, const std::vector<std::uint32_t>& id,
+                    const std::vector<float>& cover, const std::vector<std::string>& names) {
+    std::vector<float> hashed(names.size() + 1, 0.0f);
+    for (std::size_t i = 0; i < names.size(); ++i) hashed[i + 1] = cryptomatte_id(names[i]);
+    for (std::size_t set = 0; set < kRanks / 2; ++set) {
+      char suffix[4];
+      std::snprintf(suffix, sizeof suffix, "%02zu", set);
+      const char* rgba[4] = {".R", ".G", ".B", ".A"};
+      for (int c = 0; c < 4; ++c) {
+        std::vector<float>& out = plane(layer + suffix + rgba[c], Imf::FLOAT);
+        const std::size_t rank = 2 * set + static_cast<std::size_t>(c / 2);
+        if (rank >= slots) continue;
+        for (std::size_t p = 0; p < n; ++p) {
+          const std::uint32_t k = id[p * slots + rank];
+          if (k == 0) continue;
+          out[p] = c % 2 == 0 ? (k < hashed.size() ? hashed[k] : 0.0f) : cover[p * slots + rank];
+        }
+      }
+    }
+  };
+  if (wants("crypto_object")) crypto("crypto_object", img.object_ids, img.object_cover, img.object_names);
+  if (wants("crypto_material")) crypto("crypto_material", img.material_ids, img.material_cover, img.material_names);
   const bool treemaker = wants("treemaker");
   if (treemaker && img.extra_names.empty()) {
     // render_command refuses this scene (at its key) before rendering; reaching here is a bug.
     throw std::logic_error("write_exr: \"treemaker\" AOVs asked of an image without them");
   }
   // The factors and contributions stay float: compare --fit-treemaker solves with them.
-  if (treemaker) for (const std::string& c : img.extra_names) { names.push_back(c); formats.push_back(OIIO::TypeDesc::FLOAT); }
+  if (treemaker) {
+    const std::size_t e = img.extra_names.size();
+    for (std::size_t i = 0; i < e; ++i) {
+      std::vector<float>& out = plane(img.extra_names[i], Imf::FLOAT);
+      for (std::size_t p = 0; p < n; ++p) out[p] = img.extra[p * e + i];
+    }
+  }
 
-  const int nch = static_cast<int>(names.size());
-  OIIO::ImageSpec spec(img.width, img.height, nch, formats[0]);
-  spec.channelnames = names;
-  spec.channelformats = formats;
-  spec.x = img.x0;
-  spec.y = img.y0;
-  spec.full_x = spec.full_y = 0;
-  spec.full_width = img.full_width > 0 ? img.full_width : img.width;
-  spec.full_height = img.full_height > 0 ? img.full_height : img.height;
-  spec.attribute("oiio:ColorSpace", o.colorspace);
-  spec.attribute("arbor:colorspace", o.colorspace);
-  spec.attribute("arbor:version", ARBOR_VERSION_STRING);
-  spec.attribute("arbor:commit", ARBOR_COMMIT);
-  spec.attribute("arbor:scene", meta.scene);
-  spec.attribute("arbor:seed", std::to_string(meta.seed));
-  spec.attribute("arbor:spp", meta.spp);
-  spec.attribute("arbor:integrator", meta.integrator);
-  spec.attribute("arbor:render_seconds", static_cast<float>(meta.stats.seconds));
-  spec.attribute("arbor:nonfinite_samples", std::to_string(meta.stats.nonfinite));
+  const int full_w = img.full_width > 0 ? img.full_width : img.width;
+  const int full_h = img.full_height > 0 ? img.full_height : img.height;
+  const Imath::Box2i display(Imath::V2i(0, 0), Imath::V2i(full_w - 1, full_h - 1));
+  const Imath::Box2i data(Imath::V2i(img.x0, img.y0), Imath::V2i(img.x0 + img.width - 1, img.y0 + img.height - 1));
+  const std::vector<std::string> space_names = meta.colorspace_names.empty()
+                                                   ? std::vector<std::string>{o.colorspace}
+                                                   : meta.colorspace_names;
+  const KnownSpace* known = known_space(space_names);
+  // An ACES container (SMPTE ST 2065-4) only when the file is one: ACES2065-1, half RGBA, no AOVs.
+  const bool aces_container = known == &kKnownSpaces[1] && colour == Imf::HALF && planes.size() == 4;
+  Imf::Header header(display, data, 1.0f, Imath::V2f(0.0f, 0.0f), 1.0f, Imf::INCREASING_Y,
+                     aces_container ? Imf::PIZ_COMPRESSION : Imf::ZIP_COMPRESSION);
+  for (const Plane& pl : planes) header.channels().insert(pl.name, Imf::Channel(pl.type));
+  auto text = [&](const char* key, const std::string& value) { header.insert(key, Imf::StringAttribute(value)); };
+  auto integer = [&](const char* key, int value) { header.insert(key, Imf::IntAttribute(value)); };
+  // The colour space, stated as readers look for it: OIIO (and what is built on it) takes
+  // "oiio:ColorSpace" from the header; colorInteropID is the Color Interop Forum's id; the
+  // chromaticities are the EXR standard's own statement.
+  text("oiio:ColorSpace", o.colorspace);
+  text("arbor:colorspace", o.colorspace);
+  if (known) text("colorInteropID", known->interop_id);
+  const float* c = known ? known->chromaticities : meta.chromaticities.size() == 8 ? meta.chromaticities.data() : nullptr;
+  if (c) {
+    header.insert("chromaticities", Imf::ChromaticitiesAttribute(Imf::Chromaticities(
+                                        Imath::V2f(c[0], c[1]), Imath::V2f(c[2], c[3]),
+                                        Imath::V2f(c[4], c[5]), Imath::V2f(c[6], c[7]))));
+  }
+  if (aces_container) {
+    integer("acesImageContainerFlag", 1);
+    header.insert("adoptedNeutral", Imf::V2fAttribute(Imath::V2f(c[6], c[7])));
+  }
+  text("arbor:version", ARBOR_VERSION_STRING);
+  text("arbor:commit", ARBOR_COMMIT);
+  text("arbor:scene", meta.scene);
+  text("arbor:seed", std::to_string(meta.seed));
+  integer("arbor:spp", meta.spp);
+  text("arbor:integrator", meta.integrator);
+  header.insert("arbor:render_seconds", Imf::FloatAttribute(static_cast<float>(meta.stats.seconds)));
+  text("arbor:nonfinite_samples", std::to_string(meta.stats.nonfinite));
   // What the variance channels hold, only when there are some.
-  if (variance) spec.attribute("arbor:variance",
-                 meta.passes < 2 ? "variance of the pixel mean, sample variance / spp within one pass "
-                                   "(overstates it for QMC samples)"
-                 : meta.independent_passes ? "variance of the pixel mean, estimated across independent passes"
-                                           : "variance of the pixel mean, estimated across passes of one "
-                                             "sequence (an upper bound: the passes together are better "
-                                             "stratified than independent ones)");
-  spec.attribute("arbor:independent_passes", meta.independent_passes ? 1 : 0);
-  spec.attribute("arbor:passes", meta.passes);
-  spec.attribute("arbor:pass_spp", meta.pass_spp);
-  spec.attribute("arbor:passes_planned", meta.passes_planned);
-  spec.attribute("arbor:pass_range", std::to_string(meta.pass_begin) + ":" + std::to_string(meta.pass_end));
-  spec.attribute("arbor:mean_spp", static_cast<float>(meta.mean_spp));
-  spec.attribute("arbor:fingerprint", meta.fingerprint);
+  if (variance) text("arbor:variance",
+                     meta.passes < 2 ? "variance of the pixel mean, sample variance / spp within one pass "
+                                       "(overstates it for QMC samples)"
+                     : meta.independent_passes ? "variance of the pixel mean, estimated across independent passes"
+                                               : "variance of the pixel mean, estimated across passes of one "
+                                                 "sequence (an upper bound: the passes together are better "
+                                                 "stratified than independent ones)");
+  integer("arbor:independent_passes", meta.independent_passes ? 1 : 0);
+  integer("arbor:passes", meta.passes);
+  integer("arbor:pass_spp", meta.pass_spp);
+  integer("arbor:passes_planned", meta.passes_planned);
+  text("arbor:pass_range", std::to_string(meta.pass_begin) + ":" + std::to_string(meta.pass_end));
+  header.insert("arbor:mean_spp", Imf::FloatAttribute(static_cast<float>(meta.mean_spp)));
+  text("arbor:fingerprint", meta.fingerprint);
+  integer("arbor:transparent_sky", o.transparent_sky ? 1 : 0);
   if (meta.noise_threshold > 0) {
-    spec.attribute("arbor:noise_threshold", static_cast<float>(meta.noise_threshold));
-    spec.attribute("arbor:min_spp", meta.min_spp);
+    header.insert("arbor:noise_threshold", Imf::FloatAttribute(static_cast<float>(meta.noise_threshold)));
+    integer("arbor:min_spp", meta.min_spp);
   }
-  if (img.width != spec.full_width || img.height != spec.full_height) {
-    spec.attribute("arbor:crop", std::to_string(img.x0) + "," + std::to_string(img.y0) + "," +
-                                     std::to_string(img.x0 + img.width) + "," + std::to_string(img.y0 + img.height));
+  if (img.width != full_w || img.height != full_h) {
+    text("arbor:crop", std::to_string(img.x0) + "," + std::to_string(img.y0) + "," +
+                           std::to_string(img.x0 + img.width) + "," + std::to_string(img.y0 + img.height));
   }
-  if (meta.incomplete) spec.attribute("arbor:incomplete", 1);
-  if (!meta.stopped.empty()) spec.attribute("arbor:stopped", meta.stopped);
-  if (!meta.treemaker_weights.empty()) spec.attribute("arbor:treemaker_weights", meta.treemaker_weights);
-  spec.attribute("compression", "zip");
-  // The EXR standard's own statement of the colour space, for the spaces arbor's config defines.
-  const struct { const char* name; float c[8]; } primaries[] = {
-      {"ACEScg", {0.713f, 0.293f, 0.165f, 0.830f, 0.128f, 0.044f, 0.32168f, 0.33767f}},
-      {"ACES2065-1", {0.7347f, 0.2653f, 0.0f, 1.0f, 0.0001f, -0.077f, 0.32168f, 0.33767f}},
-      {"Linear Rec.709 (sRGB)", {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f}},
+  if (meta.incomplete) integer("arbor:incomplete", 1);
+  if (!meta.stopped.empty()) text("arbor:stopped", meta.stopped);
+  if (!meta.treemaker_weights.empty()) text("arbor:treemaker_weights", meta.treemaker_weights);
+  // The numeric ids' names: {"name": id, …}.
+  auto id_names = [&](const char* key, const std::vector<std::string>& names) {
+    JsonObject ids_json;
+    for (std::size_t i = 0; i < names.size(); ++i) ids_json.integer(names[i], static_cast<long long>(i + 1));
+    text(key, ids_json.str());
   };
-  for (const auto& p : primaries) {
-    if (o.colorspace == p.name) {
-      spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), p.c);
-    }
-  }
+  if (wants("object_id")) id_names("arbor:object_ids", img.object_names);
+  if (wants("material_id")) id_names("arbor:material_ids", img.material_names);
+  auto crypto_header = [&](const std::string& layer, const std::vector<std::string>& names) {
+    const std::string k = "cryptomatte/" + cryptomatte_key(layer) + "/";
+    text((k + "name").c_str(), layer);
+    text((k + "hash").c_str(), "MurmurHash3_32");
+    text((k + "conversion").c_str(), "uint32_to_float32");
+    text((k + "manifest").c_str(), cryptomatte_manifest(names));
+  };
+  if (wants("crypto_object")) crypto_header("crypto_object", img.object_names);
+  if (wants("crypto_material")) crypto_header("crypto_material", img.material_names);
 
-  std::vector<float> data(static_cast<std::size_t>(img.width) * img.height * nch);
-  for (std::size_t p = 0, k = 0; p < img.beauty.size(); ++p) {
-    auto put = [&](const glm::vec3& v) { data[k++] = v.x; data[k++] = v.y; data[k++] = v.z; };
-    put(img.beauty[p]);
-    if (albedo) put(img.albedo[p]);
-    if (normal) put(img.normal[p]);
-    if (depth) data[k++] = img.depth[p];
-    if (variance) put(img.variance[p]);
-    if (samples) data[k++] = img.samples[p];
-    if (treemaker) {
-      const std::size_t e = img.extra_names.size();
-      for (std::size_t i = 0; i < e; ++i) data[k++] = img.extra[p * e + i];
+  MemoryStream memory;
+  try {
+    Imf::OutputFile file(memory, header, 1);
+    Imf::FrameBuffer frame;
+    // OpenEXR writes a channel from a slice of its own type: half channels from half copies
+    // (rounded to nearest, as Imath's conversion does).
+    std::vector<std::vector<half>> halves;
+    halves.reserve(planes.size());
+    for (Plane& pl : planes) {
+      const std::size_t row = static_cast<std::size_t>(img.width);
+      if (pl.type == Imf::HALF) {
+        halves.emplace_back(pl.values.begin(), pl.values.end());
+        frame.insert(pl.name, Imf::Slice::Make(Imf::HALF, halves.back().data(), data, sizeof(half), sizeof(half) * row));
+      } else {
+        frame.insert(pl.name, Imf::Slice::Make(Imf::FLOAT, pl.values.data(), data, sizeof(float), sizeof(float) * row));
+      }
     }
+    file.setFrameBuffer(frame);
+    file.writePixels(img.height);
+  } catch (const std::exception& e) {
+    throw RuntimeFailure("cannot write " + path + ": " + e.what());
   }
-  write_image_atomic(path, spec, [&](OIIO::ImageOutput& out) {
-    return out.write_image(OIIO::TypeDesc::FLOAT, data.data());
-  });
+  AtomicFile out(path, true);
+  out.write(memory.bytes().data(), memory.bytes().size());
+  out.commit();
 }
 
 void write_png(const Image& img, const OutputDesc& o, const ColorPipeline& color,

@@ -23,6 +23,18 @@ namespace arbor::trace {
 
 namespace {
 
+// "species/quaking_aspen.toml" → "quaking_aspen": what the compositing ids call a file's things.
+std::string file_stem(const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  const std::size_t dot = name.find_last_of('.');
+  if (dot != std::string::npos && dot > 0) name.erase(dot);
+  for (char& c : name) {
+    if (static_cast<unsigned char>(c) < 0x20) c = '_';  // names travel one to a line, tab-separated
+  }
+  return name;
+}
+
 glm::vec3 to_vec3(const Rgb& c) { return glm::vec3(c[0], c[1], c[2]); }
 
 // TREE-MAKER's h0 and r0 (§III) from the skeleton's points, measured from the root stem's first
@@ -161,8 +173,27 @@ class SceneBuilder {
     return look;
   }
 
-  void add_instance(int prototype, const Placement& pl, const TreeLook& look) {
+  // A new object "<prefix>.<n>", n counting the objects of that prefix; its id.
+  std::uint32_t new_object(const std::string& prefix) {
+    const int n = object_count_[prefix]++;
+    s_.object_names.push_back(prefix + "." + std::to_string(n));
+    return static_cast<std::uint32_t>(s_.object_names.size());
+  }
+  // The id of the material of this name (one name, one id).
+  std::uint32_t material_named(const std::string& name) {
+    const auto found = material_ids_.find(name);
+    if (found != material_ids_.end()) return found->second;
+    s_.material_names.push_back(name);
+    return material_ids_[name] = static_cast<std::uint32_t>(s_.material_names.size());
+  }
+
+  void add_instance(int prototype, const Placement& pl, const TreeLook& look, const std::string& species) {
     TreeInstance inst;
+    const std::string name = file_stem(species);
+    inst.object_id = new_object(name);
+    inst.bark_id = material_named(name + "/bark");
+    inst.leaf_front_id = material_named(name + "/leaf front");
+    inst.leaf_back_id = material_named(name + "/leaf back");
     inst.prototype = prototype;
     const glm::mat4 m = placement_matrix(pl);
     inst.to_world = m;
@@ -187,11 +218,14 @@ class SceneBuilder {
   std::vector<std::pair<std::string, std::unique_ptr<gen::Species>>> species_;
   std::vector<std::pair<std::string, int>> prototype_keys_;
   std::vector<std::pair<std::pair<double, double>, std::shared_ptr<const mat::CuticleCoat>>> cuticles_;
+  std::map<std::string, int> object_count_;
+  std::map<std::string, std::uint32_t> material_ids_;
 };
 
 void SceneBuilder::add_mesh(const MeshDesc& d) {
   const ObjMesh obj = load_obj(d.path);
   MeshObject mesh;
+  mesh.object_id = new_object(file_stem(d.path));
   // Placement: the file's up axis to z, then scale, rotation about z, position.
   glm::mat4 m = placement_matrix(d.placement);
   if (d.up == "y") m = glm::rotate(m, 1.5707963f, glm::vec3(1, 0, 0));  // y up → z up
@@ -221,6 +255,7 @@ void SceneBuilder::add_mesh(const MeshDesc& d) {
       }
     }
     mesh.materials.push_back(material);
+    mesh.material_ids.push_back(material_named(file_stem(d.path) + "/" + (name.empty() ? "default" : name)));
     return material_index[name] = static_cast<std::uint16_t>(mesh.materials.size() - 1);
   };
   // [mesh.material.NAME] by the faces' material name, else by their group; with no table at all
@@ -276,7 +311,7 @@ std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::strin
   if (progress) progress->set_total(total);
   for (const TreeDesc& t : desc.trees) {
     const int p = b.prototype_for(t.species, t.seed, t.time, t.where);
-    b.add_instance(p, t.placement, b.look_for(b.species(t.species), t.bark, t.leaf, t.treemaker, t.where));
+    b.add_instance(p, t.placement, b.look_for(b.species(t.species), t.bark, t.leaf, t.treemaker, t.where), t.species);
     if (progress) progress->update(++done);
   }
   for (const ForestDesc& f : desc.forests) {
@@ -293,12 +328,15 @@ std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::strin
                      f.area[1] + (f.area[3] - f.area[1]) * rng.uniform(), 0.0};
       pl.rotation = 360.0 * rng.uniform();
       pl.scale = rng.vary(1.0, 0.1);
-      b.add_instance(variants[static_cast<size_t>(i % f.variants)], pl, look);
+      b.add_instance(variants[static_cast<size_t>(i % f.variants)], pl, look, f.species);
     }
   }
   for (const MeshDesc& m : desc.meshes) b.add_mesh(m);
   if (desc.ground.enabled) {
     scene->has_ground = true;
+    scene->object_names.emplace_back("ground");
+    scene->ground_object_id = static_cast<std::uint32_t>(scene->object_names.size());
+    scene->ground_material_id = b.material_named("ground");
     scene->ground.albedo = to_vec3(desc.ground.albedo);
     if (desc.ground.patch_cover > 0.0) {
       scene->ground.kind = mat::Material::Kind::Ground;

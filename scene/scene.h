@@ -47,6 +47,9 @@ struct TreeInstance {
   mat::Material bark, leaf;             // species defaults with the scene's overrides
   mat::TreemakerWeights treemaker;      // the TREE-MAKER shading weights (§III) of this tree
   TreeExtent extent;                    // world space
+  // Compositing ids (1-based into Scene::object_names / material_names; docs/outputs.md).
+  std::uint32_t object_id = 0;
+  std::uint32_t bark_id = 0, leaf_front_id = 0, leaf_back_id = 0;
 };
 
 // An external mesh in world space.
@@ -60,6 +63,8 @@ struct MeshObject {
   std::vector<std::uint32_t> normal_indices;
   std::vector<std::uint16_t> material;  // per triangle, into materials
   std::vector<mat::Material> materials;
+  std::uint32_t object_id = 0;             // compositing ids, as for a TreeInstance
+  std::vector<std::uint32_t> material_ids;  // per material
 };
 
 struct SceneStats {
@@ -75,6 +80,12 @@ struct Scene {
   std::vector<MeshObject> meshes;
   bool has_ground = false;
   mat::Material ground;
+  std::uint32_t ground_object_id = 0, ground_material_id = 0;
+  // The names of the compositing ids (id k is names[k - 1]; 0 is nothing, the sky): objects are
+  // "<species>.<n>" (the n-th tree of that species in scene order), "<mesh file stem>.<n>" and
+  // "ground"; materials "<species>/bark", "<species>/leaf front", "<species>/leaf back",
+  // "<mesh file stem>/<OBJ material or group>" and "ground". Names are unique; one name, one id.
+  std::vector<std::string> object_names, material_names;
   SceneStats stats;
   // The textures the materials point to.
   std::vector<std::pair<std::string, std::unique_ptr<mat::HeightMap>>> bump_maps;

@@ -2,6 +2,7 @@
 #include "tracer/film.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace arbor::trace {
@@ -29,6 +30,7 @@ Image make_image(int width, int height, std::size_t extras) {
   img.normal.assign(n, glm::vec3(0.0f));
   img.depth.assign(n, 0.0f);
   img.samples.assign(n, 0.0f);
+  img.alpha.assign(n, 0.0f);
   img.extra.assign(n * extras, 0.0f);
   return img;
 }
@@ -39,6 +41,20 @@ int PassPlan::samples(int begin, int end) const {
   return n;
 }
 
+void add_to_slots(double* slots, std::uint32_t id, double samples) {
+  if (id == 0) return;
+  for (std::size_t i = 0; i < kIdSlots; ++i) {
+    if (slots[i] == 0.0) {
+      slots[i] = id_slot(id, samples);
+      return;
+    }
+    if (slot_id(slots[i]) == id) {
+      slots[i] += samples;
+      return;
+    }
+  }
+}
+
 void PixelAccumulator::reset() {
   count_ = 0;
   mean_ = m2_ = glm::dvec3(0.0);
@@ -46,7 +62,7 @@ void PixelAccumulator::reset() {
 }
 
 void PixelAccumulator::add(const float rgb[3], const float alb[3], const glm::vec3& normal, float depth,
-                           const float* extra) {
+                           float alpha, const float* extra, std::uint32_t object_id, std::uint32_t material_id) {
   // Welford's running mean and squared deviations.
   ++count_;
   const glm::dvec3 v(rgb[0], rgb[1], rgb[2]);
@@ -57,17 +73,23 @@ void PixelAccumulator::add(const float rgb[3], const float alb[3], const glm::ve
   for (int c = 0; c < 3; ++c) s[c] += alb[c];
   for (int c = 0; c < 3; ++c) s[3 + c] += normal[c];
   s[6] += depth;
-  for (std::size_t e = kAovSums; e < sums_.size(); ++e) s[e] += extra[e - kAovSums];
+  s[7] += alpha;
+  for (std::size_t e = 0; e < extras_; ++e) s[kAovSums + e] += extra[e];
+  if (sums_.size() > kAovSums + extras_) {
+    add_to_slots(s + kAovSums + extras_, object_id, 1.0);
+    add_to_slots(s + kAovSums + extras_ + kIdSlots, material_id, 1.0);
+  }
 }
 
-Film::Film(Window window, std::size_t extras, int pass_begin, bool keep_records)
+Film::Film(Window window, std::size_t extras, int pass_begin, bool keep_records, bool ids)
     : window_(window),
       extras_(extras),
       pass_begin_(pass_begin),
       next_pass_(pass_begin),
       keep_records_(keep_records),
+      ids_(ids),
       states_(window.pixels()),
-      sums_(window.pixels() * (kAovSums + extras), 0.0) {}
+      sums_(window.pixels() * sum_stride(), 0.0) {}
 
 void Film::fold(std::size_t p, double n, const glm::dvec3& m, const glm::dvec3& m2, const double* s) {
   if (n <= 0) return;  // every sample of the pass was NaN or infinite
@@ -80,8 +102,16 @@ void Film::fold(std::size_t p, double n, const glm::dvec3& m, const glm::dvec3& 
   if (st.passes == 0) st.first_m2 = m2;
   ++st.passes;
   st.count += static_cast<std::uint32_t>(n);
-  double* sum = &sums_[p * (kAovSums + extras_)];
+  double* sum = &sums_[p * sum_stride()];
   for (std::size_t i = 0; i < kAovSums + extras_; ++i) sum[i] += s[i];
+  if (ids_) {
+    // The pass's slots in slot order (the order its samples first saw them).
+    for (std::size_t k = 0; k < 2; ++k) {
+      double* to = sum + kAovSums + extras_ + k * kIdSlots;
+      const double* from = s + kAovSums + extras_ + k * kIdSlots;
+      for (std::size_t i = 0; i < kIdSlots && from[i] != 0.0; ++i) add_to_slots(to, slot_id(from[i]), slot_samples(from[i]));
+    }
+  }
 }
 
 void Film::add_pass(std::size_t p, const PixelAccumulator& a) {
@@ -151,7 +181,14 @@ Image Film::image(std::size_t extras_wanted) const {
   Image img = make_image(window_.width(), window_.height(), extras_wanted);
   img.x0 = window_.x0;
   img.y0 = window_.y0;
-  const std::size_t stride = kAovSums + extras_;
+  const std::size_t stride = sum_stride();
+  if (ids_) {
+    img.id_slots = kIdSlots;
+    img.object_ids.assign(states_.size() * kIdSlots, 0u);
+    img.material_ids.assign(states_.size() * kIdSlots, 0u);
+    img.object_cover.assign(states_.size() * kIdSlots, 0.0f);
+    img.material_cover.assign(states_.size() * kIdSlots, 0.0f);
+  }
   for (std::size_t p = 0; p < states_.size(); ++p) {
     const PixelState& st = states_[p];
     img.samples[p] = static_cast<float>(st.count);
@@ -169,6 +206,25 @@ Image Film::image(std::size_t extras_wanted) const {
     img.albedo[p] = glm::vec3(s[0] / n, s[1] / n, s[2] / n);
     img.normal[p] = glm::vec3(s[3] / n, s[4] / n, s[5] / n);
     img.depth[p] = static_cast<float>(s[6] / n);
+    img.alpha[p] = static_cast<float>(s[7] / n);
+    if (ids_) {
+      for (std::size_t k = 0; k < 2; ++k) {
+        std::array<double, kIdSlots> slots;
+        std::copy_n(s + kAovSums + extras_ + k * kIdSlots, kIdSlots, slots.begin());
+        // Most samples first, then the lower id; empty slots (0) last.
+        std::sort(slots.begin(), slots.end(), [](double a, double b) {
+          if ((a == 0.0) != (b == 0.0)) return b == 0.0;
+          if (slot_samples(a) != slot_samples(b)) return slot_samples(a) > slot_samples(b);
+          return slot_id(a) < slot_id(b);
+        });
+        std::uint32_t* ids = (k == 0 ? img.object_ids : img.material_ids).data() + p * kIdSlots;
+        float* cover = (k == 0 ? img.object_cover : img.material_cover).data() + p * kIdSlots;
+        for (std::size_t i = 0; i < kIdSlots && slots[i] != 0.0; ++i) {
+          ids[i] = slot_id(slots[i]);
+          cover[i] = static_cast<float>(slot_samples(slots[i]) / n);
+        }
+      }
+    }
     for (std::size_t e = 0; e < extras_wanted; ++e) {
       img.extra[p * extras_wanted + e] = static_cast<float>(s[kAovSums + e] / n);
     }

@@ -49,20 +49,37 @@ struct Window {
   bool operator!=(const Window& o) const { return !(*this == o); }
 };
 
-// The sums of the AOVs a pixel keeps besides its extras: albedo (3), normal (3), depth (1).
-constexpr std::size_t kAovSums = 7;
+// The sums of the AOVs a pixel keeps besides its extras: albedo (3), normal (3), depth (1),
+// alpha (1 a sample; with a transparent sky, 1 only when its camera ray hit something).
+constexpr std::size_t kAovSums = 8;
+
+// Compositing ids (object_id, material_id, Cryptomatte): a pixel that keeps them has kIdSlots
+// slots for objects and kIdSlots for materials after its extras, each slot one id and the samples
+// that saw it, packed exactly into a double as id × 2^21 + samples (ids < 2^32, samples ≤ 2^20).
+// Slots fill in sample order; an id arriving when all are taken is not counted (a pixel
+// rarely sees more than 8 objects; docs/outputs.md). 0 is an empty slot.
+constexpr std::size_t kIdSlots = 8;
+constexpr double kIdScale = 2097152.0;  // 2^21
+inline double id_slot(std::uint32_t id, double samples) { return double(id) * kIdScale + samples; }
+inline std::uint32_t slot_id(double slot) { return static_cast<std::uint32_t>(slot / kIdScale); }
+inline double slot_samples(double slot) { return slot - double(slot_id(slot)) * kIdScale; }
+// Counts `samples` of `id` into a pixel's slots (a no-op for id 0 or when all are taken).
+void add_to_slots(double* slots, std::uint32_t id, double samples);
 
 // One pixel's samples of one pass, in sample order (the order makes the sums bit-identical at
 // any thread count): Welford's running mean and squared deviations of the beauty, sums of the
 // AOVs.
 class PixelAccumulator {
  public:
-  explicit PixelAccumulator(std::size_t extras) : sums_(kAovSums + extras) {}
+  // `ids`: keep the compositing id slots (kIdSlots for objects, kIdSlots for materials).
+  PixelAccumulator(std::size_t extras, bool ids)
+      : extras_(extras), sums_(kAovSums + extras + (ids ? 2 * kIdSlots : 0)) {}
 
   void reset();
-  // A finite sample: beauty and albedo already in the output colour space.
-  void add(const float rgb[3], const float albedo[3], const glm::vec3& normal, float depth,
-           const float* extra);
+  // A finite sample: beauty and albedo already in the output colour space; `alpha` 1 when the
+  // camera ray hit something; the first hit's ids (0: none), kept only with `ids`.
+  void add(const float rgb[3], const float albedo[3], const glm::vec3& normal, float depth, float alpha,
+           const float* extra, std::uint32_t object_id, std::uint32_t material_id);
 
   int count() const { return count_; }
   const glm::dvec3& mean() const { return mean_; }
@@ -70,6 +87,7 @@ class PixelAccumulator {
   const std::vector<double>& sums() const { return sums_; }
 
  private:
+  std::size_t extras_;
   int count_ = 0;
   glm::dvec3 mean_{0.0}, m2_{0.0};
   std::vector<double> sums_;
@@ -96,13 +114,17 @@ struct AdaptiveSettings {
 // can fold them in pass order after the passes before it).
 class Film {
  public:
-  Film(Window window, std::size_t extras, int pass_begin, bool keep_records);
+  // `ids`: keep the compositing id slots.
+  Film(Window window, std::size_t extras, int pass_begin, bool keep_records, bool ids = false);
 
   const Window& window() const { return window_; }
   std::size_t extras() const { return extras_; }
   int pass_begin() const { return pass_begin_; }
   int next_pass() const { return next_pass_; }  // the first pass not yet rendered
   bool keeps_records() const { return keep_records_; }
+  bool keeps_ids() const { return ids_; }
+  // Doubles per pixel in sums(): kAovSums, the extras, then 2 × kIdSlots when keeps_ids().
+  std::size_t sum_stride() const { return kAovSums + extras_ + (ids_ ? 2 * kIdSlots : 0); }
 
   // Pixel p (row-major within the window).
   const PixelState& state(std::size_t p) const { return states_[p]; }
@@ -130,7 +152,7 @@ class Film {
   const std::vector<double>& records() const { return records_; }
   void set_next_pass(int pass) { next_pass_ = pass; }
   // Doubles per pixel and pass in records(): count, mean (3), m2 (3), the sums.
-  std::size_t record_size() const { return 7 + kAovSums + extras_; }
+  std::size_t record_size() const { return 7 + sum_stride(); }
   // Folds a pass record (as stored in records()) into pixel p: exactly what add_pass did.
   void fold_record(std::size_t p, const double* record);
 
@@ -140,9 +162,9 @@ class Film {
   Window window_;
   std::size_t extras_;
   int pass_begin_, next_pass_;
-  bool keep_records_;
+  bool keep_records_, ids_;
   std::vector<PixelState> states_;
-  std::vector<double> sums_;     // (kAovSums + extras) a pixel
+  std::vector<double> sums_;     // sum_stride() a pixel
   std::vector<double> records_;  // record_size() a pixel a pass, passes in order
 };
 

@@ -15,8 +15,25 @@ namespace arbor::trace {
 
 namespace {
 
-const char* const kMagic = "arbor film state 2";
+const char* const kMagic = "arbor film state 3";
 static_assert(std::is_trivially_copyable<PixelState>::value, "PixelState is written as bytes");
+
+// Names one to a line's value, separated by tabs (scene names hold no tabs or newlines).
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : "\t") + n;
+  return out;
+}
+std::vector<std::string> split_tabs(const std::string& text) {
+  std::vector<std::string> out;
+  if (text.empty()) return out;
+  std::size_t start = 0;
+  for (std::size_t tab; (tab = text.find('\t', start)) != std::string::npos; start = tab + 1) {
+    out.push_back(text.substr(start, tab - start));
+  }
+  out.push_back(text.substr(start));
+  return out;
+}
 
 std::string number_text(double v) {
   char buf[40];
@@ -53,7 +70,8 @@ void write_film_state(const std::string& path, const FilmHeader& h, const Film& 
        << "plan " << h.plan.spp << " " << h.plan.pass_spp << " " << (h.plan.independent ? 1 : 0) << "\n"
        << "passes " << film.pass_begin() << " " << film.next_pass() << " " << h.pass_end << "\n"
        << "adaptive " << number_text(h.noise_threshold) << " " << h.min_spp << "\n"
-       << "extras " << film.extras() << " " << (film.keeps_records() ? 1 : 0) << "\n"
+       << "extras " << film.extras() << " " << (film.keeps_records() ? 1 : 0) << " "
+       << (film.keeps_ids() ? 1 : 0) << "\n"
        << "seconds " << number_text(h.seconds) << "\n"
        << "counts " << h.nonfinite << " " << h.rays << "\n"
        << "integrator " << h.integrator << "\n"
@@ -62,10 +80,13 @@ void write_film_state(const std::string& path, const FilmHeader& h, const Film& 
        << "display " << h.display << "\n"
        << "view " << h.view << "\n"
        << "pixel_type " << h.pixel_type << "\n"
+       << "transparent_sky " << (h.transparent_sky ? 1 : 0) << "\n"
        << "aovs ";
   for (const std::string& a : h.aovs) head << a << " ";
   head << "\n"
        << "treemaker_weights " << h.treemaker_weights << "\n"
+       << "object_names " << joined(h.object_names) << "\n"
+       << "material_names " << joined(h.material_names) << "\n"
        << "end\n";
   AtomicFile file(path, true);
   file.write(head.str());
@@ -105,13 +126,16 @@ FilmFile read_film_state(const std::string& path) {
   h.display = keys["display"];
   h.view = keys["view"];
   h.pixel_type = keys["pixel_type"];
+  h.transparent_sky = keys["transparent_sky"] == "1";
   h.treemaker_weights = keys["treemaker_weights"];
+  h.object_names = split_tabs(keys["object_names"]);
+  h.material_names = split_tabs(keys["material_names"]);
   {
     std::istringstream aovs(keys["aovs"]);
     for (std::string a; aovs >> a;) h.aovs.push_back(a);
   }
   Window w;
-  int begin = 0, next = 0, records = 0, independent = 0;
+  int begin = 0, next = 0, records = 0, independent = 0, ids = 0;
   std::size_t extras = 0;
   bool ok = static_cast<bool>(field("size") >> h.full_width >> h.full_height);
   ok = ok && static_cast<bool>(field("window") >> w.x0 >> w.y0 >> w.x1 >> w.y1);
@@ -119,7 +143,7 @@ FilmFile read_film_state(const std::string& path) {
   h.plan.independent = independent != 0;
   ok = ok && static_cast<bool>(field("passes") >> begin >> next >> h.pass_end);
   ok = ok && static_cast<bool>(field("adaptive") >> h.noise_threshold >> h.min_spp);
-  ok = ok && static_cast<bool>(field("extras") >> extras >> records);
+  ok = ok && static_cast<bool>(field("extras") >> extras >> records >> ids);
   ok = ok && static_cast<bool>(field("seconds") >> h.seconds);
   ok = ok && static_cast<bool>(field("counts") >> h.nonfinite >> h.rays);
   ok = ok && static_cast<bool>(field("seed") >> h.seed);
@@ -128,7 +152,7 @@ FilmFile read_film_state(const std::string& path) {
       begin < 0 || next < begin || h.pass_end < next || h.pass_end > h.plan.passes() || extras > 64) {
     throw bad("its header is malformed");
   }
-  f.film = std::make_unique<Film>(w, extras, begin, records != 0);
+  f.film = std::make_unique<Film>(w, extras, begin, records != 0, ids != 0);
   Film& film = *f.film;
   film.set_next_pass(next);
   if (film.keeps_records()) {

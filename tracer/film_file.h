@@ -28,7 +28,10 @@ struct FilmHeader {
   std::uint64_t seed = 0;
   std::string colorspace, display, view, pixel_type;
   std::vector<std::string> aovs;
+  bool transparent_sky = false;
   std::string treemaker_weights;
+  // The compositing ids' names (Scene::object_names, material_names).
+  std::vector<std::string> object_names, material_names;
 };
 
 struct FilmFile {

@@ -40,6 +40,7 @@ void require_same_render(const Part& a, const Part& b) {
   }
   if (hb.full_width != ha.full_width || hb.full_height != ha.full_height || hb.plan.spp != ha.plan.spp ||
       hb.plan.pass_spp != ha.plan.pass_spp || hb.plan.independent != ha.plan.independent || b.file.film->extras() != a.file.film->extras() ||
+      b.file.film->keeps_ids() != a.file.film->keeps_ids() || hb.object_names != ha.object_names ||
       hb.aovs != ha.aovs || hb.colorspace != ha.colorspace || hb.pixel_type != ha.pixel_type) {
     throw InputError({b.exr, 0, 0}, "has other image settings (size, samples, AOVs or colour space) than " + a.exr);
   }
@@ -82,9 +83,9 @@ int merge_command(const MergeRequest& req) {
   }
 
   // Every pixel of the box must hold passes [begin, end), each exactly once.
-  Film merged(box, parts.front().file.film->extras(), begin, begin > 0);
+  Film merged(box, parts.front().file.film->extras(), begin, begin > 0, parts.front().file.film->keeps_ids());
   merged.set_next_pass(end);
-  const std::size_t r = merged.record_size(), stride = kAovSums + merged.extras();
+  const std::size_t r = merged.record_size(), stride = merged.sum_stride();
   if (merged.keeps_records()) merged.records().assign(static_cast<std::size_t>(end - begin) * r * box.pixels(), 0.0);
   for (int y = box.y0; y < box.y1; ++y) {
     for (int x = box.x0; x < box.x1; ++x) {

@@ -46,6 +46,8 @@ struct WorldHit {
   bool mesh = false;               // a [[mesh]] face
   bool mesh_front = true;          // the side a mesh face's counter-clockwise normal faces
   const mat::Material* material = nullptr;
+  // Compositing ids (Scene::object_names / material_names, 1-based).
+  std::uint32_t object_id = 0, material_id = 0;
 
   // The point as the material layer sees it.
   mat::SurfacePoint point() const {

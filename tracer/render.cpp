@@ -38,6 +38,7 @@ RenderOutcome render_passes(const SceneDesc& scene, const RenderJob& job, Film& 
   const std::size_t extras = film.extras();
   const Camera camera(scene.camera, rs.width, rs.height);
   const float exposure = std::exp2(static_cast<float>(scene.camera.exposure));
+  const bool transparent = scene.output.transparent_sky;
   const int tiles_x = (ww + kTile - 1) / kTile, tiles_y = (wh + kTile - 1) / kTile;
   const int tiles = tiles_x * tiles_y;
   const int first = film.next_pass();
@@ -59,7 +60,7 @@ RenderOutcome render_passes(const SceneDesc& scene, const RenderJob& job, Film& 
       const int x0 = win.x0 + (tile % tiles_x) * kTile, y0 = win.y0 + (tile / tiles_x) * kTile;
       std::uint64_t tile_rays = 0, tile_bad = 0, tile_samples = 0;
       std::vector<float> sample_extra(extras);
-      PixelAccumulator pixel(extras);
+      PixelAccumulator pixel(extras, film.keeps_ids());
       for (int y = y0; y < std::min(win.y1, y0 + kTile); ++y) {
         for (int x = x0; x < std::min(win.x1, x0 + kTile); ++x) {
           const std::size_t p = static_cast<std::size_t>(y - win.y0) * ww + (x - win.x0);
@@ -73,7 +74,13 @@ RenderOutcome render_passes(const SceneDesc& scene, const RenderJob& job, Film& 
             const glm::vec2 uf = sampler.get2d(index, 0);
             const glm::vec2 pos(x + 0.5f + sample_tent(uf.x), y + 0.5f + sample_tent(uf.y));
             const Ray ray = camera.generate(pos, sampler.get2d(index, 1));
-            const PathSample s = trace(ray, sampler, index, sample_extra.data());
+            PathSample s = trace(ray, sampler, index, sample_extra.data());
+            if (transparent && !s.hit) {
+              // [output] transparent_sky: an escaping camera ray adds nothing (alpha 0), so the
+              // pixel is premultiplied by its coverage; the sky still lights the scene.
+              s.radiance = glm::vec3(0.0f);
+              std::fill(sample_extra.begin(), sample_extra.end(), 0.0f);
+            }
             tile_rays += s.rays;
             if (!std::isfinite(s.radiance.x) || !std::isfinite(s.radiance.y) ||
                 !std::isfinite(s.radiance.z)) {
@@ -84,7 +91,8 @@ RenderOutcome render_passes(const SceneDesc& scene, const RenderJob& job, Film& 
             to_output(rgb);
             float alb[3] = {s.albedo.x, s.albedo.y, s.albedo.z};
             to_output(alb);
-            pixel.add(rgb, alb, s.normal, s.depth, sample_extra.data());
+            pixel.add(rgb, alb, s.normal, s.depth, s.hit || !transparent ? 1.0f : 0.0f, sample_extra.data(), s.object_id,
+                      s.material_id);
           }
           tile_samples += static_cast<std::uint64_t>(spp);
           film.add_pass(p, pixel);
@@ -174,7 +182,7 @@ Image render_image(const SceneDesc& scene, const World& world, const Sky& sky,
   job.pass_end = job.plan.passes();
   job.adaptive = {r.noise_threshold, r.min_spp};
   const std::vector<std::string> names = integrator_aov_names(scene);
-  Film film({0, 0, r.width, r.height}, names.size(), 0, false);
+  Film film({0, 0, r.width, r.height}, names.size(), 0, false, scene.output.wants_ids());
   if (treemaker) {
     render_treemaker(scene, world, sky, to_output, job, film, nullptr, stats);
   } else {
@@ -182,6 +190,8 @@ Image render_image(const SceneDesc& scene, const World& world, const Sky& sky,
   }
   Image img = film.image(names.size());
   img.extra_names = names;
+  img.object_names = world.scene().object_names;
+  img.material_names = world.scene().material_names;
   return img;
 }
 

@@ -81,7 +81,8 @@ std::string render_fingerprint(const SceneDesc& scene, const RenderRequest& a, c
   s << "arbor render 1 " << r.width << "x" << r.height << " spp " << r.spp << " pass_spp " << r.pass_spp
     << (r.independent_passes ? " independent" : " sequence")
     << " seed " << r.seed << " " << r.integrator << " depth " << r.max_depth << " treemaker_spp "
-    << r.treemaker_spp << " noise " << r.noise_threshold << " min " << r.min_spp << " time ";
+    << r.treemaker_spp << " noise " << r.noise_threshold << " min " << r.min_spp
+    << (scene.output.transparent_sky ? " transparent" : "") << (scene.output.wants_ids() ? " ids" : "") << " time ";
   if (a.time) s << *a.time;
   std::uint64_t hash = fnv1a(s.str());
   std::vector<std::string> files = scene_inputs(scene);
@@ -127,6 +128,7 @@ int render_command(const RenderRequest& a) {
   }
   if (!a.png.empty()) scene.output.png = a.png;
   if (a.checkpoint_seconds) scene.output.checkpoint_seconds = *a.checkpoint_seconds;
+  if (a.transparent) scene.output.transparent_sky = true;
   if (!treemaker &&
       std::find(scene.output.aovs.begin(), scene.output.aovs.end(), "treemaker") != scene.output.aovs.end()) {
     throw InputError(scene.output.treemaker_aov_where,
@@ -208,6 +210,7 @@ int render_command(const RenderRequest& a) {
   header.view = scene.output.view;
   header.pixel_type = scene.output.pixel_type;
   header.aovs = scene.output.aovs;
+  header.transparent_sky = scene.output.transparent_sky;
 
   check_render_memory(scene, a.force, usable_memory_bytes(),
                       pass_begin > 0 ? static_cast<std::uint64_t>(pass_end - pass_begin) : 0);
@@ -243,7 +246,7 @@ int render_command(const RenderRequest& a) {
       return 0;
     }
   } else {
-    film = std::make_unique<Film>(window, extra_names.size(), pass_begin, pass_begin > 0);
+    film = std::make_unique<Film>(window, extra_names.size(), pass_begin, pass_begin > 0, scene.output.wants_ids());
   }
 
   const EmbreeDevice device(r.threads > 0 ? "threads=" + std::to_string(r.threads) : "");
@@ -252,6 +255,8 @@ int render_command(const RenderRequest& a) {
   const World world(*built, device);
   build_progress.finish();
   if (treemaker) header.treemaker_weights = treemaker_weights_text(*built);
+  header.object_names = built->object_names;
+  header.material_names = built->material_names;
   const Sky sky(scene.sky, scene.sun, color.xyz_to_scene_linear());
 
   RenderWrite write{exr, scene.output.png, &color, ""};

@@ -15,6 +15,7 @@ struct RenderRequest {
   std::optional<double> time;  // seconds of wind for every [[tree]]
   bool force = false;          // render past the memory estimate
   bool resume = false;         // continue from the EXR's film state
+  bool transparent = false;    // --transparent: output.transparent_sky = true
   double time_limit = 0;       // seconds; 0: none
   std::optional<double> checkpoint_seconds;  // overrides output.checkpoint_seconds
   std::string passes;          // "A:B": render passes A .. B-1 only; empty: all

@@ -21,6 +21,8 @@ Image film_image(const FilmHeader& h, const Film& film) {
   img.full_width = h.full_width;
   img.full_height = h.full_height;
   if (film.extras() > 0) img.extra_names = treemaker_channel_names();
+  img.object_names = h.object_names;
+  img.material_names = h.material_names;
   return img;
 }
 
@@ -31,6 +33,7 @@ void write_render(const FilmHeader& h, const Film& film, const RenderWrite& what
   out.view = h.view;
   out.pixel_type = h.pixel_type;
   out.aovs = h.aovs;
+  out.transparent_sky = h.transparent_sky;
   const Image img = film_image(h, film);
   if (!what.exr.empty()) {
     const std::string state = state_path(what.exr);
@@ -62,6 +65,8 @@ void write_render(const FilmHeader& h, const Film& film, const RenderWrite& what
     double total = 0;
     for (float s : img.samples) total += s;
     meta.mean_spp = img.samples.empty() ? 0.0 : total / double(img.samples.size());
+    meta.colorspace_names = what.color->names_of(h.colorspace);
+    meta.chromaticities = what.color->chromaticities(h.colorspace);
     write_exr(img, out, meta, what.exr);
   }
   if (!what.png.empty()) write_png(img, out, *what.color, what.png);

@@ -217,7 +217,7 @@ TEST(ArborCli, TreemakerRenderWritesTermsThatAddUpToTheBeauty) {
   ASSERT_TRUE(a.read(0, 0, true, OIIO::TypeDesc::FLOAT));
   ASSERT_TRUE(b.read(0, 0, true, OIIO::TypeDesc::FLOAT));
   const OIIO::ImageSpec& spec = a.spec();
-  ASSERT_EQ(spec.nchannels, 3 + 5 + 18);
+  ASSERT_EQ(spec.nchannels, 4 + 5 + 18);  // RGBA, the factors, the contributions
   EXPECT_EQ(spec.get_string_attribute("arbor:integrator"), "treemaker");
   EXPECT_EQ(spec.get_int_attribute("arbor:spp"), 3);
   EXPECT_EQ(spec.get_string_attribute("arbor:treemaker_weights"),
@@ -229,7 +229,7 @@ TEST(ArborCli, TreemakerRenderWritesTermsThatAddUpToTheBeauty) {
     return std::max(c, 0);
   };
   const char* terms[5] = {"ambient", "lambert", "height", "radius", "angle"};
-  std::vector<float> pa(40 * 30 * 26), pb(pa.size());
+  std::vector<float> pa(40 * 30 * 27), pb(pa.size());
   a.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, pa.data());
   b.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, pb.data());
   EXPECT_EQ(std::memcmp(pa.data(), pb.data(), pa.size() * sizeof(float)), 0);
@@ -237,7 +237,7 @@ TEST(ArborCli, TreemakerRenderWritesTermsThatAddUpToTheBeauty) {
   const int coverage = channel("term.ambient");
   int tree_pixels = 0;
   for (std::size_t p = 0; p < 40 * 30; ++p) {
-    const float* px = &pa[p * 26];
+    const float* px = &pa[p * 27];
     if (px[coverage] > 0.0f) ++tree_pixels;
     EXPECT_GE(px[coverage], 0.0f);
     EXPECT_LE(px[coverage], 1.0f);  // the ambient factor is the tree's coverage of the pixel
@@ -315,8 +315,8 @@ TEST(ArborCli, RenderedExrPixelsAreIdenticalAtOneAndTwoThreads) {
   OIIO::ImageBuf one(dir + "one.exr"), two(dir + "two.exr");
   ASSERT_TRUE(one.read(0, 0, true, OIIO::TypeDesc::FLOAT));
   ASSERT_TRUE(two.read(0, 0, true, OIIO::TypeDesc::FLOAT));
-  ASSERT_EQ(one.nchannels(), 13);
-  std::vector<float> a(40 * 30 * 13), b(a.size());
+  ASSERT_EQ(one.nchannels(), 14);  // RGBA, albedo, N, Z, variance
+  std::vector<float> a(40 * 30 * 14), b(a.size());
   one.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, a.data());
   two.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, b.data());
   EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);

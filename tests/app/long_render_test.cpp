@@ -181,7 +181,7 @@ TEST(LongRender, TimeLimitStopsInTimeAndResumes) {
 // state that --resume finishes.
 TEST(LongRender, CheckpointsSurviveKill9) {
   const std::string dir = fresh_folder("kill9");
-  const std::string scene = scene_file(dir, 1024);
+  const std::string scene = scene_file(dir, 8192);
   const pid_t child = start_arbor(dir, {"render", scene, "-o", "out.exr", "--checkpoint-seconds", "0.1"});
   ASSERT_TRUE(wait_for(dir + "/out.exr.state"));
   std::this_thread::sleep_for(std::chrono::milliseconds(300));

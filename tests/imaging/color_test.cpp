@@ -1,7 +1,9 @@
 // The colour pipeline's pixel values, not only its names: arbor's OCIO config converts
 // scene-linear Rec.709 to ACEScg by the published Bradford-adapted matrix, CIE XYZ to Rec.709 by
 // the sRGB standard's, and writes a PNG through the sRGB display curve.
+#include <array>
 #include <cmath>
+#include <fstream>
 #include <string>
 
 #include <OpenImageIO/imagebuf.h>
@@ -39,7 +41,7 @@ TEST(Color, ASceneOutputsUnknownNamesAreErrorsAtTheSceneKey) {
   expect_colour_error("[output]\nexr = \"a.exr\"\ncolorspace = \"Rec.2020 please\"\n", 3, 14,
                       "output.colorspace \"Rec.2020 please\" is not in the OCIO config");
   expect_colour_error("[output]\ndisplay = \"CRT\"\n", 2, 11,
-                      "output.display \"CRT\" is not in the OCIO config; it has \"sRGB\"");
+                      "output.display \"CRT\" is not a display of the OCIO config");
   expect_colour_error("[output]\nview = \"Filmic\"\n", 2, 8,
                       "output.view \"Filmic\" is not a view of display \"sRGB\"");
 }
@@ -108,6 +110,113 @@ TEST(Color, PngsGoThroughTheSrgbDisplayCurve) {
 TEST(Color, AConfigThatCannotBeReadIsAnInputErrorNamingIt) {
   testing::expect_input_error([] { ColorPipeline("/nonexistent/config.ocio"); }, "/nonexistent/config.ocio",
                               0, 0, "cannot use this OCIO config");
+}
+
+}  // namespace arbor::trace
+
+namespace arbor::trace {
+
+namespace {
+
+std::string write_config(const char* name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+// The head every test config shares: a display with one view, the roles OCIO requires.
+std::string config_head(const std::string& scene_linear, const std::string& extra_roles) {
+  return "ocio_profile_version: 2.1\nsearch_path: \"\"\nstrictparsing: true\nroles:\n  default: " + scene_linear +
+         "\n  scene_linear: " + scene_linear + "\n" + extra_roles +
+         "displays:\n  sRGB:\n    - !<View> {name: Raw, colorspace: " + scene_linear + "}\n"
+         "active_displays: [sRGB]\nactive_views: [Raw]\ncolorspaces:\n";
+}
+
+// XYZ → scene_linear by `config`, against arbor's own config, at a few colours.
+void expect_xyz_like_arbors(const std::string& config, const std::string& route_fragment, double tolerance) {
+  const ColorPipeline mine(kConfig), other(config);
+  EXPECT_NE(other.xyz_route().find(route_fragment), std::string::npos) << other.xyz_route();
+  const ColorTransform a = mine.xyz_to_scene_linear(), b = other.xyz_to_scene_linear();
+  for (const auto& xyz : {std::array<float, 3>{0.95047f, 1.0f, 1.08883f}, std::array<float, 3>{0.3f, 0.4f, 0.2f},
+                          std::array<float, 3>{0.1f, 0.05f, 0.6f}}) {
+    float p[3] = {xyz[0], xyz[1], xyz[2]}, q[3] = {xyz[0], xyz[1], xyz[2]};
+    a(p);
+    b(q);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(q[c], p[c], tolerance) << other.xyz_route() << " channel " << c;
+  }
+}
+
+const char* kRec709ToXyz =
+    "[0.4124564, 0.3575761, 0.1804375, 0, 0.2126729, 0.7151522, 0.0721750, 0, "
+    "0.0193339, 0.1191920, 0.9503041, 0, 0, 0, 0, 1]";
+
+}  // namespace
+
+TEST(Color, XyzIsFoundInConfigsWithoutArborsName) {
+  // Blender's way: a role "XYZ" naming a space defined from the Rec.709 reference by the sRGB
+  // standard's matrix.
+  expect_xyz_like_arbors(
+      write_config("blender_like.ocio",
+                   config_head("Linear", "  XYZ: Linear XYZ (Blender)\n") +
+                       "  - !<ColorSpace>\n    name: Linear\n    isdata: false\n"
+                       "  - !<ColorSpace>\n    name: Linear XYZ (Blender)\n    isdata: false\n"
+                       "    from_scene_reference: !<MatrixTransform> {matrix: " + kRec709ToXyz + "}\n"),
+      "\"XYZ\" (\"Linear XYZ (Blender)\")", 2e-3);
+  // Only the aces_interchange role: XYZ reaches ACES2065-1 by the AP0 primaries.
+  expect_xyz_like_arbors(
+      write_config("aces_only.ocio",
+                   config_head("lin_rec709", "  aces_interchange: ACES2065-1\n") +
+                       "  - !<ColorSpace>\n    name: ACES2065-1\n    isdata: false\n"
+                       "  - !<ColorSpace>\n    name: lin_rec709\n    isdata: false\n"
+                       "    to_scene_reference: !<GroupTransform>\n      children:\n"
+                       "        - !<BuiltinTransform> {style: \"UTILITY - ACES-AP1_to_LINEAR-REC709_BFD\", direction: inverse}\n"
+                       "        - !<BuiltinTransform> {style: ACEScg_to_ACES2065-1}\n"),
+      "role aces_interchange", 1e-4);
+  // Nothing but a scene_linear space arbor knows by name.
+  expect_xyz_like_arbors(write_config("linear_only.ocio", config_head("lin_rec709", "") +
+                                                               "  - !<ColorSpace>\n    name: lin_rec709\n    isdata: false\n"),
+                         "the scene_linear space \"lin_rec709\" by its primaries", 2e-3);
+}
+
+TEST(Color, AConfigWithoutXyzSaysEveryWayItTried) {
+  // A display-referred XYZ (reached only through a view transform) and an unknown scene_linear.
+  const std::string config = write_config(
+      "no_xyz.ocio",
+      config_head("Mystery", "  cie_xyz_d65_interchange: CIE-XYZ-D65\n") +
+          "  - !<ColorSpace>\n    name: Mystery\n    isdata: false\n"
+          "display_colorspaces:\n  - !<ColorSpace>\n    name: CIE-XYZ-D65\n    isdata: false\n"
+          "view_transforms:\n  - !<ViewTransform>\n    name: none\n"
+          "    from_scene_reference: !<MatrixTransform> {}\n");
+  const ColorPipeline color(config);
+  try {
+    (void)color.xyz_to_scene_linear();
+    ADD_FAILURE() << "a config without XYZ was accepted";
+  } catch (const InputError& e) {
+    const std::string m = e.message();
+    for (const char* part : {"colour space \"Linear CIE-XYZ-D65\": not in the config",
+                             "\"CIE-XYZ-D65\" is display-referred", "role aces_interchange: not in the config",
+                             "the scene_linear space \"Mystery\": not a space arbor knows the primaries of",
+                             "Add a scene-referred colour space named \"Linear CIE-XYZ-D65\""}) {
+      EXPECT_NE(m.find(part), std::string::npos) << part << "\n" << m;
+    }
+  }
+}
+
+TEST(Color, ChromaticitiesAreMeasuredThroughTheConfig) {
+  const ColorPipeline color(kConfig);
+  const std::vector<float> c = color.chromaticities("Linear Rec.709 (sRGB)");
+  ASSERT_EQ(c.size(), 8u);
+  const float rec709[8] = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
+  for (int i = 0; i < 8; ++i) EXPECT_NEAR(c[static_cast<std::size_t>(i)], rec709[i], 1e-3) << i;
+  // ACEScg through the D65-adapted XYZ: the adapted AP1 primaries and a D65 white.
+  const std::vector<float> ap1 = color.chromaticities("ACEScg");
+  ASSERT_EQ(ap1.size(), 8u);
+  EXPECT_NEAR(ap1[6], 0.3127f, 1e-3);
+  EXPECT_NEAR(ap1[7], 0.3290f, 1e-3);
+  EXPECT_NEAR(ap1[1], 0.29f, 0.01);
+  // An encoded space has none.
+  EXPECT_TRUE(color.chromaticities("sRGB - Texture").empty());
+  EXPECT_EQ(color.names_of("lin_rec709").front(), "Linear Rec.709 (sRGB)");
 }
 
 }  // namespace arbor::trace

@@ -102,6 +102,8 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
     hit.mesh = true;
     hit.instance = -1;
     hit.material = &mesh.materials[mesh.material[rh.hit.primID]];
+    hit.object_id = mesh.object_id;
+    hit.material_id = mesh.material_ids[mesh.material[rh.hit.primID]];
     return true;
   }
   if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID) {
@@ -110,6 +112,8 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
     hit.mesh = false;
     hit.instance = -1;
     hit.material = &scene_.ground;
+    hit.object_id = scene_.ground_object_id;
+    hit.material_id = scene_.ground_material_id;
     s.kind = SurfaceKind::None;
     s.t = rh.ray.tfar;
     s.position = ray.origin + ray.direction * s.t;
@@ -137,6 +141,9 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
   hit.mesh = false;
   hit.instance = instance;
   hit.material = s.kind == SurfaceKind::Leaf ? &inst.leaf : &inst.bark;
+  hit.object_id = inst.object_id;
+  hit.material_id = s.kind != SurfaceKind::Leaf ? inst.bark_id
+                    : s.material == gen::kMaterialLeafBack ? inst.leaf_back_id : inst.leaf_front_id;
   return true;
 }
 

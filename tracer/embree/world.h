@@ -28,6 +28,7 @@ class World {
   // True when anything lies on the ray between t_min and t_max.
   bool occluded(const Ray& ray) const;
 
+  const Scene& scene() const { return scene_; }
   const TreeInstance& instance(int i) const { return scene_.instances[static_cast<std::size_t>(i)]; }
   const TreeExtent& extent(int i) const { return instance(i).extent; }
   double build_seconds() const { return build_seconds_; }  // the BVHs, after the scene

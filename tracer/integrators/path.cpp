@@ -64,6 +64,9 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
       out.albedo = sh.albedo;
       out.normal = sh.normal;
       out.depth = s.t;
+      out.hit = true;
+      out.object_id = hit.object_id;
+      out.material_id = hit.material_id;
     }
     if (depth >= max_depth_) break;
     const ShadingFrame frame(sh.normal);

@@ -92,6 +92,9 @@ TreemakerSample TreemakerIntegrator::trace(const Ray& ray) const {
   shade.albedo = surface_albedo(hit);
   shade.normal = s.shading_normal;
   shade.depth = s.t;
+  shade.hit = true;
+  shade.object_id = hit.object_id;
+  shade.material_id = hit.material_id;
   if (hit.instance < 0) {
     shade.radiance = out.rest = diffuse_radiance(hit, shade.rays);
     return out;
