@@ -15,9 +15,10 @@ namespace arbor::trace {
 namespace {
 
 constexpr std::uint64_t kBytesPerPixel = 72;      // image and beauty, PNG included
-constexpr std::uint64_t kFilmBytesPerPixel = 144; // the film's state and AOV sums (tracer/film.h)
+constexpr std::uint64_t kFilmBytesPerPixel = 152; // the film's state and AOV sums (tracer/film.h)
 constexpr std::uint64_t kBytesPerChannel = 8;     // each EXR channel: its pixels and encoding
-constexpr std::uint64_t kRecordBytes = 14 * 8;    // a pass record of a pixel, beside its extras
+constexpr std::uint64_t kRecordBytes = 15 * 8;    // a pass record of a pixel, beside its extras
+constexpr std::uint64_t kIdBytes = 16 * 8;        // the id slots (film.h kIdSlots, objects and materials)
 constexpr std::uint64_t kBytesPerInstance = 1024;
 constexpr std::uint64_t kTreemakerChannels = 23;  // the treemaker AOVs (film.cpp)
 constexpr std::uint64_t kBaseline = 256ull << 20; // libraries, OCIO, Embree's device
@@ -28,11 +29,16 @@ double gigabytes(std::uint64_t bytes) { return static_cast<double>(bytes) / doub
 
 MemoryEstimate estimate_render_memory(const SceneDesc& s, std::uint64_t record_passes) {
   MemoryEstimate e;
-  std::uint64_t channels = 3, extras = 0;
+  std::uint64_t channels = 4, extras = 0;
   for (const std::string& a : s.output.aovs) {
-    channels += a == "depth" || a == "samples" ? 1 : a == "treemaker" ? kTreemakerChannels : 3;
+    channels += a == "depth" || a == "samples" || a == "object_id" || a == "material_id" ? 1
+                : a == "treemaker"                                 ? kTreemakerChannels
+                : a == "crypto_object" || a == "crypto_material"   ? 12
+                                                                   : 3;
     if (a == "treemaker") extras = kTreemakerChannels;
   }
+  // The id slots count like extras: in the film's sums and in every pass record.
+  if (s.output.wants_ids()) extras += kIdBytes / 8;
   const std::uint64_t pixels = static_cast<std::uint64_t>(s.render.width) * static_cast<std::uint64_t>(s.render.height);
   const std::uint64_t film = kFilmBytesPerPixel + 8 * extras + record_passes * (kRecordBytes + 8 * extras);
   e.image_bytes = pixels * (kBytesPerPixel + film + kBytesPerChannel * channels);
