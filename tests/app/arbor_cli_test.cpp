@@ -158,6 +158,9 @@ TEST(ArborCli, CompareMetricsJsonAndImages) {
                            " --view 'No Such View'");
   EXPECT_EQ(bad.code, 2) << bad.err;
   EXPECT_NE(bad.err.find("No Such View"), std::string::npos) << bad.err;
+  // It says what the config offers.
+  EXPECT_NE(bad.err.find("--view \"No Such View\" is not a view of display \"sRGB\""), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("it has \"ACES 1.0 SDR-video\", \"Un-tone-mapped\", \"Raw\""), std::string::npos) << bad.err;
   EXPECT_FALSE(exists(heat));
   EXPECT_FALSE(exists(side));
 
