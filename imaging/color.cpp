@@ -93,22 +93,32 @@ Mat3 rgb_to_xyz_d65(const double c[8]) {
 struct KnownPrimaries {
   const char* names[7];
   double c[8];
+  const char* interop_id;  // the Color Interop Forum's id (an EXR's colorInteropID)
 };
 
 // Linear spaces arbor recognises by name when a config offers no XYZ: the names configs give
 // them (arbor's, the ACES configs', Blender's).
 const KnownPrimaries kPrimaries[] = {
     {{"Linear Rec.709 (sRGB)", "lin_rec709", "Linear Rec.709", "lin_rec709_scene", "Linear", "Utility - Linear - sRGB", "lin_srgb"},
-     {0.64, 0.33, 0.30, 0.60, 0.15, 0.06, 0.3127, 0.3290}},
+     {0.64, 0.33, 0.30, 0.60, 0.15, 0.06, 0.3127, 0.3290}, "lin_rec709_scene"},
     {{"ACEScg", "ACES - ACEScg", "lin_ap1", "lin_ap1_scene", "Linear ACEScg", nullptr, nullptr},
-     {0.713, 0.293, 0.165, 0.830, 0.128, 0.044, 0.32168, 0.33767}},
+     {0.713, 0.293, 0.165, 0.830, 0.128, 0.044, 0.32168, 0.33767}, "lin_ap1_scene"},
     {{"ACES2065-1", "ACES - ACES2065-1", "lin_ap0", "lin_ap0_scene", "Linear ACES", nullptr, nullptr},
-     {0.7347, 0.2653, 0.0, 1.0, 0.0001, -0.077, 0.32168, 0.33767}},
+     {0.7347, 0.2653, 0.0, 1.0, 0.0001, -0.077, 0.32168, 0.33767}, "lin_ap0_scene"},
     {{"Linear Rec.2020", "lin_rec2020", "lin_rec2020_scene", "Utility - Linear - Rec.2020", "Linear Rec.2100", nullptr, nullptr},
-     {0.708, 0.292, 0.170, 0.797, 0.131, 0.046, 0.3127, 0.3290}},
+     {0.708, 0.292, 0.170, 0.797, 0.131, 0.046, 0.3127, 0.3290}, "lin_rec2020_scene"},
     {{"Linear P3-D65", "lin_p3d65", "lin_p3d65_scene", "Utility - Linear - P3-D65", "Linear Display P3", nullptr, nullptr},
-     {0.680, 0.320, 0.265, 0.690, 0.150, 0.060, 0.3127, 0.3290}},
+     {0.680, 0.320, 0.265, 0.690, 0.150, 0.060, 0.3127, 0.3290}, "lin_p3d65_scene"},
 };
+
+const KnownPrimaries* known_primaries(const std::vector<std::string>& names) {
+  for (const KnownPrimaries& k : kPrimaries) {
+    for (const char* n : k.names) {
+      if (n && std::find(names.begin(), names.end(), n) != names.end()) return &k;
+    }
+  }
+  return nullptr;
+}
 
 ColorTransform matrix_transform(const Mat3& m) {
   std::array<float, 9> f{};
@@ -228,14 +238,7 @@ void ColorPipeline::Impl::find_xyz(const std::string& config_path) {
   } else {
     std::vector<std::string> names{linear->getName()};
     for (std::size_t i = 0; i < linear->getNumAliases(); ++i) names.emplace_back(linear->getAlias(i));
-    const KnownPrimaries* known = nullptr;
-    for (const KnownPrimaries& k : kPrimaries) {
-      for (const char* n : k.names) {
-        if (n && std::find(names.begin(), names.end(), n) != names.end()) known = &k;
-      }
-      if (known) break;
-    }
-    if (known) {
+    if (const KnownPrimaries* known = known_primaries(names)) {
       if (accept(matrix_transform(inverse(rgb_to_xyz_d65(known->c))),
                  std::string("the scene_linear space \"") + linear->getName() + "\" by its primaries")) {
         return;
@@ -332,7 +335,15 @@ std::vector<std::string> ColorPipeline::names_of(const std::string& colorspace) 
   return names;
 }
 
+std::string ColorPipeline::interop_id(const std::string& colorspace) const {
+  const KnownPrimaries* known = known_primaries(names_of(colorspace));
+  return known ? known->interop_id : "";
+}
+
 std::vector<float> ColorPipeline::chromaticities(const std::string& colorspace) const {
+  if (const KnownPrimaries* known = known_primaries(names_of(colorspace))) {
+    return std::vector<float>(known->c, known->c + 8);
+  }
   std::call_once(impl_->xyz_once, [&] { impl_->find_xyz(config_path_); });
   if (!impl_->xyz) return {};
   ColorTransform to_space;

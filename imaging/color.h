@@ -45,9 +45,13 @@ class ColorPipeline {
   std::string xyz_route() const;
   // The colour space's name and aliases (just `colorspace` when the config lacks it).
   std::vector<std::string> names_of(const std::string& colorspace) const;
-  // The space's CIE xy chromaticities (red, green, blue, white: 8 numbers) measured through the
-  // config (D65-adapted primaries and a D65 white); empty when the space is not linear in XYZ.
+  // The space's CIE xy chromaticities (red, green, blue, white: 8 numbers): the published ones
+  // for a space arbor knows by name or alias (those of xyz_to_scene_linear's third way), else
+  // measured through the config (D65-adapted primaries and a D65 white); empty when the space is
+  // not linear in XYZ.
   std::vector<float> chromaticities(const std::string& colorspace) const;
+  // The Color Interop Forum's id of a space arbor knows ("lin_ap1_scene", …), else "".
+  std::string interop_id(const std::string& colorspace) const;
 
  private:
   struct Impl;

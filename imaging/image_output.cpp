@@ -60,35 +60,6 @@ struct Plane {
   std::vector<float> values;
 };
 
-struct KnownSpace {
-  const char* names[6];
-  const char* interop_id;  // the Color Interop Forum's id (the colorInteropID attribute)
-  float chromaticities[8];
-};
-
-// The spaces whose chromaticities are stated rather than measured through the config, by the
-// names configs give them (arbor's, the ACES configs', Blender's).
-const KnownSpace kKnownSpaces[] = {
-    {{"ACEScg", "ACES - ACEScg", "lin_ap1", "lin_ap1_scene", "Linear ACEScg", nullptr},
-     "lin_ap1_scene", {0.713f, 0.293f, 0.165f, 0.830f, 0.128f, 0.044f, 0.32168f, 0.33767f}},
-    {{"ACES2065-1", "ACES - ACES2065-1", "lin_ap0", "lin_ap0_scene", "Linear ACES", nullptr},
-     "lin_ap0_scene", {0.7347f, 0.2653f, 0.0f, 1.0f, 0.0001f, -0.077f, 0.32168f, 0.33767f}},
-    {{"Linear Rec.709 (sRGB)", "lin_rec709", "Linear Rec.709", "lin_rec709_scene", "Linear", "Utility - Linear - sRGB"},
-     "lin_rec709_scene", {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f}},
-};
-
-const KnownSpace* known_space(const std::vector<std::string>& names) {
-  for (const KnownSpace& k : kKnownSpaces) {
-    for (const char* n : k.names) {
-      if (!n) break;
-      for (const std::string& name : names) {
-        if (name == n) return &k;
-      }
-    }
-  }
-  return nullptr;
-}
-
 }  // namespace
 
 void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta, const std::string& path) {
@@ -171,12 +142,9 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta, c
   const int full_h = img.full_height > 0 ? img.full_height : img.height;
   const Imath::Box2i display(Imath::V2i(0, 0), Imath::V2i(full_w - 1, full_h - 1));
   const Imath::Box2i data(Imath::V2i(img.x0, img.y0), Imath::V2i(img.x0 + img.width - 1, img.y0 + img.height - 1));
-  const std::vector<std::string> space_names = meta.colorspace_names.empty()
-                                                   ? std::vector<std::string>{o.colorspace}
-                                                   : meta.colorspace_names;
-  const KnownSpace* known = known_space(space_names);
   // An ACES container (SMPTE ST 2065-4) only when the file is one: ACES2065-1, half RGBA, no AOVs.
-  const bool aces_container = known == &kKnownSpaces[1] && colour == Imf::HALF && planes.size() == 4;
+  const bool aces_container = meta.interop_id == "lin_ap0_scene" && meta.chromaticities.size() == 8 &&
+                              colour == Imf::HALF && planes.size() == 4;
   Imf::Header header(display, data, 1.0f, Imath::V2f(0.0f, 0.0f), 1.0f, Imf::INCREASING_Y,
                      aces_container ? Imf::PIZ_COMPRESSION : Imf::ZIP_COMPRESSION);
   for (const Plane& pl : planes) header.channels().insert(pl.name, Imf::Channel(pl.type));
@@ -187,8 +155,8 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta, c
   // chromaticities are the EXR standard's own statement.
   text("oiio:ColorSpace", o.colorspace);
   text("arbor:colorspace", o.colorspace);
-  if (known) text("colorInteropID", known->interop_id);
-  const float* c = known ? known->chromaticities : meta.chromaticities.size() == 8 ? meta.chromaticities.data() : nullptr;
+  if (!meta.interop_id.empty()) text("colorInteropID", meta.interop_id);
+  const float* c = meta.chromaticities.size() == 8 ? meta.chromaticities.data() : nullptr;
   if (c) {
     header.insert("chromaticities", Imf::ChromaticitiesAttribute(Imf::Chromaticities(
                                         Imath::V2f(c[0], c[1]), Imath::V2f(c[2], c[3]),

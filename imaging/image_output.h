@@ -30,11 +30,10 @@ struct ExrMetadata {
   double noise_threshold = 0.0;
   int min_spp = 0;
   double mean_spp = 0.0;     // samples a pixel on average (below spp with adaptive sampling)
-  // The output colour space's name and aliases in the config (to recognise the spaces whose
-  // chromaticities are known), and its chromaticities as measured through the config
-  // (ColorPipeline::chromaticities; 8 floats, or empty), used for any other space.
-  std::vector<std::string> colorspace_names;
+  // The output colour space's chromaticities (ColorPipeline::chromaticities: 8 floats, or empty)
+  // and Color Interop Forum id ("" when arbor does not know the space).
   std::vector<float> chromaticities;
+  std::string interop_id;
 };
 
 // Writes the EXR atomically (a temporary beside it, renamed when complete). Channels: R G B,

@@ -65,7 +65,7 @@ void write_render(const FilmHeader& h, const Film& film, const RenderWrite& what
     double total = 0;
     for (float s : img.samples) total += s;
     meta.mean_spp = img.samples.empty() ? 0.0 : total / double(img.samples.size());
-    meta.colorspace_names = what.color->names_of(h.colorspace);
+    meta.interop_id = what.color->interop_id(h.colorspace);
     meta.chromaticities = what.color->chromaticities(h.colorspace);
     write_exr(img, out, meta, what.exr);
   }

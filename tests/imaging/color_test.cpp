@@ -208,12 +208,15 @@ TEST(Color, ChromaticitiesAreMeasuredThroughTheConfig) {
   ASSERT_EQ(c.size(), 8u);
   const float rec709[8] = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
   for (int i = 0; i < 8; ++i) EXPECT_NEAR(c[static_cast<std::size_t>(i)], rec709[i], 1e-3) << i;
-  // ACEScg through the D65-adapted XYZ: the adapted AP1 primaries and a D65 white.
-  const std::vector<float> ap1 = color.chromaticities("ACEScg");
-  ASSERT_EQ(ap1.size(), 8u);
-  EXPECT_NEAR(ap1[6], 0.3127f, 1e-3);
-  EXPECT_NEAR(ap1[7], 0.3290f, 1e-3);
-  EXPECT_NEAR(ap1[1], 0.29f, 0.01);
+  // A space arbor does not know by name is measured: linear XYZ's primaries are the axes, its
+  // white (1, 1, 1) is the equal-energy white.
+  const std::vector<float> xyz = color.chromaticities("Linear CIE-XYZ-D65");
+  ASSERT_EQ(xyz.size(), 8u);
+  const float axes[8] = {1.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f / 3.0f, 1.0f / 3.0f};
+  for (int i = 0; i < 8; ++i) EXPECT_NEAR(xyz[static_cast<std::size_t>(i)], axes[i], 2e-3) << i;
+  // A known space is stated: ACEScg's D60 white.
+  EXPECT_EQ(color.chromaticities("ACEScg")[6], 0.32168f);
+  EXPECT_EQ(color.interop_id("ACEScg"), "lin_ap1_scene");
   // An encoded space has none.
   EXPECT_TRUE(color.chromaticities("sRGB - Texture").empty());
   EXPECT_EQ(color.names_of("lin_rec709").front(), "Linear Rec.709 (sRGB)");
