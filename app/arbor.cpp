@@ -79,8 +79,13 @@ int main(int argc, char** argv) {
       ->check(finite_in(1e-6, 100.0))
       ->capture_default_str();
   grow_cmd->add_option("-o,--output", grow.out,
-                       "write the tree: .obj or .ply (tessellated mesh, bark and leaf groups), "
-                       ".pbrt (pbrt-v4, limbs as curves) or .skel (skeleton file)");
+                       "write the tree: .obj (tessellated mesh, bark and leaf groups, with a .mtl "
+                       "beside it) or .ply (binary), .pbrt (pbrt-v4, limbs as curves) or .skel "
+                       "(skeleton file)");
+  grow_cmd->add_option("--up", grow.up, "up axis of the .obj, .ply or .pbrt: z (arbor's) or y "
+                       "(Blender's OBJ importer, Maya, game engines)")
+      ->check(CLI::IsMember({"z", "y"}))
+      ->capture_default_str();
   grow_cmd->add_flag("--stats", grow.stats, "print statistics of the tree");
   grow_cmd->add_flag("--json", grow.json, "print the statistics as one JSON object");
   grow_cmd->add_flag("--force", grow.force,

@@ -67,7 +67,7 @@ trace::SceneDesc default_triangles() {
   const gen::TreeGeometry geometry =
       gen::build_tree_geometry(gen::grow_tree(species, grow), gen::geometry_options_for(species));
   const std::string obj = "/tmp/arbor_scene_bench_tree.obj";
-  gen::write_obj(gen::tessellate(geometry), obj);
+  gen::write_obj(gen::tessellate(geometry), obj, {species.name, species.bark, species.leaf});
   trace::MeshDesc mesh;
   mesh.path = obj;
   trace::MeshMaterialDesc bark, leaf;

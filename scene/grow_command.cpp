@@ -24,8 +24,15 @@ int grow_command(const GrowRequest& a) {
       !ends_with(a.out, ".pbrt") && !ends_with(a.out, ".skel")) {
     throw InputError({}, "-o " + a.out + ": the output must be .obj, .ply, .pbrt or .skel");
   }
+  if (a.up != "z" && a.up != "y") throw InputError({}, "--up " + a.up + ": the up axis must be z or y");
+  const gen::UpAxis up = a.up == "y" ? gen::UpAxis::Y : gen::UpAxis::Z;
+  if (up == gen::UpAxis::Y && ends_with(a.out, ".skel")) {
+    throw InputError({}, "--up y: a skeleton file is arbor's own input and always z-up; --up is for "
+                         ".obj, .ply and .pbrt");
+  }
   if (!a.out.empty()) {
     refuse_overwriting("-o", a.out, {a.species});
+    if (ends_with(a.out, ".obj")) refuse_overwriting("-o", gen::mtl_path_for(a.out), {a.species});
     prepare_output_folder(a.out);
   }
   gen::Species species = gen::load_species(a.species);
@@ -61,12 +68,13 @@ int grow_command(const GrowRequest& a) {
     if (ends_with(a.out, ".skel")) {
       gen::write_skeleton_file(skeleton, a.out);
     } else if (ends_with(a.out, ".pbrt")) {
-      gen::write_pbrt(geometry, species.bark, species.leaf, a.out);
+      gen::write_pbrt(geometry, species.bark, species.leaf, a.out, up);
     } else if (!a.out.empty()) {
       const gen::TreeMesh mesh = gen::tessellate(geometry);
       mesh_triangles = static_cast<long long>(mesh.triangle_count());
-      if (ends_with(a.out, ".obj")) gen::write_obj(mesh, a.out);
-      else gen::write_ply(mesh, a.out);
+      const gen::MeshLooks looks{species.name, species.bark, species.leaf};
+      if (ends_with(a.out, ".obj")) gen::write_obj(mesh, a.out, looks, up);
+      else gen::write_ply(mesh, a.out, looks, up);
     }
   }
   if (a.json) {
@@ -74,7 +82,13 @@ int grow_command(const GrowRequest& a) {
   } else if (a.stats) {
     std::printf("%s (seed %llu)\n%s", species.name.c_str(), static_cast<unsigned long long>(a.seed), gen::stats_text(stats).c_str());
   }
-  if (!a.out.empty() && !a.json) std::fprintf(stderr, "arbor: wrote %s\n", a.out.c_str());
+  if (!a.out.empty() && !a.json) {
+    if (ends_with(a.out, ".obj")) {
+      std::fprintf(stderr, "arbor: wrote %s and %s\n", a.out.c_str(), gen::mtl_path_for(a.out).c_str());
+    } else {
+      std::fprintf(stderr, "arbor: wrote %s\n", a.out.c_str());
+    }
+  }
   return 0;
 }
 

@@ -12,6 +12,7 @@ struct GrowRequest {
   double time = 0.0;
   double quality = 1.0;
   std::string out;     // .obj, .ply, .pbrt or .skel; empty: none
+  std::string up = "z";  // "z" or "y": the up axis of the .obj, .ply or .pbrt written
   bool stats = false;  // print the statistics as text
   bool json = false;   // print them as one JSON object
   bool force = false;  // grow even past the size limits

@@ -18,6 +18,7 @@ _arbor() {
   fi
   case $prev in
     --integrator) mapfile -t COMPREPLY < <(compgen -W "path treemaker" -- "$cur"); return ;;
+    --up) mapfile -t COMPREPLY < <(compgen -W "z y" -- "$cur"); return ;;
     -o|--output) exts='exr|png|obj|ply|pbrt|skel' ;;
     --png|--heatmap|--side-by-side) exts='png' ;;
     --seed|--spp|--threads|--width|--height|--time|--quality|--time-limit|--checkpoint-seconds|--passes|--crop)

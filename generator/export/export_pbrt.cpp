@@ -15,33 +15,22 @@ void put(std::string& out, float v) {
   out += ' ';
 }
 
-void put_rgb(std::string& out, const char* name, const Rgb& c) {
-  out += std::string("\"rgb ") + name + "\" [ ";
-  for (double v : c) put(out, static_cast<float>(v));
-  out += "] ";
-}
-
 }  // namespace
 
-void write_pbrt(const TreeGeometry& g, const BarkLook& bark, const LeafLook& leaf,
-                const std::string& path) {
-  AtomicFile file(path);
-  std::string out =
-      "# arbor tree for pbrt-v4: Include this file inside the world block.\n"
-      "# Units are metres, z is up. Limbs are exact cubic curves; pbrt's diffusetransmission\n"
-      "# has one reflectance, so the leaves' lighter back side uses the front reflectance.\n";
-  out += "AttributeBegin\n  Material \"diffuse\" ";
-  put_rgb(out, "reflectance", bark.albedo);
-  out += "\n";
+void append_pbrt_shapes(const TreeGeometry& g, const std::string& bark_material,
+                        const std::string& leaf_material, UpAxis up, std::string& out,
+                        AtomicFile& file) {
+  out += "AttributeBegin\n  " + bark_material + "\n";
   const CurveSet& c = g.curves;
   for (std::size_t i = 0; i < c.size(); ++i) {
     const glm::vec4 p0 = c.points[2 * i], p1 = c.points[2 * i + 1];
     const glm::vec4 b1 = p0 + c.tangents[2 * i] / 3.0f, b2 = p1 - c.tangents[2 * i + 1] / 3.0f;
     out += "  Shape \"curve\" \"string basis\" \"bezier\" \"string type\" \"cylinder\" \"point3 P\" [ ";
     for (const glm::vec4& q : {p0, b1, b2, p1}) {
-      put(out, q.x);
-      put(out, q.y);
-      put(out, q.z);
+      const glm::vec3 o = oriented(glm::vec3(q), up);
+      put(out, o.x);
+      put(out, o.y);
+      put(out, o.z);
     }
     out += "] \"float width0\" ";
     put(out, 2.0f * p0.w);
@@ -55,13 +44,13 @@ void write_pbrt(const TreeGeometry& g, const BarkLook& bark, const LeafLook& lea
     out += "  Shape \"trianglemesh\" \"point3 P\" [ ";
     const std::size_t count = static_cast<std::size_t>(d.width) * d.height;
     for (std::size_t v = 0; v < count; ++v) {
-      const glm::vec3 p = gs.vertices[d.first_vertex + v];
+      const glm::vec3 p = oriented(gs.vertices[d.first_vertex + v], up);
       put(out, p.x); put(out, p.y); put(out, p.z);
       flush_if_large(out, file);
     }
     out += "]\n    \"normal N\" [ ";
     for (std::size_t v = 0; v < count; ++v) {
-      const glm::vec3 n = gs.normals[d.first_vertex + v];
+      const glm::vec3 n = oriented(gs.normals[d.first_vertex + v], up);
       put(out, n.x); put(out, n.y); put(out, n.z);
       flush_if_large(out, file);
     }
@@ -78,11 +67,9 @@ void write_pbrt(const TreeGeometry& g, const BarkLook& bark, const LeafLook& lea
   out += "AttributeEnd\n";
   const LeafMesh lm = leaf_triangles(g);
   if (lm.triangle_count() > 0) {
-    out += "AttributeBegin\n  Material \"diffusetransmission\" ";
-    put_rgb(out, "reflectance", leaf.reflectance);
-    put_rgb(out, "transmittance", leaf.transmittance);
-    out += "\n  Shape \"trianglemesh\" \"point3 P\" [ ";
-    for (const glm::vec3& p : lm.positions) {
+    out += "AttributeBegin\n  " + leaf_material + "\n  Shape \"trianglemesh\" \"point3 P\" [ ";
+    for (const glm::vec3& q : lm.positions) {
+      const glm::vec3 p = oriented(q, up);
       put(out, p.x); put(out, p.y); put(out, p.z);
       flush_if_large(out, file);
     }
@@ -99,6 +86,33 @@ void write_pbrt(const TreeGeometry& g, const BarkLook& bark, const LeafLook& lea
     }
     out += "]\nAttributeEnd\n";
   }
+}
+
+std::string pbrt_rgb(const char* name, const Rgb& c) {
+  std::string out = std::string("\"rgb ") + name + "\" [ ";
+  for (double v : c) put(out, static_cast<float>(v));
+  return out + "]";
+}
+
+std::string pbrt_leaf_material(const Rgb& front, const Rgb& back, const Rgb& transmittance) {
+  Rgb mean{};
+  for (int i = 0; i < 3; ++i) mean[i] = 0.5 * (front[i] + back[i]);
+  return "\"diffusetransmission\" " + pbrt_rgb("reflectance", mean) + " " +
+         pbrt_rgb("transmittance", transmittance);
+}
+
+void write_pbrt(const TreeGeometry& g, const BarkLook& bark, const LeafLook& leaf,
+                const std::string& path, UpAxis up) {
+  AtomicFile file(path);
+  std::string out =
+      std::string("# arbor tree for pbrt-v4: Include this file inside the world block.\n"
+                  "# Units are metres, ") + (up == UpAxis::Y ? "y" : "z") +
+      " is up. Limbs are exact cubic curves; pbrt's diffusetransmission\n"
+      "# has one reflectance for both faces: the mean of the leaf's front and back reflectance.\n";
+  append_pbrt_shapes(g, "Material \"diffuse\" " + pbrt_rgb("reflectance", bark.albedo),
+                     "Material " + pbrt_leaf_material(leaf.reflectance, leaf.back_reflectance,
+                                                      leaf.transmittance),
+                     up, out, file);
   file.write(out);
   file.commit();
 }

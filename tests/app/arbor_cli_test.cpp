@@ -31,7 +31,7 @@ TEST(ArborCli, VersionAndHelp) {
   const CliRun h = run_arbor("grow --help");
   EXPECT_EQ(h.code, 0);
   EXPECT_NE(h.out.find("--quality"), std::string::npos);
-  EXPECT_NE(h.out.find(".obj or .ply"), std::string::npos);
+  EXPECT_NE(h.out.find("--up"), std::string::npos);
   const CliRun top = run_arbor("--help");
   EXPECT_NE(top.out.find("Compare image A against reference B"), std::string::npos) << top.out;
   const CliRun c = run_arbor("compare --help");
@@ -81,11 +81,19 @@ TEST(ArborCli, EveryShippedExampleOfEveryFormatGrowsWithStatistics) {
 }
 
 TEST(ArborCli, SameSeedSameOutput) {
-  const std::string a = ::testing::TempDir() + "a.obj", b = ::testing::TempDir() + "b.obj";
-  ASSERT_EQ(run_arbor("grow " + species("black_tupelo.toml") + " --quality 0.2 --seed 8 -o " + a).code, 0);
-  ASSERT_EQ(run_arbor("grow " + species("black_tupelo.toml") + " --quality 0.2 --seed 8 -o " + b).code, 0);
-  EXPECT_EQ(slurp(a), slurp(b));
-  EXPECT_GT(slurp(a).size(), 1000u);
+  // The same name in two folders: the OBJs (which name their .mtl) and .mtls are equal byte for byte.
+  const std::string a = ::testing::TempDir() + "same_seed_a/", b = ::testing::TempDir() + "same_seed_b/";
+  ASSERT_EQ(run_arbor("grow " + species("black_tupelo.toml") + " --quality 0.2 --seed 8 -o " + a + "t.obj").code, 0);
+  ASSERT_EQ(run_arbor("grow " + species("black_tupelo.toml") + " --quality 0.2 --seed 8 -o " + b + "t.obj").code, 0);
+  const std::string first = slurp(a + "t.obj");
+  EXPECT_TRUE(first == slurp(b + "t.obj"));  // not EXPECT_EQ: no diff of 250 MB texts
+  EXPECT_GT(first.size(), 1000u);
+  EXPECT_EQ(slurp(a + "t.mtl"), slurp(b + "t.mtl"));
+  EXPECT_NE(slurp(a + "t.mtl").find("newmtl leaf"), std::string::npos);
+  for (const std::string& d : {a, b}) {
+    std::remove((d + "t.obj").c_str());
+    std::remove((d + "t.mtl").c_str());
+  }
 }
 
 TEST(ArborCli, BadInputExitsTwoWithPosition) {
@@ -104,6 +112,28 @@ TEST(ArborCli, BadInputExitsTwoWithPosition) {
   EXPECT_EQ(run_arbor("grow " + species("quaking_aspen.toml") + " --seed -3").code, 2);
   EXPECT_EQ(run_arbor("grow " + species("quaking_aspen.toml") + " -o tree.stl").code, 2);
   EXPECT_EQ(run_arbor("frobnicate").code, 2);
+  EXPECT_EQ(run_arbor("grow " + species("quaking_aspen.toml") + " --up x -o tree.obj").code, 2);
+  const CliRun skel = run_arbor("grow " + species("young_tree.skel") + " --up y -o " +
+                                ::testing::TempDir() + "never.skel");
+  EXPECT_EQ(skel.code, 2);
+  EXPECT_NE(skel.err.find("--up y: a skeleton file is arbor's own input and always z-up"),
+            std::string::npos) << skel.err;
+  EXPECT_FALSE(exists(::testing::TempDir() + "never.skel"));
+}
+
+TEST(ArborCli, ObjNeverOverwritesAnInputWithItsMtl) {
+  // tree.obj's .mtl is tree.mtl: here that is the species file itself (reached through a link
+  // with the extension the reader wants), so nothing may be written.
+  const std::string mtl = write_temp("mtl_input_tree.mtl", slurp(species("young_tree.skel")));
+  const std::string link = ::testing::TempDir() + "mtl_input_link.skel";
+  std::remove(link.c_str());
+  ASSERT_EQ(symlink(mtl.c_str(), link.c_str()), 0);
+  const std::string obj = mtl.substr(0, mtl.size() - 4) + ".obj";
+  const CliRun r = run_arbor("grow " + link + " -o " + obj);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find(mtl + " would overwrite the input"), std::string::npos) << r.err;
+  EXPECT_FALSE(exists(obj));
+  EXPECT_EQ(slurp(mtl), slurp(species("young_tree.skel")));
 }
 
 TEST(ArborCli, AbsurdTreesAreRefusedUnlessForced) {

@@ -99,7 +99,7 @@ TEST(ObjMesh, ReadsArborsOwnExport) {
   const gen::TreeMesh tree = gen::tessellate(
       gen::build_tree_geometry(gen::grow_tree(s, gen::GrowOptions{}), gen::geometry_options_for(s)));
   const std::string path = ::testing::TempDir() + "export_roundtrip.obj";
-  gen::write_obj(tree, path);
+  gen::write_obj(tree, path, {s.name, s.bark, s.leaf});
   const ObjMesh m = load_obj(path);
   ASSERT_EQ(m.positions.size(), tree.positions.size());
   EXPECT_EQ(m.indices, tree.indices);

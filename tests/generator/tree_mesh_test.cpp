@@ -1,6 +1,7 @@
 // Tests of tessellation and the mesh exporters.
 #include "generator/geometry/tree_mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -95,39 +96,110 @@ TEST(TreeMesh, TrunkShowsFlareAndLobes) {
   EXPECT_NEAR(narrowest, r0 * 1.594 * 0.93, r0 * 0.01);
 }
 
-TEST(TreeMesh, ObjRoundTripsThroughTinyObjLoader) {
+namespace {
+MeshLooks aspen_looks() {
+  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
+  return {s.name, s.bark, s.leaf};
+}
+}  // namespace
+
+TEST(TreeMesh, ObjRoundTripsThroughTinyObjLoaderWithItsMaterials) {
   const TreeMesh mesh = tessellate(build_tree_geometry(small_tree()));
   const std::string path = temp_path("tree.obj");
-  write_obj(mesh, path);
+  const MeshLooks looks = aspen_looks();
+  write_obj(mesh, path, looks);
+  tinyobj::ObjReaderConfig config;
+  config.mtl_search_path = ::testing::TempDir();
   tinyobj::ObjReader reader;
-  ASSERT_TRUE(reader.ParseFromFile(path)) << reader.Error();
+  ASSERT_TRUE(reader.ParseFromFile(path, config)) << reader.Error();
+  EXPECT_EQ(reader.Warning(), "");  // the .mtl was found and read
   const auto& attrib = reader.GetAttrib();
-  EXPECT_EQ(attrib.vertices.size(), mesh.positions.size() * 3);
-  EXPECT_EQ(attrib.normals.size(), mesh.normals.size() * 3);
-  EXPECT_EQ(attrib.texcoords.size(), mesh.uvs.size() * 2);
+  ASSERT_EQ(attrib.vertices.size(), mesh.positions.size() * 3);
+  ASSERT_EQ(attrib.normals.size(), mesh.normals.size() * 3);
+  ASSERT_EQ(attrib.texcoords.size(), mesh.uvs.size() * 2);
   const auto& shapes = reader.GetShapes();
   ASSERT_EQ(shapes.size(), 2u);
   EXPECT_EQ(shapes[0].name, "bark");
   EXPECT_EQ(shapes[1].name, "leaf");
   EXPECT_EQ(shapes[0].mesh.indices.size(), mesh.bark_triangles * 3);
   EXPECT_EQ(shapes[0].mesh.indices.size() + shapes[1].mesh.indices.size(), mesh.indices.size());
-  EXPECT_FLOAT_EQ(attrib.vertices[3], mesh.positions[1].x);
+
+  // Positions to 10 µm, normals and uv to 1e-4: rounding moves nothing by more than half that.
+  float position_error = 0.0f, unit_error = 0.0f;
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      position_error = std::max(position_error, std::fabs(attrib.vertices[3 * i + k] - mesh.positions[i][k]));
+      unit_error = std::max(unit_error, std::fabs(attrib.normals[3 * i + k] - mesh.normals[i][k]));
+    }
+    for (int k = 0; k < 2; ++k) {
+      unit_error = std::max(unit_error, std::fabs(attrib.texcoords[2 * i + k] - mesh.uvs[i][k]));
+    }
+  }
+  EXPECT_LE(position_error, 5.1e-6f);
+  EXPECT_GT(position_error, 1e-7f);  // rounded, not written in full
+  EXPECT_LE(unit_error, 5.1e-5f);
+
+  // bark and leaf are materials of the .mtl beside it, with the species' colours.
+  const auto& materials = reader.GetMaterials();
+  ASSERT_EQ(materials.size(), 2u);
+  EXPECT_EQ(materials[0].name, "bark");
+  EXPECT_EQ(materials[1].name, "leaf");
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(materials[0].diffuse[c], looks.bark.albedo[c], 1e-4);
+    EXPECT_NEAR(materials[1].diffuse[c], looks.leaf.reflectance[c], 1e-4);
+    EXPECT_NEAR(materials[1].transmittance[c], looks.leaf.transmittance[c], 1e-4);
+    EXPECT_NEAR(materials[1].specular[c], 0.0337, 1e-3);  // ((1.45 - 1) / 2.45)²
+  }
+  EXPECT_EQ(shapes[0].mesh.material_ids.front(), 0);
+  EXPECT_EQ(shapes[1].mesh.material_ids.back(), 1);
   std::remove(path.c_str());
+  std::remove(mtl_path_for(path).c_str());
 }
 
-TEST(TreeMesh, PlyHasAValidHeaderAndSize) {
+TEST(TreeMesh, YUpTurnsTheTreeMinus90DegreesAboutX) {
+  const TreeMesh mesh = tessellate(build_tree_geometry(small_tree()));
+  const std::string path = temp_path("tree_y.obj");
+  write_obj(mesh, path, aspen_looks(), UpAxis::Y);
+  tinyobj::ObjReader reader;
+  ASSERT_TRUE(reader.ParseFromFile(path)) << reader.Error();
+  const auto& v = reader.GetAttrib().vertices;
+  const auto& n = reader.GetAttrib().normals;
+  float top_y = -1e9f, top_z = -1e9f;
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    ASSERT_NEAR(v[3 * i + 0], mesh.positions[i].x, 6e-6f);
+    ASSERT_NEAR(v[3 * i + 1], mesh.positions[i].z, 6e-6f);
+    ASSERT_NEAR(v[3 * i + 2], -mesh.positions[i].y, 6e-6f);
+    ASSERT_NEAR(n[3 * i + 1], mesh.normals[i].z, 6e-5f);
+    ASSERT_NEAR(n[3 * i + 2], -mesh.normals[i].y, 6e-5f);
+    top_y = std::max(top_y, v[3 * i + 1]);
+    top_z = std::max(top_z, std::fabs(v[3 * i + 2]));
+  }
+  EXPECT_GT(top_y, 2.0f * top_z);  // a tree taller than wide stands along +y
+  std::remove(path.c_str());
+  std::remove(mtl_path_for(path).c_str());
+}
+
+TEST(TreeMesh, PlyIsBinaryWithNormalsUvAndMaterials) {
   const TreeMesh mesh = tessellate(build_tree_geometry(small_tree()));
   const std::string path = temp_path("tree.ply");
-  write_ply(mesh, path);
+  write_ply(mesh, path, aspen_looks(), UpAxis::Y);
   std::ifstream in(path, std::ios::binary);
   std::string line, header;
   while (std::getline(in, line)) {
     header += line + "\n";
     if (line == "end_header") break;
   }
+  EXPECT_NE(header.find("format binary_little_endian 1.0"), std::string::npos);
   EXPECT_NE(header.find("element vertex " + std::to_string(mesh.positions.size())), std::string::npos);
   EXPECT_NE(header.find("element face " + std::to_string(mesh.triangle_count())), std::string::npos);
+  EXPECT_NE(header.find("comment material 0 bark albedo 0.58 0.57 0.52"), std::string::npos) << header;
   const auto body_start = in.tellg();
+  float first[8];
+  in.read(reinterpret_cast<char*>(first), sizeof first);
+  EXPECT_EQ(first[1], mesh.positions[0].z);  // y up: exact, a swap and a sign
+  EXPECT_EQ(first[2], -mesh.positions[0].y);
+  EXPECT_EQ(first[4], mesh.normals[0].z);
+  EXPECT_EQ(first[6], mesh.uvs[0].x);
   in.seekg(0, std::ios::end);
   const auto body = static_cast<size_t>(in.tellg() - body_start);
   EXPECT_EQ(body, mesh.positions.size() * 32 + mesh.triangle_count() * 14);
@@ -147,7 +219,7 @@ TEST(TreeMesh, LaneBoundMeetsItsTolerance) {
 
 TEST(TreeMesh, FailedWriteLeavesNothingBehind) {
   const TreeMesh mesh = tessellate(build_tree_geometry(small_tree()));
-  EXPECT_ANY_THROW(write_obj(mesh, "/nonexistent-dir/tree.obj"));
+  EXPECT_ANY_THROW(write_obj(mesh, "/nonexistent-dir/tree.obj", aspen_looks()));
 }
 
 }  // namespace arbor::gen

@@ -360,7 +360,7 @@ TEST(Render, ATreesCurvesAndItsOwnMeshExportCoverTheSamePixels) {
   grow.seed = t.seed;
   const gen::TreeGeometry g = gen::build_tree_geometry(gen::grow_tree(species, grow), gen::geometry_options_for(species));
   const std::string obj = ::testing::TempDir() + "saguaro.obj";
-  gen::write_obj(gen::tessellate(g), obj);
+  gen::write_obj(gen::tessellate(g), obj, {species.name, species.bark, species.leaf});
   s.trees.clear();
   MeshDesc m;
   m.path = obj;
