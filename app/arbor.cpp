@@ -16,6 +16,7 @@
 #include "imaging/color.h"
 #include "imaging/compare_command.h"
 #include "scene/grow_command.h"
+#include "tracer/export_command.h"
 #include "tracer/merge_command.h"
 #include "tracer/render_command.h"
 
@@ -157,6 +158,22 @@ int main(int argc, char** argv) {
   merge_cmd->add_option("-o,--output", merge.exr, "the merged EXR")->required();
   merge_cmd->add_option("--png", merge.png, "also write a PNG of it through the display view");
 
+  arbor::trace::ExportRequest exp;
+  CLI::App* export_cmd = app.add_subcommand(
+      "export", "Write a scene as a complete pbrt-v4 scene (camera, sun and sky, materials, trees, meshes, ground)");
+  export_cmd->add_option("SCENE", exp.scene, "scene file (.toml)")->required();
+  export_cmd->add_option("-o,--output", exp.out,
+                         "the pbrt-v4 scene to write (OUT.pbrt; its sky goes beside it as OUT.sky.exr)")
+      ->required();
+  export_cmd->add_option("--width", exp.width, "image width (overrides render.width)")->check(CLI::Range(1, 16384));
+  export_cmd->add_option("--height", exp.height, "image height (overrides render.height)")->check(CLI::Range(1, 16384));
+  export_cmd->add_option("--spp", exp.spp, "pbrt's pixel samples (overrides render.spp)")->check(CLI::Range(1, 1 << 20));
+  export_cmd->add_option("--time", exp.time, "seconds of wind sway for every [[tree]]")->check(finite_in(-1e6, 1e6));
+  export_cmd->add_option("--sky-resolution", exp.sky_resolution,
+                         "texels along each side of the sky's equal-area square image")
+      ->check(CLI::Range(16, 8192))
+      ->capture_default_str();
+
   arbor::remove_temporaries_on_signal();
   try {
     app.parse(argc, argv);
@@ -167,11 +184,13 @@ int main(int argc, char** argv) {
 
   try {
     // The OCIO config of this run: $OCIO, or arbor's own beside the executable.
-    render.ocio_config = cmp.ocio_config = merge.ocio_config = arbor::trace::default_ocio_config();
+    render.ocio_config = cmp.ocio_config = merge.ocio_config = exp.ocio_config =
+        arbor::trace::default_ocio_config();
     if (*grow_cmd) return arbor::trace::grow_command(grow);
     if (*render_cmd) return arbor::trace::render_command(render);
     if (*compare_cmd) return arbor::trace::compare_command(cmp);
     if (*merge_cmd) return arbor::trace::merge_command(merge);
+    if (*export_cmd) return arbor::trace::export_command(exp);
   } catch (const arbor::InputError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <mutex>
+#include <stdexcept>
 #include <vector>
 
 #include <OpenColorIO/OpenColorIO.h>
@@ -338,6 +339,16 @@ std::vector<std::string> ColorPipeline::names_of(const std::string& colorspace) 
 std::string ColorPipeline::interop_id(const std::string& colorspace) const {
   const KnownPrimaries* known = known_primaries(names_of(colorspace));
   return known ? known->interop_id : "";
+}
+
+ColorTransform rgb_to_rgb(const std::vector<float>& from, const std::vector<float>& to) {
+  if (from.size() != 8 || to.size() != 8) throw std::invalid_argument("rgb_to_rgb: 8 chromaticities each");
+  double a[8], b[8];
+  for (int i = 0; i < 8; ++i) {
+    a[i] = from[static_cast<std::size_t>(i)];
+    b[i] = to[static_cast<std::size_t>(i)];
+  }
+  return matrix_transform(multiply(inverse(rgb_to_xyz_d65(b)), rgb_to_xyz_d65(a)));
 }
 
 std::vector<float> ColorPipeline::chromaticities(const std::string& colorspace) const {

@@ -59,6 +59,11 @@ class ColorPipeline {
   std::string config_path_;
 };
 
+// The linear map between two RGB spaces given by their chromaticities (8 numbers each: red,
+// green, blue and white xy, as ColorPipeline::chromaticities gives them), the whites
+// Bradford-adapted through D65 (exact, and no adaptation at all, when both whites agree).
+ColorTransform rgb_to_rgb(const std::vector<float>& from, const std::vector<float>& to);
+
 // The config a run of arbor uses: $OCIO when it is set and not empty, else the config.ocio
 // installed with the executable (`<prefix>/share/arbor/ocio/config.ocio` for `<prefix>/bin/arbor`;
 // the build tree has the same layout). Read once, by the program, and passed on.

@@ -370,6 +370,43 @@ TEST(ArborCli, RenderRejectsBadScenesWithPosition) {
   EXPECT_EQ(missing.code, 2);
 }
 
+TEST(ArborCli, ExportWritesAPbrtSceneAndRefusesBadOutputs) {
+  const std::string dir = ::testing::TempDir() + "cli_export/";
+  const std::string scene = write_temp(
+      "export_scene.toml",
+      "[render]\nwidth = 24\nheight = 16\nspp = 2\n[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) +
+      "/species/young_tree.skel\"\n");
+  std::remove((dir + "s.pbrt").c_str());
+  std::remove((dir + "s.sky.exr").c_str());
+  const CliRun r = run_arbor("export " + scene + " -o " + dir + "s.pbrt --spp 7 --sky-resolution 32");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("wrote " + dir + "s.pbrt and " + dir + "s.sky.exr"), std::string::npos) << r.err;
+  const std::string text = slurp(dir + "s.pbrt");
+  EXPECT_NE(text.find("Sampler \"zsobol\" \"integer pixelsamples\" 7"), std::string::npos);
+  EXPECT_NE(text.find("\"string filename\" \"s.sky.exr\""), std::string::npos);
+  EXPECT_TRUE(exists(dir + "s.sky.exr"));
+
+  const CliRun ext = run_arbor("export " + scene + " -o " + dir + "s.txt");
+  EXPECT_EQ(ext.code, 2);
+  EXPECT_NE(ext.err.find("must end in .pbrt"), std::string::npos) << ext.err;
+  // The sky beside the output would be the scene's environment map: refused, nothing written.
+  const std::string envmap = write_temp("export_env.sky.exr", "stands for an image");
+  const std::string with_map = write_temp(
+      "export_env.toml", "[sky]\nmodel = \"envmap\"\npath = \"" + envmap + "\"\n");
+  const std::string out = envmap.substr(0, envmap.size() - 8) + ".pbrt";
+  const CliRun clash = run_arbor("export " + with_map + " -o " + out);
+  EXPECT_EQ(clash.code, 2);
+  EXPECT_NE(clash.err.find("would overwrite the input " + envmap), std::string::npos) << clash.err;
+  EXPECT_FALSE(exists(out));
+  EXPECT_EQ(slurp(envmap), "stands for an image");
+  const CliRun bad_sky = run_arbor("export " + scene + " --sky-resolution 3 -o " + dir + "t.pbrt");
+  EXPECT_EQ(bad_sky.code, 2);
+  EXPECT_FALSE(exists(dir + "t.pbrt"));
+  const CliRun h = run_arbor("export --help");
+  EXPECT_EQ(h.code, 0);
+  EXPECT_NE(h.out.find("pbrt-v4"), std::string::npos);
+}
+
 TEST(ArborCli, RenderWritesExrAndPngAndNothingOnFailure) {
   const std::string dir = ::testing::TempDir();
   const std::string scene = write_temp(

@@ -1,0 +1,287 @@
+// Tests of `arbor export`: pbrt-v4's equal-area map, the colour space, and a whole exported scene
+// read back: its syntax, camera, lights, objects and the sky image's irradiance and orientation.
+#include "tracer/export_command.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+#include <OpenImageIO/imageio.h>
+
+#include "imaging/color.h"
+#include "tracer/lights/sky.h"
+#include "tracer/test_world.h"
+
+namespace arbor::trace {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A pbrt-v4 file as statements: a directive and its arguments (quoted strings, numbers, or
+// bracketed lists); comments dropped. Fails the test on anything pbrt's tokenizer would refuse.
+struct Statement {
+  std::string directive;
+  std::vector<std::string> args;  // strings without their quotes; a list as "[", items, "]"
+};
+std::vector<Statement> parse_pbrt(const std::string& text) {
+  std::vector<std::string> tokens;
+  for (std::size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    if (c == '#') {
+      i = text.find('\n', i);
+      if (i == std::string::npos) break;
+    } else if (std::isspace(static_cast<unsigned char>(c))) {
+      ++i;
+    } else if (c == '"') {
+      const std::size_t end = text.find('"', i + 1);
+      EXPECT_NE(end, std::string::npos) << "unterminated string at " << i;
+      if (end == std::string::npos) break;
+      tokens.push_back("\"" + text.substr(i + 1, end - i - 1));
+      i = end + 1;
+    } else if (c == '[' || c == ']') {
+      tokens.emplace_back(1, c);
+      ++i;
+    } else {
+      std::size_t end = i;
+      while (end < text.size() && !std::isspace(static_cast<unsigned char>(text[end])) && text[end] != '[' &&
+             text[end] != ']' && text[end] != '"')
+        ++end;
+      tokens.push_back(text.substr(i, end - i));
+      i = end;
+    }
+  }
+  std::vector<Statement> out;
+  int depth = 0;
+  for (const std::string& t : tokens) {
+    const bool word = std::isalpha(static_cast<unsigned char>(t[0])) && t != "true" && t != "false";
+    if (word && depth == 0) {
+      out.push_back({t, {}});
+      continue;
+    }
+    EXPECT_FALSE(out.empty()) << "argument before any directive: " << t;
+    if (out.empty()) continue;
+    if (t == "[") ++depth;
+    if (t == "]") --depth;
+    EXPECT_GE(depth, 0);
+    EXPECT_LE(depth, 1) << "nested list";
+    if (t[0] != '"' && t != "[" && t != "]") {
+      char* end = nullptr;
+      std::strtod(t.c_str(), &end);
+      EXPECT_EQ(*end, '\0') << "not a number: " << t << " in " << out.back().directive;
+    }
+    out.back().args.push_back(t[0] == '"' ? t.substr(1) : t);
+  }
+  EXPECT_EQ(depth, 0);
+  const std::set<std::string> known = {
+      "ColorSpace", "Scale", "LookAt", "Camera", "Film", "PixelFilter", "Sampler", "Integrator", "WorldBegin",
+      "LightSource", "MakeNamedMaterial", "NamedMaterial", "Material", "ObjectBegin", "ObjectEnd",
+      "ObjectInstance", "AttributeBegin", "AttributeEnd", "Shape", "Transform"};
+  const std::set<std::string> types = {"float", "integer", "point3", "point2", "normal", "rgb", "string", "bool"};
+  for (const Statement& s : out) {
+    EXPECT_TRUE(known.count(s.directive)) << s.directive;
+    // Parameter lists: "type name" then one value or a bracketed list.
+    std::size_t i = 0;
+    if (s.directive == "Camera" || s.directive == "Film" || s.directive == "PixelFilter" || s.directive == "Sampler" ||
+        s.directive == "Integrator" || s.directive == "LightSource" || s.directive == "Shape" ||
+        s.directive == "MakeNamedMaterial" || s.directive == "Material") {
+      i = 1;
+      while (i < s.args.size()) {
+        const std::string& decl = s.args[i];
+        const std::size_t space = decl.find(' ');
+        EXPECT_NE(space, std::string::npos) << s.directive << ": parameter without a type: " << decl;
+        if (space == std::string::npos) break;
+        EXPECT_TRUE(types.count(decl.substr(0, space))) << s.directive << ": type of " << decl;
+        ++i;
+        if (i < s.args.size() && s.args[i] == "[") {
+          while (i < s.args.size() && s.args[i] != "]") ++i;
+        }
+        ++i;
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<double> numbers(const Statement& s, const std::string& param) {
+  std::vector<double> v;
+  for (std::size_t i = 0; i < s.args.size(); ++i) {
+    if (s.args[i] != param) continue;
+    ++i;
+    const bool list = s.args[i] == "[";
+    for (i += list ? 1 : 0; i < s.args.size() && s.args[i] != "]"; ++i) {
+      v.push_back(std::stod(s.args[i]));
+      if (!list) break;
+    }
+    break;
+  }
+  return v;
+}
+
+const Statement* find(const std::vector<Statement>& all, const std::string& directive, const std::string& first = "") {
+  for (const Statement& s : all) {
+    if (s.directive == directive && (first.empty() || (!s.args.empty() && s.args[0] == first))) return &s;
+  }
+  return nullptr;
+}
+
+std::size_t count(const std::vector<Statement>& all, const std::string& directive) {
+  std::size_t n = 0;
+  for (const Statement& s : all) n += s.directive == directive;
+  return n;
+}
+
+}  // namespace
+
+TEST(PbrtExport, EqualAreaMapIsPbrtsAndKeepsAreas) {
+  // Its fixed points: the centre is the zenith, the corners the nadir, the edges' middles the
+  // horizon along ±x and ±y.
+  const glm::vec3 up = equal_area_square_to_sphere({0.5f, 0.5f});
+  EXPECT_NEAR(up.z, 1.0f, 1e-6f);
+  EXPECT_NEAR(equal_area_square_to_sphere({0.0f, 0.0f}).z, -1.0f, 1e-6f);
+  EXPECT_NEAR(equal_area_square_to_sphere({1.0f, 0.5f}).x, 1.0f, 1e-6f);
+  EXPECT_NEAR(equal_area_square_to_sphere({0.5f, 1.0f}).y, 1.0f, 1e-6f);
+  EXPECT_NEAR(equal_area_square_to_sphere({0.5f, 0.0f}).y, -1.0f, 1e-6f);
+  // Equal areas: texel centres sample the sphere uniformly, so z and z² average 0 and 1/3, and
+  // the upper hemisphere holds half of them.
+  const int n = 256;
+  double z = 0.0, z2 = 0.0, upper = 0.0, worst = 0.0;
+  for (int y = 0; y < n; ++y) {
+    for (int x = 0; x < n; ++x) {
+      const glm::vec3 d = equal_area_square_to_sphere({(x + 0.5f) / n, (y + 0.5f) / n});
+      worst = std::max(worst, std::fabs(static_cast<double>(glm::length(d)) - 1.0));
+      z += d.z;
+      z2 += d.z * d.z;
+      upper += d.z > 0.0f ? 1.0 : d.z == 0.0f ? 0.5 : 0.0;  // the horizon: half above
+    }
+  }
+  EXPECT_LT(worst, 1e-5);
+  EXPECT_NEAR(z / (n * n), 0.0, 1e-4);
+  EXPECT_NEAR(z2 / (n * n), 1.0 / 3.0, 1e-4);
+  EXPECT_NEAR(upper / (n * n), 0.5, 1e-3);
+}
+
+TEST(PbrtExport, ColourSpacesPbrtKnowsAreKeptAndAcesCgBecomesAp0) {
+  const std::vector<float> rec709 = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
+  const std::vector<float> ap1 = {0.713f, 0.293f, 0.165f, 0.830f, 0.128f, 0.044f, 0.32168f, 0.33767f};
+  EXPECT_STREQ(pbrt_color_space_for(rec709).name, "srgb");
+  const PbrtColorSpace aces = pbrt_color_space_for(ap1);
+  EXPECT_STREQ(aces.name, "aces2065-1");
+  // AP1 → AP0 (same white): the ACES AP1-to-AP0 matrix's first column for AP1 red, white kept.
+  const ColorTransform t = rgb_to_rgb(ap1, aces.chromaticities);
+  float red[3] = {1.0f, 0.0f, 0.0f}, white[3] = {1.0f, 1.0f, 1.0f};
+  t(red);
+  t(white);
+  EXPECT_NEAR(red[0], 0.6954522f, 1e-3f);
+  EXPECT_NEAR(red[1], 0.0447946f, 1e-3f);
+  EXPECT_NEAR(red[2], -0.0055259f, 1e-3f);
+  for (float w : white) EXPECT_NEAR(w, 1.0f, 1e-4f);
+}
+
+TEST(PbrtExport, WritesTheWholeSceneAndASkyWithItsIrradiance) {
+  const std::string dir = ::testing::TempDir() + "pbrt_export/";
+  const std::string scene_path = dir + "scene.toml";
+  std::remove((dir + "scene.pbrt").c_str());
+  std::string text =
+      "[render]\nwidth = 90\nheight = 120\nspp = 32\nmax_depth = 6\n"
+      "[camera]\nposition = [12.0, -18.0, 2.5]\nlook_at = [0.0, 0.0, 5.0]\nfov = 40.0\nexposure = 1.0\n"
+      "[sun]\nelevation = 35.0\nazimuth = 120.0\nirradiance = 3.0\n"
+      "[sky]\nmodel = \"preetham\"\nturbidity = 3.0\n"
+      "[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) + "/species/young_tree.skel\"\nposition = [0.0, 0.0, 0.0]\n"
+      "[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) + "/species/young_tree.skel\"\nposition = [4.0, 1.0, 0.0]\nrotation = 30.0\n"
+      "[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) + "/species/young_tree.skel\"\nposition = [-4.0, 1.0, 0.0]\n"
+      "[tree.bark]\nalbedo = [0.2, 0.1, 0.05]\n";
+  {
+    std::system(("mkdir -p " + dir).c_str());
+    std::ofstream(scene_path) << text;
+  }
+  ExportRequest request;
+  request.scene = scene_path;
+  request.out = dir + "scene.pbrt";
+  request.sky_resolution = 128;
+  request.ocio_config = kOcioConfig;
+  ASSERT_EQ(export_command(request), 0);
+  const std::vector<Statement> pbrt = parse_pbrt(slurp(request.out));
+  ASSERT_FALSE(pbrt.empty());
+
+  EXPECT_EQ(find(pbrt, "ColorSpace")->args.at(0), "srgb");
+  const Statement* look = find(pbrt, "LookAt");
+  ASSERT_NE(look, nullptr);
+  EXPECT_EQ(look->args, (std::vector<std::string>{"12", "-18", "2.5", "0", "0", "5", "0", "0", "1"}));
+  // A portrait image: pbrt's fov spans the width, arbor's the height.
+  const Statement* camera = find(pbrt, "Camera");
+  ASSERT_NE(camera, nullptr);
+  EXPECT_NEAR(numbers(*camera, "float fov").at(0), 2.0 * std::atan(std::tan(20.0 * kPi / 180.0) * 90.0 / 120.0) * 180.0 / kPi, 1e-4);
+  EXPECT_EQ(numbers(*find(pbrt, "Film"), "integer xresolution").at(0), 90);
+  EXPECT_EQ(numbers(*find(pbrt, "Sampler"), "integer pixelsamples").at(0), 32);
+  EXPECT_EQ(numbers(*find(pbrt, "Integrator"), "integer maxdepth").at(0), 6);
+  EXPECT_EQ(count(pbrt, "AttributeBegin"), count(pbrt, "AttributeEnd"));
+  EXPECT_EQ(count(pbrt, "ObjectBegin"), count(pbrt, "ObjectEnd"));
+  // One tree grown once; the third's own bark makes a second object; three instances.
+  EXPECT_EQ(count(pbrt, "ObjectBegin"), 2u);
+  EXPECT_EQ(count(pbrt, "ObjectInstance"), 3u);
+  bool dark_bark = false;
+  for (const Statement& s : pbrt) {
+    if (s.directive == "MakeNamedMaterial" && numbers(s, "rgb reflectance") == std::vector<double>{0.2, 0.1, 0.05}) dark_bark = true;
+  }
+  EXPECT_TRUE(dark_bark);
+
+  // The sun: towards it, its irradiance, the exposure's 2× as the scale.
+  const ColorPipeline color(kOcioConfig);
+  SceneDesc desc = load_scene(scene_path);
+  const Sky sky(desc.sky, desc.sun, color.xyz_to_scene_linear());
+  const Statement* sun = find(pbrt, "LightSource", "distant");
+  ASSERT_NE(sun, nullptr);
+  const std::vector<double> from = numbers(*sun, "point3 from"), l = numbers(*sun, "rgb L");
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(from.at(k), sky.sun_direction()[k], 1e-6);
+    EXPECT_NEAR(l.at(k), sky.sun_irradiance_color()[k], 1e-5);
+  }
+  EXPECT_EQ(numbers(*sun, "float scale").at(0), 2.0);
+
+  // The sky image: square, its own colour space stated, and the map's irradiance on an upward
+  // plane (each texel 4π/N² sr) that of arbor's sky; its brightest texel near the sun.
+  const Statement* infinite = find(pbrt, "LightSource", "infinite");
+  ASSERT_NE(infinite, nullptr);
+  auto in = OIIO::ImageInput::open(dir + "scene.sky.exr");
+  ASSERT_TRUE(in);
+  const OIIO::ImageSpec spec = in->spec();
+  ASSERT_EQ(spec.width, 128);
+  ASSERT_EQ(spec.height, 128);
+  EXPECT_NE(spec.find_attribute("chromaticities"), nullptr);
+  std::vector<float> px(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
+  ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
+  glm::dvec3 e(0.0);
+  double brightest = -1.0;
+  glm::vec3 brightest_direction(0.0f);
+  for (int y = 0; y < spec.height; ++y) {
+    for (int x = 0; x < spec.width; ++x) {
+      const glm::vec3 d = equal_area_square_to_sphere({(x + 0.5f) / spec.width, (y + 0.5f) / spec.height});
+      const float* p = &px[(static_cast<std::size_t>(y) * spec.width + x) * spec.nchannels];
+      if (d.z > 0.0f) e += glm::dvec3(p[0], p[1], p[2]) * static_cast<double>(d.z);
+      if (p[1] > brightest) {
+        brightest = p[1];
+        brightest_direction = d;
+      }
+    }
+  }
+  e *= 4.0 * kPi / (spec.width * spec.height);
+  const glm::vec3 expected = sky.irradiance_up();
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(e[k], expected[k], 0.02 * expected[k]) << k;
+  EXPECT_GT(glm::dot(glm::normalize(brightest_direction), sky.sun_direction()), std::cos(15.0 * kPi / 180.0));
+}
+
+}  // namespace arbor::trace

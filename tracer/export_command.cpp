@@ -1,0 +1,354 @@
+// `arbor export`: the scene as pbrt-v4 sees it. What pbrt-v4 cannot state is said in the file's
+// opening comment and in docs/rendering.md.
+#include "tracer/export_command.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <tuple>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "common/progress.h"
+#include "common/strings.h"
+#include "formats/scene_desc.h"
+#include "generator/export/export_pbrt.h"
+#include "generator/export/text_output.h"
+#include "imaging/color.h"
+#include "imaging/image_output.h"
+#include "scene/scene.h"
+#include "tracer/lights/sky.h"
+
+namespace arbor::trace {
+
+namespace {
+
+constexpr float kPi = 3.14159265358979323846f;
+
+const PbrtColorSpace kPbrtSpaces[] = {
+    {"srgb", {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f}},
+    {"rec2020", {0.708f, 0.292f, 0.170f, 0.797f, 0.131f, 0.046f, 0.3127f, 0.3290f}},
+    {"aces2065-1", {0.7347f, 0.2653f, 0.0f, 1.0f, 0.0001f, -0.077f, 0.32168f, 0.33767f}},
+    {"dci-p3", {0.680f, 0.320f, 0.265f, 0.690f, 0.150f, 0.060f, 0.3127f, 0.3290f}},
+};
+
+std::string number(double v) {
+  std::string s;
+  gen::put_number(s, static_cast<float>(v));
+  return s;
+}
+
+std::string triple(const glm::vec3& v) { return number(v.x) + " " + number(v.y) + " " + number(v.z); }
+
+std::string base_name(const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+// Colours in pbrt's space; reflectances must lie in [0, 1] there (pbrt-v4 refuses others), so a
+// component pushed past by the change of primaries is clamped and reported.
+struct Colors {
+  ColorTransform to_pbrt;  // empty: the same space
+  std::vector<std::string>* clamped = nullptr;
+
+  glm::vec3 light(const glm::vec3& c) const {
+    float rgb[3] = {c.x, c.y, c.z};
+    if (to_pbrt) to_pbrt(rgb);
+    return glm::max(glm::vec3(rgb[0], rgb[1], rgb[2]), glm::vec3(0.0f));
+  }
+  glm::vec3 reflectance(const glm::vec3& c, const std::string& what) const {
+    float rgb[3] = {c.x, c.y, c.z};
+    if (to_pbrt) to_pbrt(rgb);
+    const glm::vec3 v(rgb[0], rgb[1], rgb[2]);
+    const glm::vec3 kept = glm::clamp(v, glm::vec3(0.0f), glm::vec3(1.0f));
+    if (kept != v && clamped) clamped->push_back(what + " (" + triple(v) + " → " + triple(kept) + ")");
+    return kept;
+  }
+  std::string rgb(const char* name, const glm::vec3& c, const std::string& what) const {
+    return gen::pbrt_rgb(name, to_rgb(reflectance(c, what)));
+  }
+  static Rgb to_rgb(const glm::vec3& c) { return {c.x, c.y, c.z}; }
+};
+
+// A material statement's body, by what it is made of: one MakeNamedMaterial per distinct body.
+class Materials {
+ public:
+  explicit Materials(const Colors& colors) : colors_(colors) {}
+
+  // The name of the material for `m` (in scene space), made on first use.
+  std::string name_of(const mat::Material& m, const std::string& label) {
+    std::string body;
+    switch (m.kind) {
+      case mat::Material::Kind::Leaf: {
+        const mat::LeafMaterial& l = m.leaf;
+        body = gen::pbrt_leaf_material(Colors::to_rgb(colors_.reflectance(l.front, label + " front")),
+                                       Colors::to_rgb(colors_.reflectance(l.back, label + " back")),
+                                       Colors::to_rgb(colors_.reflectance(l.transmittance, label + " transmittance")));
+        break;
+      }
+      case mat::Material::Kind::Bark:
+        body = "\"diffuse\" " + colors_.rgb("reflectance", m.bark.albedo, label);
+        break;
+      case mat::Material::Kind::Ground: {
+        // The patches' noise has no pbrt counterpart: their cover-weighted mean.
+        const float c = m.ground.cover;
+        body = "\"diffuse\" " + colors_.rgb("reflectance", (1.0f - c) * m.albedo + c * m.ground.patch_albedo, label);
+        break;
+      }
+      case mat::Material::Kind::Diffuse:
+        body = "\"diffuse\" " + colors_.rgb("reflectance", m.albedo, label);
+        break;
+    }
+    auto [at, fresh] = names_.emplace(body, "");
+    if (fresh) {
+      at->second = "m" + std::to_string(names_.size()) + " " + label;
+      text_ += "MakeNamedMaterial \"" + at->second + "\" \"string type\" " + body + "\n";
+    }
+    return at->second;
+  }
+  const std::string& text() const { return text_; }
+
+ private:
+  const Colors& colors_;
+  std::map<std::string, std::string> names_;  // body → name
+  std::string text_;
+};
+
+std::string transform_of(const glm::mat4& m) {
+  // pbrt's Transform takes the matrix column by column, as glm stores it.
+  const float* f = glm::value_ptr(m);
+  std::string s = "Transform [ ";
+  for (int i = 0; i < 16; ++i) s += number(f[i]) + " ";
+  return s + "]";
+}
+
+void write_sky_exr(const Sky& sky, const Colors& colors, const PbrtColorSpace& space, int n,
+                   const std::string& path) {
+  Image img;
+  img.width = img.full_width = n;
+  img.height = img.full_height = n;
+  const std::size_t count = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
+  img.beauty.resize(count);
+  img.alpha.assign(count, 1.0f);
+  for (int y = 0; y < n; ++y) {
+    for (int x = 0; x < n; ++x) {
+      const glm::vec3 d = equal_area_square_to_sphere(
+          glm::vec2((static_cast<float>(x) + 0.5f) / static_cast<float>(n), (static_cast<float>(y) + 0.5f) / static_cast<float>(n)));
+      img.beauty[static_cast<std::size_t>(y) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x)] =
+          colors.light(sky.radiance(glm::normalize(d)));
+    }
+  }
+  OutputDesc output;
+  output.colorspace = space.name;
+  output.pixel_type = "float";
+  ExrMetadata meta;
+  meta.scene = "arbor sky for pbrt-v4 (equal-area octahedral map)";
+  meta.chromaticities = space.chromaticities;
+  write_exr(img, output, meta, path);
+}
+
+}  // namespace
+
+glm::vec3 equal_area_square_to_sphere(glm::vec2 uv) {
+  const float u = 2.0f * uv.x - 1.0f, v = 2.0f * uv.y - 1.0f;
+  const float up = std::fabs(u), vp = std::fabs(v);
+  const float signed_distance = 1.0f - (up + vp);
+  const float r = 1.0f - std::fabs(signed_distance);
+  const float phi = (r == 0.0f ? 1.0f : (vp - up) / r + 1.0f) * kPi / 4.0f;
+  const float z = std::copysign(1.0f - r * r, signed_distance);
+  const float cos_phi = std::copysign(std::cos(phi), u), sin_phi = std::copysign(std::sin(phi), v);
+  const float s = r * std::sqrt(std::max(0.0f, 2.0f - r * r));
+  return glm::vec3(cos_phi * s, sin_phi * s, z);
+}
+
+PbrtColorSpace pbrt_color_space_for(const std::vector<float>& c) {
+  for (const PbrtColorSpace& p : kPbrtSpaces) {
+    bool same = c.size() == 8;
+    for (std::size_t i = 0; same && i < 8; ++i) same = std::fabs(c[i] - p.chromaticities[i]) < 1e-3f;
+    if (same) return p;
+  }
+  return kPbrtSpaces[2];
+}
+
+std::string sky_path_for(const std::string& pbrt_path) {
+  return (ends_with(pbrt_path, ".pbrt") ? pbrt_path.substr(0, pbrt_path.size() - 5) : pbrt_path) + ".sky.exr";
+}
+
+int export_command(const ExportRequest& a) {
+  if (!ends_with(a.out, ".pbrt")) throw InputError({}, "-o " + a.out + ": the pbrt-v4 scene must end in .pbrt");
+  if (a.sky_resolution < 16 || a.sky_resolution > 8192) {
+    throw InputError({}, "--sky-resolution " + std::to_string(a.sky_resolution) + " must be 16 to 8192");
+  }
+  SceneDesc scene = load_scene(a.scene);
+  RenderSettings& r = scene.render;
+  if (a.width > 0) r.width = a.width;
+  if (a.height > 0) r.height = a.height;
+  if (a.spp > 0) r.spp = a.spp;
+  if (a.time) {
+    for (TreeDesc& t : scene.trees) t.time = *a.time;
+  }
+  const std::string sky_path = sky_path_for(a.out);
+  const std::vector<std::string> inputs = scene_inputs(scene);
+  refuse_overwriting("-o", a.out, inputs);
+  refuse_overwriting("the sky beside -o", sky_path, inputs, {a.out});
+
+  const ColorPipeline color(a.ocio_config);
+  const std::vector<float> linear = color.chromaticities("scene_linear");
+  if (linear.empty()) {
+    throw InputError({}, "the OCIO config " + color.config_path() +
+                             ": arbor cannot tell the primaries of its scene_linear space, so it cannot "
+                             "state the scene's colours in a pbrt-v4 colour space");
+  }
+  const PbrtColorSpace space = pbrt_color_space_for(linear);
+  std::vector<std::string> clamped;
+  Colors colors;
+  colors.clamped = &clamped;
+  if (space.chromaticities != linear) colors.to_pbrt = rgb_to_rgb(linear, space.chromaticities);
+  prepare_output_folder(a.out);
+
+  Progress build_progress("build", 1);
+  const std::unique_ptr<const Scene> built = build_scene(scene, color.config_path(), &build_progress);
+  build_progress.finish();
+  const Sky sky(scene.sky, scene.sun, color.xyz_to_scene_linear());
+  const float exposure = std::exp2(static_cast<float>(scene.camera.exposure));
+
+  AtomicFile file(a.out);
+  std::string out;
+  out += "# pbrt-v4 scene written by arbor from " + scene.path + "\n";
+  out += "# Units are metres, z is up; colours are in pbrt's \"" + std::string(space.name) +
+         "\" space (arbor's scene_linear" + (colors.to_pbrt ? ", converted" : "") + ").\n"
+         "# Not in pbrt-v4, so not here: the sun's disk (a distant light is a point), the leaves'\n"
+         "# two sides (one reflectance, the mean of front and back) and their cuticle, bark\n"
+         "# roughness (Oren-Nayar) and relief, albedo maps, the ground's patches (their mean\n"
+         "# albedo), the transparent sky, the AOVs, arbor's sampling (pbrt samples its own way).\n";
+  out += "ColorSpace \"" + std::string(space.name) + "\"\n";
+  // pbrt's camera space is left-handed: mirroring x keeps arbor's right-handed image unmirrored.
+  const CameraDesc& cam = scene.camera;
+  out += "Scale -1 1 1\nLookAt " + number(cam.position[0]) + " " + number(cam.position[1]) + " " +
+         number(cam.position[2]) + "  " + number(cam.look_at[0]) + " " + number(cam.look_at[1]) + " " +
+         number(cam.look_at[2]) + "  " + number(cam.up[0]) + " " + number(cam.up[1]) + " " + number(cam.up[2]) + "\n";
+  // arbor's fov is vertical; pbrt's spans the image's shorter side.
+  const double aspect = static_cast<double>(r.width) / r.height;
+  const double fov = aspect >= 1.0 ? cam.fov
+                                   : 2.0 * std::atan(std::tan(cam.fov * kPi / 360.0) * aspect) * 180.0 / kPi;
+  const double focus = cam.focus_distance > 0.0
+                           ? cam.focus_distance
+                           : std::sqrt(std::pow(cam.look_at[0] - cam.position[0], 2) +
+                                       std::pow(cam.look_at[1] - cam.position[1], 2) +
+                                       std::pow(cam.look_at[2] - cam.position[2], 2));
+  out += "Camera \"perspective\" \"float fov\" " + number(fov);
+  if (cam.aperture_radius > 0.0) {
+    out += " \"float lensradius\" " + number(cam.aperture_radius) + " \"float focaldistance\" " + number(focus);
+  }
+  out += "\nFilm \"rgb\" \"integer xresolution\" " + std::to_string(r.width) + " \"integer yresolution\" " +
+         std::to_string(r.height) + " \"string filename\" \"" +
+         base_name(a.out.substr(0, a.out.size() - 5)) + ".exr\"\n";
+  out += "PixelFilter \"triangle\" \"float xradius\" 1 \"float yradius\" 1\n";
+  out += "Sampler \"zsobol\" \"integer pixelsamples\" " + std::to_string(r.spp) + "\n";
+  out += "Integrator \"volpath\" \"integer maxdepth\" " + std::to_string(r.max_depth) + "\n";
+  out += "\nWorldBegin\n\n";
+
+  // The lights; the camera's exposure scales them (pbrt's film has no exposure of its own).
+  if (sky.has_sun() && sky.sun_irradiance() > 0.0f) {
+    const glm::vec3 e = colors.light(sky.sun_irradiance_color());
+    out += "# the sun: irradiance on a plane facing it\nLightSource \"distant\" \"point3 from\" [ " +
+           triple(sky.sun_direction()) + " ] \"point3 to\" [ 0 0 0 ] " + gen::pbrt_rgb("L", Colors::to_rgb(e)) +
+           " \"float scale\" " + number(exposure) + "\n";
+  }
+  if (!sky.empty()) {
+    out += "# the sky (" + scene.sky.model + "), sampled into an equal-area square\nLightSource \"infinite\" \"string filename\" \"" +
+           base_name(sky_path) + "\" \"float scale\" " + number(exposure) + "\n";
+  }
+
+  // Materials first, then the trees as object instances (one object per prototype and its pair of
+  // materials), the meshes, the ground.
+  Materials materials(colors);
+  std::map<std::tuple<int, std::string, std::string>, std::string> objects;
+  std::string instances;
+  for (const TreeInstance& inst : built->instances) {
+    const std::string label = built->object_names.at(inst.object_id - 1);
+    const std::string species = label.substr(0, label.rfind('.'));
+    const std::string bark = materials.name_of(inst.bark, species + " bark");
+    const std::string leaf = materials.name_of(inst.leaf, species + " leaf");
+    auto [at, fresh] = objects.emplace(std::make_tuple(inst.prototype, bark, leaf), "");
+    if (fresh) at->second = "tree" + std::to_string(objects.size()) + " " + species;
+    instances += "AttributeBegin # " + label + "\n  " + transform_of(inst.to_world) + "\n  ObjectInstance \"" +
+                 at->second + "\"\nAttributeEnd\n";
+  }
+  std::vector<std::vector<std::string>> mesh_materials;
+  for (const MeshObject& m : built->meshes) {
+    std::vector<std::string> names;
+    const std::string label = built->object_names.at(m.object_id - 1);
+    for (std::size_t k = 0; k < m.materials.size(); ++k) {
+      names.push_back(materials.name_of(m.materials[k], built->material_names.at(m.material_ids[k] - 1)));
+    }
+    mesh_materials.push_back(names);
+  }
+  const std::string ground = built->has_ground ? materials.name_of(built->ground, "ground") : "";
+  out += "\n" + materials.text() + "\n";
+
+  for (const auto& [key, name] : objects) {
+    const gen::TreeGeometry& g = *built->prototypes.at(static_cast<std::size_t>(std::get<0>(key))).geometry;
+    out += "ObjectBegin \"" + name + "\"\n";
+    gen::append_pbrt_shapes(g, "NamedMaterial \"" + std::get<1>(key) + "\"",
+                            "NamedMaterial \"" + std::get<2>(key) + "\"", gen::UpAxis::Z, out, file);
+    out += "ObjectEnd\n";
+    gen::flush_if_large(out, file);
+  }
+  out += "\n" + instances;
+
+  for (std::size_t i = 0; i < built->meshes.size(); ++i) {
+    const MeshObject& m = built->meshes[i];
+    const bool has_normals = !m.normals.empty();
+    for (std::size_t k = 0; k < m.materials.size(); ++k) {
+      // Each triangle's corners on their own (the OBJ's normals are indexed apart from its points).
+      std::string p, n;
+      std::size_t corners = 0;
+      for (std::size_t t = 0; t < m.material.size(); ++t) {
+        if (m.material[t] != k) continue;
+        for (std::size_t c = 0; c < 3; ++c) {
+          p += triple(m.positions[m.indices[3 * t + c]]) + " ";
+          if (has_normals) {
+            const std::uint32_t ni = m.normal_indices[3 * t + c];
+            // A corner without a normal: the flat triangle's.
+            const glm::vec3 flat = glm::normalize(glm::cross(m.positions[m.indices[3 * t + 1]] - m.positions[m.indices[3 * t]],
+                                                             m.positions[m.indices[3 * t + 2]] - m.positions[m.indices[3 * t]]));
+            n += triple(ni < m.normals.size() ? m.normals[ni] : flat) + " ";
+          }
+          ++corners;
+        }
+      }
+      if (corners == 0) continue;
+      out += "AttributeBegin # " + built->object_names.at(m.object_id - 1) + "\n  NamedMaterial \"" +
+             mesh_materials[i][k] + "\"\n  Shape \"trianglemesh\" \"point3 P\" [ " + p + "]";
+      if (has_normals) out += "\n    \"normal N\" [ " + n + "]";
+      out += "\n    \"integer indices\" [ ";
+      for (std::size_t c = 0; c < corners; ++c) out += std::to_string(c) + " ";
+      out += "]\nAttributeEnd\n";
+      gen::flush_if_large(out, file);
+    }
+  }
+  if (built->has_ground) {
+    out += "AttributeBegin # ground: the plane z = 0, 10 km each way\n  NamedMaterial \"" + ground +
+           "\"\n  Shape \"trianglemesh\" \"point3 P\" [ -1e4 -1e4 0  1e4 -1e4 0  1e4 1e4 0  -1e4 1e4 0 ]"
+           " \"integer indices\" [ 0 1 2 0 2 3 ]\nAttributeEnd\n";
+  }
+
+  // The sky goes first: a failed write of the scene leaves at most a new sky beside the old
+  // scene, never a scene naming a sky that is not there.
+  if (!sky.empty()) write_sky_exr(sky, colors, space, a.sky_resolution, sky_path);
+  file.write(out);
+  file.commit();
+  for (const std::string& c : clamped) {
+    std::fprintf(stderr, "arbor: warning: %s is outside [0, 1] in pbrt's %s space; clamped\n", c.c_str(), space.name);
+  }
+  std::fprintf(stderr, "arbor: wrote %s%s\n", a.out.c_str(), sky.empty() ? "" : (" and " + sky_path).c_str());
+  return 0;
+}
+
+}  // namespace arbor::trace
