@@ -121,6 +121,40 @@ TEST(ArborCli, BadInputExitsTwoWithPosition) {
   EXPECT_FALSE(exists(::testing::TempDir() + "never.skel"));
 }
 
+TEST(ArborCli, GrowUpYWritesYUpMeshesWithTheirMaterials) {
+  const std::string dir = ::testing::TempDir() + "cli_up_y/";
+  const CliRun z = run_arbor("grow " + species("young_tree.skel") + " -o " + dir + "z.obj");
+  const CliRun y = run_arbor("grow " + species("young_tree.skel") + " -o " + dir + "y.obj --up y");
+  ASSERT_EQ(z.code, 0) << z.err;
+  ASSERT_EQ(y.code, 0) << y.err;
+  EXPECT_NE(y.err.find("wrote " + dir + "y.obj and " + dir + "y.mtl"), std::string::npos) << y.err;
+  // The same vertices turned: (x, y, z) becomes (x, z, -y); the tree's height moves to y.
+  std::istringstream zs(slurp(dir + "z.obj")), ys(slurp(dir + "y.obj"));
+  std::string zl, yl;
+  int compared = 0;
+  double top_z = 0.0, top_y = 0.0;
+  while (std::getline(zs, zl) && std::getline(ys, yl)) {
+    if (zl.rfind("v ", 0) != 0) continue;
+    double zx, zy, zz, yx, yy, yz;
+    std::sscanf(zl.c_str(), "v %lf %lf %lf", &zx, &zy, &zz);
+    std::sscanf(yl.c_str(), "v %lf %lf %lf", &yx, &yy, &yz);
+    EXPECT_EQ(yx, zx);
+    EXPECT_EQ(yy, zz);
+    EXPECT_EQ(yz, -zy);
+    top_z = std::max(top_z, zz);
+    top_y = std::max(top_y, yy);
+    ++compared;
+  }
+  EXPECT_GT(compared, 100);
+  EXPECT_GT(top_y, 1.0);
+  EXPECT_EQ(top_y, top_z);
+  EXPECT_NE(slurp(dir + "y.obj").find("mtllib y.mtl\n"), std::string::npos);
+  EXPECT_NE(slurp(dir + "y.mtl").find("newmtl bark\nKd "), std::string::npos);
+  const CliRun ply = run_arbor("grow " + species("young_tree.skel") + " -o " + dir + "y.ply --up y");
+  ASSERT_EQ(ply.code, 0) << ply.err;
+  EXPECT_NE(slurp(dir + "y.ply").find("y up, metres"), std::string::npos);
+}
+
 TEST(ArborCli, ObjNeverOverwritesAnInputWithItsMtl) {
   // tree.obj's .mtl is tree.mtl: here that is the species file itself (reached through a link
   // with the extension the reader wants), so nothing may be written.
