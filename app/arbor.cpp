@@ -18,6 +18,7 @@
 #include "scene/grow_command.h"
 #include "tracer/export_command.h"
 #include "tracer/merge_command.h"
+#include "tracer/plan_command.h"
 #include "tracer/render_command.h"
 
 namespace {
@@ -107,6 +108,10 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--height", render.height, "image height")->check(CLI::Range(1, 16384));
   render_cmd->add_option("--time", render.time, "seconds of wind sway for every [[tree]]")
       ->check(finite_in(-1e6, 1e6));
+  render_cmd->add_option("--frame", render.frame,
+                         "render frame N of the scene's [animation]: every tree at time N / fps, the "
+                         "frame's own seed (unless animation.pin_seed), N in place of #### in the outputs")
+      ->check(CLI::Range(0, 1000000));
   render_cmd->add_flag("--force", render.force,
                        "render even when the image and trees are estimated to need more memory "
                        "than this machine (or ulimit) allows");
@@ -158,6 +163,29 @@ int main(int argc, char** argv) {
   merge_cmd->add_option("-o,--output", merge.exr, "the merged EXR")->required();
   merge_cmd->add_option("--png", merge.png, "also write a PNG of it through the display view");
 
+  arbor::trace::PlanRequest plan;
+  CLI::App* plan_cmd = app.add_subcommand(
+      "plan", "Split a render into work units for any scheduler: prints one shell command per unit, then the merge(s)");
+  plan_cmd->add_option("SCENE", plan.scene, "scene file (.toml)")->required();
+  plan_cmd->add_option("-o,--output", plan.exr,
+                       "the merged EXR (with --frames, a run of # takes the frame number: out.####.exr); "
+                       "the parts go in OUT.parts/ beside it")
+      ->required();
+  plan_cmd->add_option("--png", plan.png, "the merged PNG (with #### for --frames)");
+  plan_cmd->add_option("--tiles", plan.tiles, "CxR: crop windows in C columns and R rows")->capture_default_str();
+  plan_cmd->add_option("--pass-groups", plan.pass_groups, "K: each tile's passes in K contiguous runs")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  plan_cmd->add_option("--frames", plan.frames, "A:B: frames A to B-1 of the scene's [animation], one merge each");
+  plan_cmd->add_flag("--json", plan.json, "print the plan as one JSON object (units, merges, argv and shell lines)");
+  plan_cmd->add_option("--width", plan.width, "image width (handed to every unit)")->check(CLI::Range(1, 16384));
+  plan_cmd->add_option("--height", plan.height, "image height")->check(CLI::Range(1, 16384));
+  plan_cmd->add_option("--spp", plan.spp, "samples per pixel")->check(CLI::Range(1, 1 << 20));
+  plan_cmd->add_option("--seed", plan.seed, "random seed")->check(seed_check());
+  plan_cmd->add_option("--integrator", plan.integrator, "path or treemaker")->check(CLI::IsMember({"path", "treemaker"}));
+  plan_cmd->add_option("--time", plan.time, "seconds of wind sway for every [[tree]]")->check(finite_in(-1e6, 1e6));
+  plan_cmd->add_flag("--transparent", plan.transparent, "transparent sky (alpha 0 where camera rays escape)");
+
   arbor::trace::ExportRequest exp;
   CLI::App* export_cmd = app.add_subcommand(
       "export", "Write a scene as a complete pbrt-v4 scene (camera, sun and sky, materials, trees, meshes, ground)");
@@ -191,6 +219,7 @@ int main(int argc, char** argv) {
     if (*compare_cmd) return arbor::trace::compare_command(cmp);
     if (*merge_cmd) return arbor::trace::merge_command(merge);
     if (*export_cmd) return arbor::trace::export_command(exp);
+    if (*plan_cmd) return arbor::trace::plan_command(plan);
   } catch (const arbor::InputError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;

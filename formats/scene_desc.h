@@ -162,6 +162,19 @@ struct OutputDesc {
   SourceLocation colorspace_where, display_where, view_where;
 };
 
+// An animation (docs/farm.md): frame N is rendered at clock N / fps seconds. Trees of models that
+// sway in the wind (Weber & Penn, §4.7) get the clock added to their `time` (seconds of wind);
+// trees of growth models (the fractal model, whose `time` is the tree's age in years) grow by
+// years_per_second × the clock (0: they stand still). The sample seed is varied per frame
+// (derive_key(seed, N)) unless pin_seed.
+struct AnimationDesc {
+  int frames = 0;  // 0: no [animation] table
+  double fps = 24.0;
+  double years_per_second = 0.0;
+  bool pin_seed = false;
+  SourceLocation where;  // the table's position, for errors found later
+};
+
 struct SceneDesc {
   std::string path;
   RenderSettings render;
@@ -173,7 +186,13 @@ struct SceneDesc {
   std::vector<ForestDesc> forests;
   std::vector<MeshDesc> meshes;
   OutputDesc output;
+  AnimationDesc animation;
+  double clock = 0.0;  // seconds into the animation of this render (render --frame N: N / fps)
 };
+
+// The frame's path: the first run of '#' in `path` replaced by `frame`, zero-padded to the run's
+// length ("out/wind.####.exr", 7 → "out/wind.0007.exr"); `path` when it has no '#'.
+std::string frame_path(const std::string& path, int frame);
 
 // Reads and validates a scene file: unknown keys and out-of-range values are InputErrors with
 // their position; relative paths are resolved against the scene file's folder.

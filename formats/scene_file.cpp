@@ -45,6 +45,7 @@ class SceneReader : TomlReader {
       else if (k == "forest") for_each_table(node, k, [&](const toml::table& t) { s.forests.push_back(forest(t)); });
       else if (k == "mesh") for_each_table(node, k, [&](const toml::table& t) { s.meshes.push_back(mesh(t)); });
       else if (k == "output") output(table(node, k), s.output);
+      else if (k == "animation") animation(table(node, k), s.animation);
       else throw InputError(at(key.source()), "unknown table or key '" + k + "'");
     }
     check_camera(s.camera);
@@ -116,6 +117,22 @@ class SceneReader : TomlReader {
       else if (k == "exposure") c.exposure = number(n, "camera.exposure", -64.0, 64.0);
       else unknown(key, "camera");
     }
+  }
+
+  void animation(const toml::table& t, AnimationDesc& a) const {
+    a.where = at(t.source());
+    bool has_frames = false;
+    for (auto&& [key, n] : t) {
+      const std::string k(key.str());
+      if (k == "frames") {
+        a.frames = static_cast<int>(integer(n, "animation.frames", 1, 1000000));
+        has_frames = true;
+      } else if (k == "fps") a.fps = number(n, "animation.fps", 1e-3, 1000.0);
+      else if (k == "years_per_second") a.years_per_second = number(n, "animation.years_per_second", 0.0, 1e4);
+      else if (k == "pin_seed") a.pin_seed = boolean(n, "animation.pin_seed");
+      else unknown(key, "animation");
+    }
+    if (!has_frames) throw InputError(a.where, "[animation] needs frames (how many frames the animation has)");
   }
 
   void sun(const toml::table& t, SunDesc& s) const {
@@ -354,6 +371,16 @@ SceneDesc parse_scene(const std::string& text, const std::string& path) {
 
 SceneDesc load_scene(const std::string& path) {
   return parse_scene(gen::read_text_file(path), path);
+}
+
+std::string frame_path(const std::string& path, int frame) {
+  const std::size_t first = path.find('#');
+  if (first == std::string::npos) return path;
+  std::size_t last = first;
+  while (last < path.size() && path[last] == '#') ++last;
+  std::string number = std::to_string(frame);
+  if (number.size() < last - first) number.insert(0, last - first - number.size(), '0');
+  return path.substr(0, first) + number + path.substr(last);
 }
 
 std::vector<std::string> scene_inputs(const SceneDesc& s) {

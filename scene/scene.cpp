@@ -309,8 +309,15 @@ std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::strin
   std::size_t total = desc.trees.size(), done = 0;
   for (const ForestDesc& f : desc.forests) total += static_cast<std::size_t>(f.variants);
   if (progress) progress->set_total(total);
+  // The animation's clock: seconds of wind for models that sway, years of growth for the fractal
+  // model (formats/scene_desc.h, AnimationDesc).
+  const auto animated = [&](const std::string& species, double time) {
+    if (desc.clock == 0.0) return time;
+    return b.species(species).model() == gen::Model::Fractal ? time + desc.clock * desc.animation.years_per_second
+                                                              : time + desc.clock;
+  };
   for (const TreeDesc& t : desc.trees) {
-    const int p = b.prototype_for(t.species, t.seed, t.time, t.where);
+    const int p = b.prototype_for(t.species, t.seed, animated(t.species, t.time), t.where);
     b.add_instance(p, t.placement, b.look_for(b.species(t.species), t.bark, t.leaf, t.treemaker, t.where), t.species);
     if (progress) progress->update(++done);
   }
@@ -318,7 +325,8 @@ std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::strin
     const TreeLook look = b.look_for(b.species(f.species), f.bark, f.leaf, f.treemaker, f.where);
     std::vector<int> variants;
     for (int v = 0; v < f.variants; ++v) {
-      variants.push_back(b.prototype_for(f.species, derive_key(f.seed, static_cast<std::uint64_t>(v)), 0.0, f.where));
+      variants.push_back(b.prototype_for(f.species, derive_key(f.seed, static_cast<std::uint64_t>(v)),
+                                         animated(f.species, 0.0), f.where));
       if (progress) progress->update(++done);
     }
     for (int i = 0; i < f.count; ++i) {

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
+#include <system_error>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
@@ -64,12 +66,31 @@ int merge_command(const MergeRequest& req) {
     if (!out.empty()) prepare_output_folder(out);
   }
 
+  // Every part there and finished, or one error naming each that is not (a farm re-runs those).
   std::vector<Part> parts;
+  std::vector<std::string> missing, incomplete;
   for (const std::string& p : req.parts) {
     const std::string state = state_path(p);
+    std::error_code ec;
+    if (!std::filesystem::exists(p, ec) || !std::filesystem::exists(state, ec)) {
+      missing.push_back(p);
+      continue;
+    }
     parts.push_back({p, read_film_state(state)});
-    if (parts.size() > 1) require_same_render(parts.front(), parts.back());
+    const Part& part = parts.back();
+    if (part.end() < part.file.header.pass_end) {
+      incomplete.push_back(p + " (holds " + (part.end() > part.begin() ? passes_text(part.begin(), part.end()) : "no pass") +
+                           " of its " + passes_text(part.begin(), part.file.header.pass_end) + ")");
+    }
   }
+  if (!missing.empty() || !incomplete.empty()) {
+    std::string text = std::to_string(missing.size() + incomplete.size()) + " of the " + std::to_string(req.parts.size()) +
+                       " parts cannot be merged; run those units again:";
+    for (const std::string& m : missing) text += "\n  missing: " + m + (std::filesystem::exists(m) ? " (its film state " + state_path(m) + " is not there)" : "");
+    for (const std::string& m : incomplete) text += "\n  incomplete: " + m + " (stopped; --resume finishes it)";
+    throw InputError({}, text);
+  }
+  for (std::size_t i = 1; i < parts.size(); ++i) require_same_render(parts.front(), parts[i]);
   // Pass order, whatever the order of the arguments.
   std::stable_sort(parts.begin(), parts.end(), [](const Part& a, const Part& b) { return a.begin() < b.begin(); });
   const FilmHeader& first = parts.front().file.header;

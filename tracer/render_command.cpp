@@ -18,6 +18,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/progress.h"
+#include "common/rng.h"
 #include "common/strings.h"
 #include "formats/scene_desc.h"
 #include "imaging/color.h"
@@ -84,6 +85,7 @@ std::string render_fingerprint(const SceneDesc& scene, const RenderRequest& a, c
     << r.treemaker_spp << " noise " << r.noise_threshold << " min " << r.min_spp
     << (scene.output.transparent_sky ? " transparent" : "") << (scene.output.wants_ids() ? " ids" : "") << " time ";
   if (a.time) s << *a.time;
+  if (a.frame) s << " frame " << *a.frame << " clock " << scene.clock;
   std::uint64_t hash = fnv1a(s.str());
   std::vector<std::string> files = scene_inputs(scene);
   files.push_back(ocio);
@@ -107,6 +109,29 @@ std::string finished_fingerprint(const std::string& exr) {
 
 }  // namespace
 
+void apply_frame(SceneDesc& scene, std::optional<int> frame) {
+  const bool numbered = scene.output.exr.find('#') != std::string::npos || scene.output.png.find('#') != std::string::npos;
+  if (!frame) {
+    if (numbered) {
+      throw InputError({}, "the output " + (scene.output.exr.find('#') != std::string::npos ? scene.output.exr : scene.output.png) +
+                               " names a frame number (#): give --frame N");
+    }
+    return;
+  }
+  const AnimationDesc& an = scene.animation;
+  if (an.frames == 0) {
+    throw InputError({scene.path, 0, 0}, "--frame " + std::to_string(*frame) + ": the scene has no [animation] table");
+  }
+  if (*frame < 0 || *frame >= an.frames) {
+    throw InputError(an.where, "--frame " + std::to_string(*frame) + " is outside the animation's frames 0 to " +
+                                   std::to_string(an.frames - 1));
+  }
+  scene.clock = *frame / an.fps;
+  if (!an.pin_seed) scene.render.seed = derive_key(scene.render.seed, static_cast<std::uint64_t>(*frame));
+  scene.output.exr = frame_path(scene.output.exr, *frame);
+  scene.output.png = frame_path(scene.output.png, *frame);
+}
+
 int render_command(const RenderRequest& a) {
   SceneDesc scene = load_scene(a.scene);
   RenderSettings& r = scene.render;
@@ -127,6 +152,7 @@ int render_command(const RenderRequest& a) {
     scene.output.png.clear();
   }
   if (!a.png.empty()) scene.output.png = a.png;
+  apply_frame(scene, a.frame);
   if (a.checkpoint_seconds) scene.output.checkpoint_seconds = *a.checkpoint_seconds;
   if (a.transparent) scene.output.transparent_sky = true;
   if (!treemaker &&

@@ -5,6 +5,8 @@
 #include <optional>
 #include <string>
 
+#include "formats/scene_desc.h"
+
 namespace arbor::trace {
 
 struct RenderRequest {
@@ -13,6 +15,7 @@ struct RenderRequest {
   int spp = 0, threads = 0, width = 0, height = 0;  // 0: the scene's (threads 0: all cores)
   std::optional<std::uint64_t> seed;
   std::optional<double> time;  // seconds of wind for every [[tree]]
+  std::optional<int> frame;    // the [animation]'s frame N: clock N / fps, its seed, '#' in outputs
   bool force = false;          // render past the memory estimate
   bool resume = false;         // continue from the EXR's film state
   bool transparent = false;    // --transparent: output.transparent_sky = true
@@ -22,6 +25,11 @@ struct RenderRequest {
   std::string crop;            // "X0,Y0,X1,Y1": render that window only; empty: all
   std::string ocio_config;     // the run's OCIO config (default_ocio_config())
 };
+
+// Applies `frame` (when given) to the scene: the clock, the frame's seed unless pinned, the
+// frame number in place of the '#' run in every output path. InputError when the scene has no
+// [animation], the frame is outside it, or an output names a frame number but no frame is given.
+void apply_frame(SceneDesc& scene, std::optional<int> frame);
 
 // Renders and writes; returns the exit status (0). InputError for bad input, RuntimeFailure when
 // the work fails.

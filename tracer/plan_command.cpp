@@ -1,0 +1,237 @@
+// `arbor plan`: tiles × pass groups (× frames) as `arbor render` commands, then the merges.
+#include "tracer/plan_command.h"
+
+#include <charconv>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+
+#include <unistd.h>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "common/strings.h"
+#include "formats/scene_desc.h"
+#include "tracer/film.h"
+
+namespace arbor::trace {
+
+namespace {
+
+std::string absolute(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::path p = std::filesystem::absolute(path, ec);
+  return ec ? path : p.lexically_normal().string();
+}
+
+std::string this_executable() {
+  char buf[4096];
+  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+  if (n <= 0) throw RuntimeFailure("cannot find the path of this arbor (/proc/self/exe)");
+  return std::string(buf, static_cast<std::size_t>(n));
+}
+
+// "A:B" / "CxR" as two integers.
+std::pair<int, int> two(const std::string& text, char sep, const std::string& option, const std::string& form) {
+  const std::size_t at = text.find(sep);
+  try {
+    if (at == std::string::npos) throw std::invalid_argument("");
+    std::size_t used_a = 0, used_b = 0;
+    const int a = std::stoi(text.substr(0, at), &used_a), b = std::stoi(text.substr(at + 1), &used_b);
+    if (used_a != at || used_b != text.size() - at - 1) throw std::invalid_argument("");
+    return {a, b};
+  } catch (const std::exception&) {
+    throw InputError({}, option + " " + text + ": expected " + form);
+  }
+}
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string json_strings(const std::vector<std::string>& v) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + json_string(v[i]);
+  return out + "]";
+}
+
+}  // namespace
+
+std::string shell_line(const std::vector<std::string>& argv) {
+  std::string line;
+  for (const std::string& w : argv) {
+    if (!line.empty()) line += ' ';
+    const bool plain = !w.empty() && w.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                          "0123456789_./:,=+-@%") == std::string::npos;
+    if (plain) {
+      line += w;
+      continue;
+    }
+    line += '\'';
+    for (const char c : w) line += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    line += '\'';
+  }
+  return line;
+}
+
+std::vector<PlanStep> make_plan(const PlanRequest& a) {
+  if (!ends_with(a.exr, ".exr")) throw InputError({}, "-o " + a.exr + ": the merged output must end in .exr");
+  if (!a.png.empty() && !ends_with(a.png, ".png")) throw InputError({}, "--png " + a.png + " must end in .png");
+  const auto [columns, rows] = two(a.tiles, 'x', "--tiles", "CxR (columns x rows, e.g. 4x2)");
+  SceneDesc scene = load_scene(a.scene);
+  const RenderSettings& r = scene.render;
+  const int width = a.width > 0 ? a.width : r.width, height = a.height > 0 ? a.height : r.height;
+  const bool treemaker = (a.integrator.empty() ? r.integrator : a.integrator) == "treemaker";
+  const int spp = a.spp > 0 ? a.spp : (treemaker ? r.treemaker_spp : r.spp);
+  const PassPlan passes{spp, r.pass_spp, r.independent_passes};
+  if (columns < 1 || rows < 1 || columns > width || rows > height) {
+    throw InputError({}, "--tiles " + a.tiles + ": the " + std::to_string(width) + "x" + std::to_string(height) +
+                             " image splits into 1 to " + std::to_string(width) + " columns and 1 to " +
+                             std::to_string(height) + " rows");
+  }
+  if (a.pass_groups < 1 || a.pass_groups > passes.passes()) {
+    throw InputError({}, "--pass-groups " + std::to_string(a.pass_groups) + ": the render has " +
+                             std::to_string(passes.passes()) + " passes (" + std::to_string(spp) + " spp in passes of " +
+                             std::to_string(r.pass_spp) + "), so 1 to " + std::to_string(passes.passes()) + " groups");
+  }
+  if (a.pass_groups > 1 && r.noise_threshold > 0.0) {
+    throw InputError({}, "--pass-groups " + std::to_string(a.pass_groups) +
+                             ": adaptive sampling (render.noise_threshold) decides each pass from the ones before "
+                             "it, so its passes cannot be split; split it by --tiles only");
+  }
+  std::vector<int> frames;
+  if (!a.frames.empty()) {
+    if (scene.animation.frames == 0) throw InputError({scene.path, 0, 0}, "--frames " + a.frames + ": the scene has no [animation] table");
+    const auto [first, end] = two(a.frames, ':', "--frames", "A:B (frames A to B-1)");
+    if (first < 0 || first >= end || end > scene.animation.frames) {
+      throw InputError({}, "--frames " + a.frames + ": the animation has frames 0 to " +
+                               std::to_string(scene.animation.frames - 1) + ", so A:B needs 0 <= A < B <= " +
+                               std::to_string(scene.animation.frames));
+    }
+    if (a.exr.find('#') == std::string::npos || (!a.png.empty() && a.png.find('#') == std::string::npos)) {
+      throw InputError({}, "--frames: the outputs need a run of '#' for the frame number (e.g. out.####.exr)");
+    }
+    for (int f = first; f < end; ++f) frames.push_back(f);
+  } else {
+    frames.push_back(-1);
+  }
+  refuse_overwriting("-o", a.exr, scene_inputs(scene));
+
+  const std::string arbor = a.arbor.empty() ? this_executable() : a.arbor;
+  std::vector<std::string> common = {arbor, "render", absolute(a.scene)};
+  const auto add = [&](const std::string& option, const std::string& value) {
+    common.push_back(option);
+    common.push_back(value);
+  };
+  if (a.width > 0) add("--width", std::to_string(a.width));
+  if (a.height > 0) add("--height", std::to_string(a.height));
+  if (a.spp > 0) add("--spp", std::to_string(a.spp));
+  if (a.seed) add("--seed", std::to_string(*a.seed));
+  if (a.time) {
+    char buf[32];
+    const auto end = std::to_chars(buf, buf + sizeof buf, *a.time).ptr;  // shortest exact form
+    add("--time", std::string(buf, end));
+  }
+  if (!a.integrator.empty()) add("--integrator", a.integrator);
+  if (a.transparent) common.push_back("--transparent");
+
+  std::vector<PlanStep> units, merges;
+  for (const int frame : frames) {
+    const std::string out = absolute(frame >= 0 ? frame_path(a.exr, frame) : a.exr);
+    const std::string folder = out.substr(0, out.size() - 4) + ".parts/";
+    PlanStep merge;
+    merge.kind = "merge";
+    merge.frame = frame;
+    merge.output = out;
+    for (int row = 0; row < rows; ++row) {
+      for (int column = 0; column < columns; ++column) {
+        for (int g = 0; g < a.pass_groups; ++g) {
+          PlanStep u;
+          u.kind = "render";
+          u.frame = frame;
+          u.column = column;
+          u.row = row;
+          u.crop[0] = static_cast<int>(static_cast<long long>(column) * width / columns);
+          u.crop[1] = static_cast<int>(static_cast<long long>(row) * height / rows);
+          u.crop[2] = static_cast<int>(static_cast<long long>(column + 1) * width / columns);
+          u.crop[3] = static_cast<int>(static_cast<long long>(row + 1) * height / rows);
+          u.pass_begin = g * passes.passes() / a.pass_groups;
+          u.pass_end = (g + 1) * passes.passes() / a.pass_groups;
+          u.output = folder + "tile-" + std::to_string(column) + "-" + std::to_string(row) + ".passes-" +
+                     std::to_string(u.pass_begin) + "-" + std::to_string(u.pass_end) + ".exr";
+          u.argv = common;
+          if (frame >= 0) {
+            u.argv.push_back("--frame");
+            u.argv.push_back(std::to_string(frame));
+          }
+          for (const std::string& w : {std::string("--crop"),
+                                       std::to_string(u.crop[0]) + "," + std::to_string(u.crop[1]) + "," +
+                                           std::to_string(u.crop[2]) + "," + std::to_string(u.crop[3]),
+                                       std::string("--passes"),
+                                       std::to_string(u.pass_begin) + ":" + std::to_string(u.pass_end),
+                                       std::string("-o"), u.output}) {
+            u.argv.push_back(w);
+          }
+          merge.inputs.push_back(u.output);
+          units.push_back(u);
+        }
+      }
+    }
+    merge.argv = {arbor, "merge", "-o", out};
+    if (!a.png.empty()) {
+      merge.argv.push_back("--png");
+      merge.argv.push_back(absolute(frame >= 0 ? frame_path(a.png, frame) : a.png));
+    }
+    for (const std::string& p : merge.inputs) merge.argv.push_back(p);
+    merges.push_back(merge);
+  }
+  units.insert(units.end(), merges.begin(), merges.end());
+  return units;
+}
+
+int plan_command(const PlanRequest& a) {
+  const std::vector<PlanStep> plan = make_plan(a);
+  if (!a.json) {
+    for (const PlanStep& s : plan) std::printf("%s\n", shell_line(s.argv).c_str());
+    return 0;
+  }
+  std::string units, merges;
+  for (const PlanStep& s : plan) {
+    std::string item = "    {";
+    if (s.frame >= 0) item += "\"frame\": " + std::to_string(s.frame) + ", ";
+    if (s.kind == "render") {
+      item += "\"name\": " + json_string("tile-" + std::to_string(s.column) + "-" + std::to_string(s.row) + ".passes-" +
+                                         std::to_string(s.pass_begin) + "-" + std::to_string(s.pass_end) +
+                                         (s.frame >= 0 ? ".frame-" + std::to_string(s.frame) : "")) +
+              ", \"tile\": [" + std::to_string(s.column) + ", " + std::to_string(s.row) + "], \"crop\": [" +
+              std::to_string(s.crop[0]) + ", " + std::to_string(s.crop[1]) + ", " + std::to_string(s.crop[2]) + ", " +
+              std::to_string(s.crop[3]) + "], \"passes\": [" + std::to_string(s.pass_begin) + ", " +
+              std::to_string(s.pass_end) + "], ";
+    } else {
+      item += "\"inputs\": " + json_strings(s.inputs) + ", ";
+    }
+    item += "\"output\": " + json_string(s.output) + ", \"argv\": " + json_strings(s.argv) +
+            ", \"shell\": " + json_string(shell_line(s.argv)) + "}";
+    std::string& list = s.kind == "render" ? units : merges;
+    list += (list.empty() ? "" : ",\n") + item;
+  }
+  std::printf("{\n  \"scene\": %s,\n  \"units\": [\n%s\n  ],\n  \"merges\": [\n%s\n  ]\n}\n",
+              json_string(absolute(a.scene)).c_str(), units.c_str(), merges.c_str());
+  return 0;
+}
+
+}  // namespace arbor::trace
