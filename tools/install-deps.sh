@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages arbor needs: exactly those missing, nothing when all are present.
-# --fuzz: also what `make fuzz` needs (clang and its libFuzzer and sanitizer runtimes).
+# --fuzz: what `make fuzz` needs instead (clang and its libFuzzer and sanitizer runtimes).
+# --farm: what the farm test (`ctest -L farm`) needs instead: a single-node Slurm and munge.
 set -euo pipefail
 
 packages=(
@@ -24,6 +25,9 @@ packages=(
 
 if [ "${1:-}" = "--fuzz" ]; then
   packages=(clang libclang-rt-14-dev)
+fi
+if [ "${1:-}" = "--farm" ]; then
+  packages=(slurmctld slurmd slurm-client munge openimageio-tools)
 fi
 
 missing=()
