@@ -56,4 +56,16 @@ for b in runs:
 PY
 "$build/bench/render_bench" --benchmark_filter='forest_1000' \
   --benchmark_out="$out/render_bench_forest.json" --benchmark_out_format=json
+# Farm units: their summed time over the single render (docs/farm.md).
+"$build/bench/farm_bench" --benchmark_out="$out/farm_bench.json" --benchmark_out_format=json
+python3 - "$out/farm_bench.json" <<'PY'
+import json, sys
+runs = {b["name"].split("/")[0] + ("/" + b["name"].split("/")[1] if b["name"].startswith("units") else ""): b
+        for b in json.load(open(sys.argv[1]))["benchmarks"]}
+whole = runs["whole"]["real_time"]
+for n in ("4", "16", "64"):
+    b = runs["units/" + n]
+    print(f"bench: {n} units sum {b['real_time']:.1f} s over one render {whole:.1f} s: "
+          f"{b['real_time'] / whole:.2f}x (+{b['merge_seconds']:.1f} s merge)")
+PY
 echo "bench: results in $out"

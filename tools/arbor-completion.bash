@@ -4,10 +4,10 @@
 _arbor() {
   local cur=${COMP_WORDS[COMP_CWORD]} prev=${COMP_WORDS[COMP_CWORD-1]} sub="" w exts
   for w in "${COMP_WORDS[@]:1:COMP_CWORD-1}"; do
-    case $w in grow|render|compare|merge|export) sub=$w; break ;; esac
+    case $w in grow|render|compare|merge|export|plan) sub=$w; break ;; esac
   done
   if [ -z "$sub" ]; then
-    mapfile -t COMPREPLY < <(compgen -W "grow render compare merge export --help --version" -- "$cur")
+    mapfile -t COMPREPLY < <(compgen -W "grow render compare merge export plan --help --version" -- "$cur")
     return
   fi
   if [[ $cur == -* ]]; then
@@ -21,12 +21,12 @@ _arbor() {
     --up) mapfile -t COMPREPLY < <(compgen -W "z y" -- "$cur"); return ;;
     -o|--output) exts='exr|png|obj|ply|pbrt|skel' ;;
     --png|--heatmap|--side-by-side) exts='png' ;;
-    --seed|--spp|--threads|--width|--height|--time|--quality|--time-limit|--checkpoint-seconds|--passes|--crop|--sky-resolution)
+    --seed|--spp|--threads|--width|--height|--time|--quality|--time-limit|--checkpoint-seconds|--passes|--crop|--sky-resolution|--frame|--frames|--tiles|--pass-groups)
       return ;;
     *)
       case $sub in
         grow) exts='toml|xml|lsys|tmpl|skel' ;;
-        render|export) exts='toml' ;;
+        render|export|plan) exts='toml' ;;
         *) exts='exr|png' ;;
       esac ;;
   esac
