@@ -7,7 +7,7 @@ set -euo pipefail
 build="$1" work="$2"
 rm -rf "$work" && mkdir -p "$work/prefix" "$work/elsewhere"
 cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
-for f in bin/arbor share/arbor/ocio/config.ocio share/arbor/species/quaking_aspen.toml \
+for f in bin/arbor bin/arbor-slurm share/arbor/ocio/config.ocio share/arbor/species/quaking_aspen.toml \
          share/arbor/scenes/default.toml share/bash-completion/completions/arbor; do
   [ -e "$work/prefix/$f" ] || { echo "install_test.sh: $f was not installed" >&2; exit 1; }
 done
