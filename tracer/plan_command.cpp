@@ -127,6 +127,9 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
     }
     for (int f = first; f < end; ++f) frames.push_back(f);
   } else {
+    if (a.exr.find('#') != std::string::npos || a.png.find('#') != std::string::npos) {
+      throw InputError({}, "the outputs name a frame number (#): give --frames A:B");
+    }
     frames.push_back(-1);
   }
   refuse_overwriting("-o", a.exr, scene_inputs(scene));

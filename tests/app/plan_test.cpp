@@ -135,6 +135,9 @@ TEST(Plan, FramesRenderTheAnimationsClockAndMergeOnePerFrame) {
   EXPECT_EQ(run_arbor("plan " + still + " --frames 0:2 -o " + dir + "g.####.exr").code, 2);
   EXPECT_EQ(run_arbor("plan " + scene + " --frames 0:5 -o " + dir + "g.####.exr").code, 2);
   EXPECT_EQ(run_arbor("plan " + scene + " --frames 0:2 -o " + dir + "g.exr").code, 2);
+  const CliRun hashes = run_arbor("plan " + scene + " -o " + dir + "g.####.exr");
+  EXPECT_EQ(hashes.code, 2);
+  EXPECT_NE(hashes.err.find("give --frames A:B"), std::string::npos) << hashes.err;
   EXPECT_EQ(run_arbor("plan " + scene + " --tiles 41x1 -o " + dir + "g.exr").code, 2);
   EXPECT_EQ(run_arbor("plan " + scene + " --pass-groups 5 -o " + dir + "g.exr").code, 2);
   EXPECT_EQ(run_arbor("plan " + scene + " --tiles 2 -o " + dir + "g.exr").code, 2);
