@@ -197,6 +197,8 @@ int main(int argc, char** argv) {
   export_cmd->add_option("--height", exp.height, "image height (overrides render.height)")->check(CLI::Range(1, 16384));
   export_cmd->add_option("--spp", exp.spp, "pbrt's pixel samples (overrides render.spp)")->check(CLI::Range(1, 1 << 20));
   export_cmd->add_option("--time", exp.time, "seconds of wind sway for every [[tree]]")->check(finite_in(-1e6, 1e6));
+  export_cmd->add_option("--frame", exp.frame, "frame N of the scene's [animation]: every tree at time N / fps")
+      ->check(CLI::Range(0, 1000000));
   export_cmd->add_option("--sky-resolution", exp.sky_resolution,
                          "texels along each side of the sky's equal-area square image")
       ->check(CLI::Range(16, 8192))

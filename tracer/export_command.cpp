@@ -23,6 +23,7 @@
 #include "imaging/image_output.h"
 #include "scene/scene.h"
 #include "tracer/lights/sky.h"
+#include "tracer/render_command.h"
 
 namespace arbor::trace {
 
@@ -192,6 +193,10 @@ int export_command(const ExportRequest& a) {
   if (a.time) {
     for (TreeDesc& t : scene.trees) t.time = *a.time;
   }
+  // A frame of an animation: its clock (the scene's own outputs are not written here).
+  scene.output.exr.clear();
+  scene.output.png.clear();
+  apply_frame(scene, a.frame);
   const std::string sky_path = sky_path_for(a.out);
   const std::vector<std::string> inputs = scene_inputs(scene);
   refuse_overwriting("-o", a.out, inputs);

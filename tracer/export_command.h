@@ -16,6 +16,7 @@ struct ExportRequest {
   std::string out;                  // OUT.pbrt; the sky goes beside it as OUT.sky.exr
   int width = 0, height = 0, spp = 0;  // 0: the scene's
   std::optional<double> time;       // seconds of wind for every [[tree]]
+  std::optional<int> frame;         // the [animation]'s frame N (its clock and seed)
   int sky_resolution = 512;         // texels along each side of the sky's equal-area square
   std::string ocio_config;          // the run's OCIO config (default_ocio_config())
 };

@@ -436,6 +436,12 @@ TEST(ArborCli, ExportWritesAPbrtSceneAndRefusesBadOutputs) {
   const CliRun bad_sky = run_arbor("export " + scene + " --sky-resolution 3 -o " + dir + "t.pbrt");
   EXPECT_EQ(bad_sky.code, 2);
   EXPECT_FALSE(exists(dir + "t.pbrt"));
+  // A frame of an animation: the wind scene at frame 12 differs from frame 0 (the willow sways).
+  const std::string wind = std::string(ARBOR_SOURCE_DIR) + "/scenes/wind.toml";
+  ASSERT_EQ(run_arbor("export " + wind + " --frame 0 --sky-resolution 16 -o " + dir + "w0.pbrt").code, 0);
+  ASSERT_EQ(run_arbor("export " + wind + " --frame 12 --sky-resolution 16 -o " + dir + "w12.pbrt").code, 0);
+  EXPECT_NE(slurp(dir + "w0.pbrt"), slurp(dir + "w12.pbrt"));
+  EXPECT_EQ(run_arbor("export " + wind + " --frame 48 -o " + dir + "w48.pbrt").code, 2);
   const CliRun h = run_arbor("export --help");
   EXPECT_EQ(h.code, 0);
   EXPECT_NE(h.out.find("pbrt-v4"), std::string::npos);
