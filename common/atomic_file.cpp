@@ -2,6 +2,7 @@
 #include "common/atomic_file.h"
 
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <csignal>
@@ -73,15 +74,52 @@ std::string folder_of(const std::string& path) {
   return slash == 0 ? "/" : path.substr(0, slash);
 }
 
+// This machine's name as it goes into temporaries' names ([A-Za-z0-9-] only).
+std::string host_tag() {
+  char buf[256] = {};
+  if (::gethostname(buf, sizeof buf - 1) != 0 || buf[0] == '\0') return "host";
+  std::string tag;
+  for (const char* c = buf; *c && *c != '.'; ++c) tag += std::isalnum(static_cast<unsigned char>(*c)) || *c == '-' ? *c : '-';
+  return tag.empty() ? "host" : tag;
+}
+
 // A hidden temporary beside `target` that keeps its extension (image writers choose the format
-// by it): dir/.NAME.tmp-PID.EXT
-std::string temporary_for(const std::string& target) {
+// by it): dir/.NAME.tmp-HOST-PID.EXT. The host and process name the writer, so a later writer of
+// the same target can tell a temporary left by a killed process (SIGKILL cannot be caught) from
+// one being written now, even on a folder that other machines share.
+struct TempName {
+  std::string dir, prefix, ext;  // dir/ + prefix + PID + ext
+};
+TempName temp_name(const std::string& target, const std::string& host) {
   const auto slash = target.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "" : target.substr(0, slash + 1);
   const std::string name = slash == std::string::npos ? target : target.substr(slash + 1);
   const auto dot = name.find_last_of('.');
-  const std::string ext = dot == std::string::npos || dot == 0 ? "" : name.substr(dot);
-  return dir + "." + name + ".tmp-" + std::to_string(::getpid()) + ext;
+  return {slash == std::string::npos ? "" : target.substr(0, slash + 1), "." + name + ".tmp-" + host + "-",
+          dot == std::string::npos || dot == 0 ? "" : name.substr(dot)};
+}
+
+std::string temporary_for(const std::string& target) {
+  const TempName t = temp_name(target, host_tag());
+  return t.dir + t.prefix + std::to_string(::getpid()) + t.ext;
+}
+
+// Removes the temporaries of `target` that processes of this machine left when they were killed:
+// those whose process no longer exists. Another machine's are left alone.
+void remove_stale_temporaries(const std::string& target) {
+  const TempName t = temp_name(target, host_tag());
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(folder_of(target), ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() <= t.prefix.size() + t.ext.size() || name.compare(0, t.prefix.size(), t.prefix) != 0 ||
+        name.compare(name.size() - t.ext.size(), t.ext.size(), t.ext) != 0) {
+      continue;
+    }
+    const std::string digits = name.substr(t.prefix.size(), name.size() - t.prefix.size() - t.ext.size());
+    if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    const long pid = std::stol(digits);
+    if (pid == static_cast<long>(::getpid())) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) ::unlink(it->path().c_str());
+  }
 }
 
 [[noreturn]] void fail(const std::string& path, int err) {
@@ -163,6 +201,7 @@ void remove_temporaries_on_signal() {
 
 AtomicFile::AtomicFile(std::string path, bool binary)
     : path_(std::move(path)), target_(resolve_output_path(path_)) {
+  remove_stale_temporaries(target_);
   temp_ = temporary_for(target_);
   slot_ = register_temporary(temp_);
   file_ = std::fopen(temp_.c_str(), binary ? "wb" : "w");

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -89,6 +90,32 @@ TEST(AtomicFile, FailedWriteIsReportedAndTheOldFileKept) {
   EXPECT_EQ(WEXITSTATUS(status), 42) << "the failed write was not reported";
   EXPECT_EQ(read(path), "old");
   EXPECT_EQ(files_in(dir), std::vector<std::string>{"out.bin"});
+}
+
+TEST(AtomicFile, TemporariesOfKilledWritersAreRemovedByTheNextWriter) {
+  const std::string dir = fresh_folder("stale");
+  char host[256] = {};
+  ASSERT_EQ(gethostname(host, sizeof host - 1), 0);
+  std::string tag;
+  for (const char* c = host; *c && *c != '.'; ++c) tag += std::isalnum(static_cast<unsigned char>(*c)) || *c == '-' ? *c : '-';
+  // A process that has ended (its pid is free), one that lives (our parent), and a writer on
+  // another machine sharing the folder.
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  waitpid(child, nullptr, 0);
+  const std::string dead = dir + "/.out.exr.tmp-" + tag + "-" + std::to_string(child) + ".exr";
+  const std::string alive = dir + "/.out.exr.tmp-" + tag + "-" + std::to_string(getppid()) + ".exr";
+  const std::string elsewhere = dir + "/.out.exr.tmp-otherhost-" + std::to_string(child) + ".exr";
+  const std::string other_file = dir + "/.other.exr.tmp-" + tag + "-" + std::to_string(child) + ".exr";
+  for (const std::string& f : {dead, alive, elsewhere, other_file}) std::ofstream(f) << "partial";
+  AtomicFile file(dir + "/out.exr");
+  file.write("whole");
+  file.commit();
+  EXPECT_FALSE(std::filesystem::exists(dead));
+  EXPECT_TRUE(std::filesystem::exists(alive));
+  EXPECT_TRUE(std::filesystem::exists(elsewhere));
+  EXPECT_TRUE(std::filesystem::exists(other_file));  // another target's: its own writer's to clean
+  EXPECT_EQ(read(dir + "/out.exr"), "whole");
 }
 
 TEST(AtomicFile, WritesThroughSymlinks) {
