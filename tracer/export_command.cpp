@@ -46,11 +46,6 @@ std::string number(double v) {
 
 std::string triple(const glm::vec3& v) { return number(v.x) + " " + number(v.y) + " " + number(v.z); }
 
-std::string base_name(const std::string& path) {
-  const std::size_t slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
 // Colours in pbrt's space; reflectances must lie in [0, 1] there (pbrt-v4 refuses others), so a
 // component pushed past by the change of primaries is clamped and reported.
 struct Colors {
@@ -252,7 +247,7 @@ int export_command(const ExportRequest& a) {
   }
   out += "\nFilm \"rgb\" \"integer xresolution\" " + std::to_string(r.width) + " \"integer yresolution\" " +
          std::to_string(r.height) + " \"string filename\" \"" +
-         base_name(a.out.substr(0, a.out.size() - 5)) + ".exr\"\n";
+         file_name(a.out.substr(0, a.out.size() - 5)) + ".exr\"\n";
   out += "PixelFilter \"triangle\" \"float xradius\" 1 \"float yradius\" 1\n";
   out += "Sampler \"zsobol\" \"integer pixelsamples\" " + std::to_string(r.spp) + "\n";
   out += "Integrator \"volpath\" \"integer maxdepth\" " + std::to_string(r.max_depth) + "\n";
@@ -267,7 +262,7 @@ int export_command(const ExportRequest& a) {
   }
   if (!sky.empty()) {
     out += "# the sky (" + scene.sky.model + "), sampled into an equal-area square\nLightSource \"infinite\" \"string filename\" \"" +
-           base_name(sky_path) + "\" \"float scale\" " + number(exposure) + "\n";
+           file_name(sky_path) + "\" \"float scale\" " + number(exposure) + "\n";
   }
 
   // Materials first, then the trees as object instances (one object per prototype and its pair of

@@ -4,16 +4,16 @@
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
-#include <stdexcept>
 #include <system_error>
-
-#include <unistd.h>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/executable.h"
+#include "common/json.h"
 #include "common/strings.h"
 #include "formats/scene_desc.h"
 #include "tracer/film.h"
+#include "tracer/render_command.h"
 
 namespace arbor::trace {
 
@@ -25,43 +25,7 @@ std::string absolute(const std::string& path) {
   return ec ? path : p.lexically_normal().string();
 }
 
-std::string this_executable() {
-  char buf[4096];
-  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
-  if (n <= 0) throw RuntimeFailure("cannot find the path of this arbor (/proc/self/exe)");
-  return std::string(buf, static_cast<std::size_t>(n));
-}
-
-// "A:B" / "CxR" as two integers.
-std::pair<int, int> two(const std::string& text, char sep, const std::string& option, const std::string& form) {
-  const std::size_t at = text.find(sep);
-  try {
-    if (at == std::string::npos) throw std::invalid_argument("");
-    std::size_t used_a = 0, used_b = 0;
-    const int a = std::stoi(text.substr(0, at), &used_a), b = std::stoi(text.substr(at + 1), &used_b);
-    if (used_a != at || used_b != text.size() - at - 1) throw std::invalid_argument("");
-    return {a, b};
-  } catch (const std::exception&) {
-    throw InputError({}, option + " " + text + ": expected " + form);
-  }
-}
-
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
+std::string json_string(const std::string& s) { return "\"" + json_escape(s) + "\""; }
 
 std::string json_strings(const std::vector<std::string>& v) {
   std::string out = "[";
@@ -91,7 +55,8 @@ std::string shell_line(const std::vector<std::string>& argv) {
 std::vector<PlanStep> make_plan(const PlanRequest& a) {
   if (!ends_with(a.exr, ".exr")) throw InputError({}, "-o " + a.exr + ": the merged output must end in .exr");
   if (!a.png.empty() && !ends_with(a.png, ".png")) throw InputError({}, "--png " + a.png + " must end in .png");
-  const auto [columns, rows] = two(a.tiles, 'x', "--tiles", "CxR (columns x rows, e.g. 4x2)");
+  const std::vector<int> grid = parse_integers(a.tiles, 'x', 2, "--tiles", "CxR (columns x rows, e.g. 4x2)");
+  const int columns = grid[0], rows = grid[1];
   SceneDesc scene = load_scene(a.scene);
   const RenderSettings& r = scene.render;
   const int width = a.width > 0 ? a.width : r.width, height = a.height > 0 ? a.height : r.height;
@@ -116,7 +81,8 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
   std::vector<int> frames;
   if (!a.frames.empty()) {
     if (scene.animation.frames == 0) throw InputError({scene.path, 0, 0}, "--frames " + a.frames + ": the scene has no [animation] table");
-    const auto [first, end] = two(a.frames, ':', "--frames", "A:B (frames A to B-1)");
+    const std::vector<int> range = parse_integers(a.frames, ':', 2, "--frames", "A:B (frames A to B-1)");
+    const int first = range[0], end = range[1];
     if (first < 0 || first >= end || end > scene.animation.frames) {
       throw InputError({}, "--frames " + a.frames + ": the animation has frames 0 to " +
                                std::to_string(scene.animation.frames - 1) + ", so A:B needs 0 <= A < B <= " +
@@ -132,9 +98,9 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
     }
     frames.push_back(-1);
   }
-  refuse_overwriting("-o", a.exr, scene_inputs(scene));
-
-  const std::string arbor = a.arbor.empty() ? this_executable() : a.arbor;
+  const std::vector<std::string> inputs = scene_inputs(scene);
+  const std::string arbor = a.arbor.empty() ? executable_path() : a.arbor;
+  if (arbor.empty()) throw RuntimeFailure("cannot find the path of this arbor (/proc/self/exe)");
   std::vector<std::string> common = {arbor, "render", absolute(a.scene)};
   const auto add = [&](const std::string& option, const std::string& value) {
     common.push_back(option);
@@ -155,6 +121,7 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
   std::vector<PlanStep> units, merges;
   for (const int frame : frames) {
     const std::string out = absolute(frame >= 0 ? frame_path(a.exr, frame) : a.exr);
+    refuse_overwriting("-o", out, inputs);
     const std::string folder = out.substr(0, out.size() - 4) + ".parts/";
     PlanStep merge;
     merge.kind = "merge";

@@ -49,7 +49,8 @@ std::string treemaker_weights_text(const Scene& scene) {
   return text;
 }
 
-// Whole numbers separated by `sep`, each in [0, 2^31).
+}  // namespace
+
 std::vector<int> parse_integers(const std::string& text, char sep, std::size_t count, const char* option,
                                 const char* form) {
   std::vector<int> v;
@@ -71,6 +72,8 @@ std::vector<int> parse_integers(const std::string& text, char sep, std::size_t c
   }
   return v;
 }
+
+namespace {
 
 // The hash of everything that decides the pixels: the settings (not the threads, the outputs or
 // the pass range and window of a work unit), the bytes of the scene and each of its inputs, and

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "formats/scene_desc.h"
 
@@ -25,6 +26,11 @@ struct RenderRequest {
   std::string crop;            // "X0,Y0,X1,Y1": render that window only; empty: all
   std::string ocio_config;     // the run's OCIO config (default_ocio_config())
 };
+
+// Whole numbers separated by `sep` ("0:8", "0,0,240,360"), `count` of them, each in [0, 2^31);
+// InputError naming `option` and the expected `form` otherwise.
+std::vector<int> parse_integers(const std::string& text, char sep, std::size_t count, const char* option,
+                                const char* form);
 
 // Applies `frame` (when given) to the scene: the clock, the frame's seed unless pinned, the
 // frame number in place of the '#' run in every output path. InputError when the scene has no

@@ -33,11 +33,6 @@ void put_rgb(std::string& out, const char* key, const Rgb& c) {
   out += '\n';
 }
 
-std::string file_name(const std::string& path) {
-  const std::size_t slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
 // The .mtl: bark as a Lambertian colour; the leaf's front reflectance as Kd, its transmittance as
 // Tf, its cuticle as an untinted specular (Ks = the coat's reflectance at normal incidence,
 // ((n - 1)/(n + 1))², Ns the Blinn–Phong exponent 2/α² - 2 of GGX α = roughness², and the PBR
