@@ -1,12 +1,14 @@
 // The arbor command line: parses arguments with CLI11, calls the libraries' commands (scene/
 // grow_command, tracer/render_command, imaging/compare_command), maps errors to exit codes
 // (0 success, 1 the work failed, 2 bad input or usage).
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <new>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -56,6 +58,29 @@ CLI::Validator finite_in(double lo, double hi) {
       std::string("FLOAT in ") + range);
 }
 
+// CLI11 check of an option that takes text: an empty value is refused (an empty --crop once
+// rendered the whole image over the scene's outputs).
+CLI::Validator non_empty() {
+  return CLI::Validator([](std::string& v) { return v.empty() ? std::string("needs a value, not an empty one") : std::string(); },
+                        "");
+}
+
+// Levenshtein distance, for "did you mean" on a mistyped command.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -73,7 +98,9 @@ int main(int argc, char** argv) {
   grow_cmd->add_option("--seed", grow.seed, "random seed (same seed, same tree)")
       ->check(seed_check())
       ->capture_default_str();
-  grow_cmd->add_option("--time", grow.time, "seconds of wind sway (needs WindSpeed/WindGust)")
+  grow_cmd->add_option("--time", grow.time,
+                       "Weber & Penn species: seconds of wind sway (needs WindSpeed/WindGust); fractal "
+                       "(time-aware) trees: the age in years (0: the species' own age); other models ignore it")
       ->check(finite_in(-1e6, 1e6))
       ->capture_default_str();
   grow_cmd->add_option("--quality", grow.quality,
@@ -128,10 +155,12 @@ int main(int argc, char** argv) {
                          "rewrite the outputs this often as passes finish (overrides output.checkpoint_seconds)")
       ->check(finite_in(0.0, 1e7));
   render_cmd->add_option("--passes", render.passes,
-                         "A:B: render only passes A to B-1 (a work unit for arbor merge)");
+                         "A:B: render only passes A to B-1 (a work unit for arbor merge; needs -o)")
+      ->check(non_empty());
   render_cmd->add_option("--crop", render.crop,
                          "X0,Y0,X1,Y1: render only that window (pixels, end exclusive), each pixel as in the "
-                         "whole image");
+                         "whole image (needs -o)")
+      ->check(non_empty());
   arbor::trace::CompareRequest cmp;
   CLI::App* compare_cmd = app.add_subcommand(
       "compare", "Compare image A against reference B: error metrics, heatmap, z-test");
@@ -207,9 +236,29 @@ int main(int argc, char** argv) {
   arbor::remove_temporaries_on_signal();
   try {
     app.parse(argc, argv);
+  } catch (const CLI::Success& e) {  // --help, --version
+    return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    // Every diagnostic has one form: "arbor: error: ..." (or "FILE:LINE:COL: error: ...").
+    const std::string first = argc > 1 ? argv[1] : "";
+    std::vector<std::string> names;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) names.push_back(sub->get_name());
+    const bool unknown_command = !first.empty() && first[0] != '-' &&
+                                 std::find(names.begin(), names.end(), first) == names.end();
+    if (unknown_command) {
+      std::string list;
+      for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+      std::string near;
+      for (const std::string& n : names) {
+        if (near.empty() && edit_distance(first, n) <= 2) near = n;
+      }
+      std::fprintf(stderr, "arbor: error: unknown command '%s'%s; the commands are %s (arbor --help)\n", first.c_str(),
+                   near.empty() ? "" : (" (did you mean '" + near + "'?)").c_str(), list.c_str());
+    } else {
+      const bool known = std::find(names.begin(), names.end(), first) != names.end();
+      std::fprintf(stderr, "arbor: error: %s (arbor %s--help)\n", e.what(), known ? (first + " ").c_str() : "");
+    }
+    return 2;
   }
 
   try {
@@ -223,7 +272,7 @@ int main(int argc, char** argv) {
     if (*export_cmd) return arbor::trace::export_command(exp);
     if (*plan_cmd) return arbor::trace::plan_command(plan);
   } catch (const arbor::InputError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
+    std::fprintf(stderr, "%s%s\n", e.where().path.empty() ? "arbor: " : "", e.what());
     return 2;
   } catch (const arbor::RuntimeFailure& e) {
     std::fprintf(stderr, "arbor: error: %s\n", e.what());

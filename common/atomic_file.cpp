@@ -155,6 +155,8 @@ std::string resolve_output_path(const std::string& path) {
 }
 
 
+void remove_dead_temporaries(const std::string& path) { remove_stale_temporaries(resolve_output_path(path)); }
+
 bool same_file(const std::string& a, const std::string& b) {
   if (a.empty() || b.empty()) return false;
   struct stat sa, sb;
@@ -164,7 +166,21 @@ bool same_file(const std::string& a, const std::string& b) {
   return canonical_name(a) == canonical_name(b);
 }
 
+void check_output_target(const std::string& path) {
+  const std::string target = resolve_output_path(path);
+  struct stat st;
+  if (::stat(target.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return;
+  const std::string kind = S_ISDIR(st.st_mode)    ? "a folder"
+                           : S_ISFIFO(st.st_mode) ? "a FIFO (named pipe)"
+                           : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
+                           : S_ISSOCK(st.st_mode) ? "a socket"
+                                                  : "not a regular file";
+  throw InputError({}, "cannot write " + path + ": " + (target == path ? "it" : target) + " is " + kind +
+                           "; an output must be a regular file or not exist yet");
+}
+
 void prepare_output_folder(const std::string& path) {
+  check_output_target(path);
   const std::string dir = folder_of(resolve_output_path(path));
   struct stat st;
   if (::stat(dir.c_str(), &st) != 0) {
@@ -201,6 +217,7 @@ void remove_temporaries_on_signal() {
 
 AtomicFile::AtomicFile(std::string path, bool binary)
     : path_(std::move(path)), target_(resolve_output_path(path_)) {
+  check_output_target(path_);
   remove_stale_temporaries(target_);
   temp_ = temporary_for(target_);
   slot_ = register_temporary(temp_);

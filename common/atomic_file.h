@@ -38,6 +38,11 @@ class AtomicFile {
 // (relative link targets resolved against the link's folder). Throws RuntimeFailure on a loop.
 std::string resolve_output_path(const std::string& path);
 
+// Removes the temporaries of `path` (after symlinks) that writers on this machine left when they
+// were killed (kill -9): every AtomicFile does this for its own target; call it for a file that
+// is removed rather than written (a finished render's film state).
+void remove_dead_temporaries(const std::string& path);
+
 // True when both paths name the same file: the same device and inode when both exist, else the
 // same absolute name after symlinks (a file yet to be written).
 bool same_file(const std::string& a, const std::string& b);
@@ -48,8 +53,13 @@ void refuse_overwriting(const std::string& what, const std::string& out,
                         const std::vector<std::string>& inputs,
                         const std::vector<std::string>& outputs = {});
 
+// InputError unless `path`, after symlinks, is a regular file or does not exist: writing over a
+// device, FIFO, socket or folder (through a symlink, say) is refused, never replaced by a file.
+void check_output_target(const std::string& path);
+
 // Makes the folder `path` would be written in, with its parents, when it is missing (as mkdir -p);
-// RuntimeFailure when it cannot be made, is not a folder, or is not writable.
+// RuntimeFailure when it cannot be made, is not a folder, or is not writable; InputError when
+// `path` itself is not a regular file (check_output_target).
 void prepare_output_folder(const std::string& path);
 
 // Installs SIGINT and SIGTERM handlers that remove every temporary an AtomicFile holds, then

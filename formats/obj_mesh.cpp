@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "common/error.h"
+#include "common/input_file.h"
 #include "generator/species.h"
 #include "formats/species_file.h"
 
@@ -213,6 +214,6 @@ class ObjReader {
 
 ObjMesh parse_obj(std::string_view text, const std::string& path) { return ObjReader(text, path).read(); }
 
-ObjMesh load_obj(const std::string& path) { return parse_obj(gen::read_text_file(path), path); }
+ObjMesh load_obj(const std::string& path) { return parse_obj(read_text_input(path, "mesh", kMaxMeshBytes), path); }
 
 }  // namespace arbor::trace

@@ -175,8 +175,16 @@ struct AnimationDesc {
   SourceLocation where;  // the table's position, for errors found later
 };
 
+// A file the scene names, where it names it (for errors about the file itself).
+struct FileRef {
+  std::string path;  // resolved against the scene's folder
+  SourceLocation where;
+  std::string key;   // "tree.species", "forest.bark.bump_map", …
+};
+
 struct SceneDesc {
   std::string path;
+  std::vector<FileRef> files;  // every file key, in the order of the scene's text
   RenderSettings render;
   CameraDesc camera;
   SunDesc sun;
@@ -195,7 +203,8 @@ struct SceneDesc {
 std::string frame_path(const std::string& path, int frame);
 
 // Reads and validates a scene file: unknown keys and out-of-range values are InputErrors with
-// their position; relative paths are resolved against the scene file's folder.
+// their position; relative paths are resolved against the scene file's folder. Every input the
+// scene uses (scene_inputs) must be a readable regular file: else InputError at the key naming it.
 SceneDesc load_scene(const std::string& path);
 SceneDesc parse_scene(const std::string& text, const std::string& path);
 

@@ -1,11 +1,13 @@
 // Scene file reader (TOML): every key of the contract, each value range-checked, unknown keys
 // rejected, all with file, line and column.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
 
 #include <toml++/toml.h>
 
+#include "common/input_file.h"
 #include "formats/toml_reader.h"
 
 #include <glm/geometric.hpp>
@@ -31,6 +33,7 @@ class SceneReader : TomlReader {
     const toml::table root = parse(text);
     SceneDesc s;
     s.path = path();
+    files_.clear();
     const SourceLocation file{path(), 0, 0};
     s.camera.look_at_where = s.camera.up_where = file;
     s.output.colorspace_where = s.output.display_where = s.output.view_where = file;
@@ -55,6 +58,7 @@ class SceneReader : TomlReader {
       const double dz = s.camera.look_at[2] - s.camera.position[2];
       s.camera.focus_distance = std::sqrt(dx * dx + dy * dy + dz * dz);
     }
+    s.files = files_;
     return s;
   }
 
@@ -76,7 +80,9 @@ class SceneReader : TomlReader {
   std::string file(const toml::node& n, const std::string& name) const {
     const std::string v = text(n, name);
     if (v.empty()) fail(n, name + " must not be empty");
-    return v[0] == '/' ? v : folder_ + v;
+    const std::string resolved = v[0] == '/' ? v : folder_ + v;
+    files_.push_back({resolved, at(n.source()), name});
+    return resolved;
   }
   [[noreturn]] void unknown(const toml::key& key, const std::string& table) const {
     throw InputError(at(key.source()), "unknown key '" + std::string(key.str()) + "' in [" + table + "]");
@@ -349,6 +355,7 @@ class SceneReader : TomlReader {
   }
 
   std::string folder_;
+  mutable std::vector<FileRef> files_;  // filled by file() as the keys are read
 };
 
 }  // namespace
@@ -370,7 +377,15 @@ SceneDesc parse_scene(const std::string& text, const std::string& path) {
 }
 
 SceneDesc load_scene(const std::string& path) {
-  return parse_scene(gen::read_text_file(path), path);
+  SceneDesc scene = parse_scene(read_text_input(path, "scene", kMaxTomlBytes), path);
+  // Each input is checked where the scene names it, before anything is read or grown.
+  const std::vector<std::string> used = scene_inputs(scene);
+  for (const FileRef& f : scene.files) {
+    if (std::find(used.begin(), used.end(), f.path) == used.end()) continue;
+    const std::string problem = input_file_problem(f.path);
+    if (!problem.empty()) throw InputError(f.where, f.key + " " + f.path + " " + problem);
+  }
+  return scene;
 }
 
 std::string frame_path(const std::string& path, int frame) {

@@ -1,9 +1,7 @@
 // Species loading: dispatch on the file extension to the format readers.
 #include "formats/species_file.h"
 
-#include <fstream>
-#include <sstream>
-
+#include "common/input_file.h"
 #include "common/strings.h"
 #include "formats/lsystem_file.h"
 #include "formats/skeleton_file.h"
@@ -11,14 +9,7 @@
 
 namespace arbor::gen {
 
-std::string read_text_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0, 0}, "cannot open the file for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError({path, 0, 0}, "cannot read the file");
-  return text.str();
-}
+std::string read_text_file(const std::string& path) { return read_text_input(path, "species"); }
 
 namespace {
 // A species read from a model's own file format: named after its file.
@@ -32,7 +23,7 @@ Species from_file(const std::string& path, ModelParams params) {
 }  // namespace
 
 Species load_species(const std::string& path) {
-  if (ends_with(path, ".toml")) return parse_species_toml(read_text_file(path), path);
+  if (ends_with(path, ".toml")) return parse_species_toml(read_text_input(path, "species", kMaxTomlBytes), path);
   if (ends_with(path, ".xml")) return parse_arbaro_xml(read_text_file(path), path);
   if (ends_with(path, ".lsys")) {
     return from_file(path, parse_lsystem(read_text_file(path), path));

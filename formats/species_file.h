@@ -18,7 +18,7 @@ Species load_species(const std::string& path);
 Species parse_species_toml(std::string_view text, const std::string& path);
 Species parse_arbaro_xml(std::string_view text, const std::string& path);
 
-// Reads a whole file; throws InputError when it cannot be read.
+// Reads a whole species file (read_text_input: regular files only, bounded in size).
 std::string read_text_file(const std::string& path);
 
 }  // namespace arbor::gen

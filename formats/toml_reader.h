@@ -20,12 +20,67 @@ class TomlReader {
 
   const std::string& path() const { return path_; }
 
+  // Keys of more dotted parts than this are refused before toml++ sees them: it builds a nested
+  // table per part recursively, and 50,000 parts overflowed the stack. No arbor key has more
+  // than four.
+  static constexpr int kMaxKeyParts = 64;
+
   // The whole document; a syntax error is reported where toml++ found it.
   toml::table parse(std::string_view text) const {
+    check_key_depth(text);
     try {
       return toml::parse(text, path_);
     } catch (const toml::parse_error& e) {
       throw InputError(at(e.source()), std::string(e.description()));
+    }
+  }
+
+  // InputError at the first key (of a table header or a key/value line) with more than
+  // kMaxKeyParts dotted parts. Quoted parts may hold dots; multi-line strings are skipped.
+  void check_key_depth(std::string_view text) const {
+    bool in_multiline = false;
+    std::string_view delimiter;
+    int line = 1;
+    for (std::size_t start = 0; start < text.size(); ++line) {
+      std::size_t end = text.find('\n', start);
+      if (end == std::string_view::npos) end = text.size();
+      const std::string_view l = text.substr(start, end - start);
+      start = end + 1;
+      if (in_multiline) {
+        if (l.find(delimiter) != std::string_view::npos) in_multiline = false;
+        continue;
+      }
+      std::size_t i = l.find_first_not_of(" \t");
+      if (i == std::string_view::npos || l[i] == '#') continue;
+      const bool header = l[i] == '[';
+      int parts = 1;
+      char quote = 0;
+      std::size_t j = i;
+      for (; j < l.size(); ++j) {
+        const char c = l[j];
+        if (quote) {
+          if (c == '\\' && quote == '"') ++j;
+          else if (c == quote) quote = 0;
+        } else if (c == '"' || c == '\'') {
+          quote = c;
+        } else if (c == '.') {
+          ++parts;
+        } else if ((header && c == ']' && j > i + 1 && l[j - 1] != '[') || (!header && c == '=')) {
+          break;
+        }
+        if (parts > kMaxKeyParts) {
+          throw InputError({path_, line, static_cast<int>(i) + 1},
+                           "a key of more than " + std::to_string(kMaxKeyParts) + " dotted parts");
+        }
+      }
+      // A value that opens a multi-line string ends only at its closing delimiter.
+      for (std::string_view d : {std::string_view("\"\"\""), std::string_view("'''")}) {
+        const std::size_t open = l.find(d, j);
+        if (open != std::string_view::npos && l.find(d, open + 3) == std::string_view::npos) {
+          in_multiline = true;
+          delimiter = d;
+        }
+      }
     }
   }
 

@@ -6,6 +6,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "common/error.h"
+#include "common/input_file.h"
 
 namespace arbor::trace {
 
@@ -27,6 +28,7 @@ float ImageChannels::finite(std::size_t p, int c, const char* what) const {
 }
 
 ImageChannels read_image_channels(const std::string& path) {
+  check_input_file(path, "image");
   auto in = OIIO::ImageInput::open(path);
   if (!in) {
     std::string why = OIIO::geterror();

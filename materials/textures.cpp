@@ -9,6 +9,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include "common/error.h"
+#include "common/input_file.h"
 #include "common/math.h"
 
 namespace arbor::mat {
@@ -32,6 +33,7 @@ T wrapped_bilinear(const std::vector<T>& values, int width, int height, double u
          (at(ix, iy + 1) * (1 - tx) + at(ix + 1, iy + 1) * tx) * ty;
 }
 OIIO::ImageBuf read_float_image(const std::string& path) {
+  check_input_file(path, "image");
   OIIO::ImageBuf image(path);
   if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
     throw InputError({path, 0, 0}, "cannot read the image: " + image.geterror());

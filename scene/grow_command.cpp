@@ -20,6 +20,9 @@
 namespace arbor::trace {
 
 int grow_command(const GrowRequest& a) {
+  if (a.out.empty() && !a.stats && !a.json) {
+    throw InputError({}, "grow has nothing to do: give -o OUT (.obj, .ply, .pbrt, .skel), --stats or --json");
+  }
   if (!a.out.empty() && !ends_with(a.out, ".obj") && !ends_with(a.out, ".ply") &&
       !ends_with(a.out, ".pbrt") && !ends_with(a.out, ".skel")) {
     throw InputError({}, "-o " + a.out + ": the output must be .obj, .ply, .pbrt or .skel");

@@ -1,8 +1,10 @@
 // The film state file: a text header, then the film's arrays in native binary form.
 #include "tracer/film_file.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <sys/stat.h>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -10,12 +12,16 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/input_file.h"
 
 namespace arbor::trace {
 
 namespace {
 
-const char* const kMagic = "arbor film state 3";
+const char* const kMagic = "arbor film state 4";
+// The largest image a state may describe: the scene's and the command line's bound on width and
+// height.
+constexpr int kMaxSide = 16384;
 static_assert(std::is_trivially_copyable<PixelState>::value, "PixelState is written as bytes");
 
 // Names one to a line's value, separated by tabs (scene names hold no tabs or newlines).
@@ -34,6 +40,28 @@ std::vector<std::string> split_tabs(const std::string& text) {
   out.push_back(text.substr(start));
   return out;
 }
+
+// A 64-bit checksum of bytes, eight at a time (a multiply-xorshift chain; catches any flipped
+// byte with probability 1 - 2^-64, and runs at several GB/s).
+struct Checksum {
+  std::uint64_t h = 0x9e3779b97f4a7c15ull;
+  void add(const void* data, std::size_t size) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    std::size_t i = 0;
+    for (; i + 8 <= size; i += 8) {
+      std::uint64_t w;
+      std::memcpy(&w, p + i, 8);
+      mix(w);
+    }
+    std::uint64_t tail = 0;
+    std::memcpy(&tail, p + i, size - i);
+    mix(tail ^ (static_cast<std::uint64_t>(size - i) << 56));
+  }
+  void mix(std::uint64_t w) {
+    h = (h ^ w) * 0xff51afd7ed558ccdull;
+    h ^= h >> 32;
+  }
+};
 
 std::string number_text(double v) {
   char buf[40];
@@ -89,14 +117,22 @@ void write_film_state(const std::string& path, const FilmHeader& h, const Film& 
        << "material_names " << joined(h.material_names) << "\n"
        << "end\n";
   AtomicFile file(path, true);
-  file.write(head.str());
-  file.write(film.states().data(), film.states().size() * sizeof(PixelState));
-  file.write(film.sums().data(), film.sums().size() * sizeof(double));
-  file.write(film.records().data(), film.records().size() * sizeof(double));
+  Checksum sum;
+  auto put = [&](const void* data, std::size_t bytes) {
+    sum.add(data, bytes);
+    file.write(data, bytes);
+  };
+  const std::string header = head.str();
+  put(header.data(), header.size());
+  put(film.states().data(), film.states().size() * sizeof(PixelState));
+  put(film.sums().data(), film.sums().size() * sizeof(double));
+  put(film.records().data(), film.records().size() * sizeof(double));
+  file.write("checksum " + fingerprint_hex(sum.h) + "\n");
   file.commit();
 }
 
 FilmFile read_film_state(const std::string& path) {
+  check_input_file(path, "film state");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError({path, 0, 0}, "cannot read the film state (it is written beside an EXR "
                                           "whose render can be resumed or merged)");
@@ -105,8 +141,9 @@ FilmFile read_film_state(const std::string& path) {
   };
   std::string line;
   if (!std::getline(in, line) || line != kMagic) throw bad("it does not start with \"" + std::string(kMagic) + "\"");
+  std::string header = line + "\n";
   std::map<std::string, std::string> keys;
-  while (std::getline(in, line) && line != "end") {
+  while (header.size() < (1u << 24) && std::getline(in, line) && (header += line + "\n", line != "end")) {
     const auto space = line.find(' ');
     if (space == std::string::npos) throw bad("a header line without a value: " + line);
     keys[line.substr(0, space)] = line.substr(space + 1);
@@ -149,22 +186,57 @@ FilmFile read_film_state(const std::string& path) {
   ok = ok && static_cast<bool>(field("seed") >> h.seed);
   if (!ok || h.full_width <= 0 || h.full_height <= 0 || w.x0 < 0 || w.y0 < 0 || w.x1 > h.full_width ||
       w.y1 > h.full_height || w.width() <= 0 || w.height() <= 0 || h.plan.spp <= 0 || h.plan.pass_spp <= 0 ||
-      begin < 0 || next < begin || h.pass_end < next || h.pass_end > h.plan.passes() || extras > 64) {
+      begin < 0 || next < begin || h.pass_end < next || h.pass_end > h.plan.passes() || extras > 64 ||
+      h.plan.spp > (1 << 20) || h.min_spp < 0 || !std::isfinite(h.noise_threshold) || !std::isfinite(h.seconds)) {
     throw bad("its header is malformed");
+  }
+  if (h.full_width > kMaxSide || h.full_height > kMaxSide) {
+    throw bad("its image size " + std::to_string(h.full_width) + "x" + std::to_string(h.full_height) +
+              " is over the largest arbor renders (" + std::to_string(kMaxSide) + " a side)");
+  }
+  // Every size the header implies is checked against the file's own size before anything is
+  // allocated: a forged header cannot ask for more memory than the file holds.
+  const std::uint64_t pixels = static_cast<std::uint64_t>(w.pixels());
+  const std::uint64_t stride = kAovSums + extras + (ids != 0 ? 2 * kIdSlots : 0);
+  const std::uint64_t record_doubles =
+      records != 0 ? static_cast<std::uint64_t>(next - begin) * (7 + stride) * pixels : 0;
+  const std::uint64_t body = pixels * sizeof(PixelState) + pixels * stride * sizeof(double) + record_doubles * sizeof(double);
+  const std::uint64_t trailer = std::string("checksum 0123456789abcdef\n").size();
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0 || static_cast<std::uint64_t>(st.st_size) != header.size() + body + trailer) {
+    throw bad("its size (" + std::to_string(st.st_size) + " bytes) is not what its header describes (" +
+              std::to_string(header.size() + body + trailer) + " bytes): it is truncated or damaged");
   }
   f.film = std::make_unique<Film>(w, extras, begin, records != 0, ids != 0);
   Film& film = *f.film;
   film.set_next_pass(next);
-  if (film.keeps_records()) {
-    film.records().resize(static_cast<std::size_t>(next - begin) * film.record_size() * w.pixels());
-  }
+  if (film.keeps_records()) film.records().resize(static_cast<std::size_t>(record_doubles));
+  Checksum sum;
+  sum.add(header.data(), header.size());
   auto read = [&](void* data, std::size_t bytes) {
     if (!in.read(static_cast<char*>(data), static_cast<std::streamsize>(bytes))) throw bad("it is truncated");
+    sum.add(data, bytes);
   };
   read(film.states().data(), film.states().size() * sizeof(PixelState));
   read(film.sums().data(), film.sums().size() * sizeof(double));
   read(film.records().data(), film.records().size() * sizeof(double));
-  if (in.peek() != std::char_traits<char>::eof()) throw bad("it has bytes past its end");
+  if (!std::getline(in, line) || line != "checksum " + fingerprint_hex(sum.h) || in.peek() != std::char_traits<char>::eof()) {
+    throw bad("its checksum does not match its contents: the file is damaged");
+  }
+  // A state arbor wrote holds only finite numbers (non-finite samples are dropped and counted).
+  auto finite = [](const double* v, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!std::isfinite(v[i])) return false;
+    }
+    return true;
+  };
+  bool ok_numbers = finite(film.sums().data(), film.sums().size()) && finite(film.records().data(), film.records().size());
+  for (const PixelState& s : film.states()) {
+    const double v[9] = {s.mean.x, s.mean.y, s.mean.z, s.spread.x, s.spread.y, s.spread.z,
+                         s.first_m2.x, s.first_m2.y, s.first_m2.z};
+    ok_numbers = ok_numbers && finite(v, 9) && s.passes <= static_cast<std::uint32_t>(next - begin) && s.done <= 1;
+  }
+  if (!ok_numbers) throw bad("it holds a sum that is not a finite number, or a pixel with impossible counts");
   return f;
 }
 

@@ -98,6 +98,15 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
     }
     frames.push_back(-1);
   }
+  // A plan is a list a person and a scheduler read: bounded (docs/farm.md, "Limits").
+  const long long unit_count = static_cast<long long>(columns) * rows * a.pass_groups * static_cast<long long>(frames.size());
+  if (unit_count > kMaxPlanUnits || static_cast<long long>(columns) * rows * a.pass_groups > kMaxMergeParts) {
+    throw InputError({}, "--tiles " + a.tiles + " --pass-groups " + std::to_string(a.pass_groups) + " makes " +
+                             std::to_string(unit_count) + " units (" +
+                             std::to_string(static_cast<long long>(columns) * rows * a.pass_groups) +
+                             " parts per merge); a plan has at most " + std::to_string(kMaxPlanUnits) +
+                             " units and " + std::to_string(kMaxMergeParts) + " parts per merge");
+  }
   const std::vector<std::string> inputs = scene_inputs(scene);
   const std::string arbor = a.arbor.empty() ? executable_path() : a.arbor;
   if (arbor.empty()) throw RuntimeFailure("cannot find the path of this arbor (/proc/self/exe)");

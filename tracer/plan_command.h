@@ -7,6 +7,10 @@
 
 namespace arbor::trace {
 
+// The largest plan: units over all frames, and parts one merge reads (64x64 tiles, say).
+constexpr long long kMaxPlanUnits = 100000;
+constexpr long long kMaxMergeParts = 4096;
+
 struct PlanRequest {
   std::string scene;
   std::string exr, png;  // the merged outputs (with a run of '#' for the frame number when --frames)

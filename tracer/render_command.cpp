@@ -17,6 +17,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/input_file.h"
 #include "common/progress.h"
 #include "common/rng.h"
 #include "common/strings.h"
@@ -92,10 +93,10 @@ std::string render_fingerprint(const SceneDesc& scene, const RenderRequest& a, c
   std::uint64_t hash = fnv1a(s.str());
   std::vector<std::string> files = scene_inputs(scene);
   files.push_back(ocio);
-  for (const std::string& f : files) {
-    std::ifstream in(f, std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    hash = fnv1a(bytes, fnv1a(f + "\n", hash));
+  // The inputs by their place in the scene and their bytes, not by how their paths are spelt
+  // (scene.toml and ./scene.toml are one render; the scene's own text names its inputs).
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    hash = fnv1a(std::to_string(i) + " " + fingerprint_hex(input_digest(files[i], i == 0 ? "scene" : "input")) + "\n", hash);
   }
   return fingerprint_hex(hash);
 }
@@ -197,9 +198,14 @@ int render_command(const RenderRequest& a) {
                                std::to_string(r.height) + " image (X0 < X1 <= width, Y0 < Y1 <= height)");
     }
   }
-  if ((!a.passes.empty() || !a.crop.empty() || a.resume) && exr.empty()) {
-    throw InputError({}, std::string(a.resume ? "--resume" : !a.passes.empty() ? "--passes" : "--crop") +
-                             " needs an EXR output (-o OUT.exr): its film state is kept beside it");
+  if (a.resume && exr.empty()) {
+    throw InputError({}, "--resume needs an EXR output (-o OUT.exr or the scene's output.exr): its film state is kept beside it");
+  }
+  // A work unit is never written over the scene's own outputs: it names its part with -o.
+  if ((!a.passes.empty() || !a.crop.empty()) && a.exr.empty()) {
+    throw InputError({}, std::string(!a.passes.empty() ? "--passes" : "--crop") +
+                             " renders a part of the image: name the part with -o PART.exr (the scene's own "
+                             "outputs are not overwritten by a part)");
   }
   if (pass_begin > 0 && r.noise_threshold > 0) {
     throw InputError({}, "--passes " + a.passes + " starts after pass 0, but adaptive sampling "

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <unistd.h>
 
+#include "common/atomic_file.h"
 #include "common/error.h"
 #include "imaging/image_output.h"
 #include "imaging/treemaker_channels.h"
@@ -39,8 +40,12 @@ void write_render(const FilmHeader& h, const Film& film, const RenderWrite& what
     const std::string state = state_path(what.exr);
     if (!film_complete(h, film)) {
       write_film_state(state, h, film);
-    } else if (::unlink(state.c_str()) != 0 && errno != ENOENT) {
-      throw RuntimeFailure("cannot remove the finished render's film state " + state);
+    } else {
+      // The finished render's state goes, and with it any temporary of it a killed writer left.
+      remove_dead_temporaries(state);
+      if (::unlink(state.c_str()) != 0 && errno != ENOENT) {
+        throw RuntimeFailure("cannot remove the finished render's film state " + state);
+      }
     }
     ExrMetadata meta;
     meta.scene = h.scene;

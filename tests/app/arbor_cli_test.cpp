@@ -98,13 +98,17 @@ TEST(ArborCli, SameSeedSameOutput) {
 
 TEST(ArborCli, BadInputExitsTwoWithPosition) {
   const std::string bad = write_temp("bad.toml", "model = \"weber-penn\"\n\nShape = 12\n");
-  const CliRun r = run_arbor("grow " + bad);
+  const CliRun r = run_arbor("grow " + bad + " --stats");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find(bad + ":3:9: error: Shape = 12 is out of range"), std::string::npos) << r.err;
 
-  const CliRun missing = run_arbor("grow /no/such/tree.toml");
+  const CliRun missing = run_arbor("grow /no/such/tree.toml --stats");
   EXPECT_EQ(missing.code, 2);
-  EXPECT_NE(missing.err.find("/no/such/tree.toml: error: cannot open"), std::string::npos);
+  EXPECT_NE(missing.err.find("/no/such/tree.toml: error: species does not exist"), std::string::npos) << missing.err;
+  // Nothing to do is an error, not a silent success.
+  const CliRun idle = run_arbor("grow " + species("quaking_aspen.toml"));
+  EXPECT_EQ(idle.code, 2);
+  EXPECT_NE(idle.err.find("arbor: error: grow has nothing to do"), std::string::npos) << idle.err;
 
   EXPECT_EQ(run_arbor("grow").code, 2);                                     // missing argument
   EXPECT_EQ(run_arbor("grow " + species("quaking_aspen.toml") + " --bogus").code, 2);
@@ -175,7 +179,7 @@ TEST(ArborCli, AbsurdTreesAreRefusedUnlessForced) {
       "huge.toml",
       "model = \"weber-penn\"\nLevels = 4\n[level.1]\nBranches = 1000\n[level.2]\nBranches = "
       "1000\n[level.3]\nBranches = 1000\n");
-  const CliRun r = run_arbor("grow " + huge);
+  const CliRun r = run_arbor("grow " + huge + " --stats");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--force"), std::string::npos) << r.err;
 }

@@ -129,7 +129,7 @@ TEST(Compare, ReadingRefusesNonFinitePixels) {
   arbor::testing::expect_input_error([&] { read_compare_image(path); }, path, 0, 0,
                                      "pixel (2, 1) is not a finite number");
   arbor::testing::expect_input_error([&] { read_compare_image(path + ".missing"); },
-                                     path + ".missing", 0, 0, "cannot read the image");
+                                     path + ".missing", 0, 0, "image does not exist");
 }
 
 TEST(Compare, ReadingFindsVarianceChannels) {

@@ -53,7 +53,7 @@ TEST(Textures, BadTexelsAreRefusedWithTheirPosition) {
   arbor::testing::expect_input_error([&] { HeightMap{holed}; }, holed, 0, 0, "not finite");
   const std::string missing = ::testing::TempDir() + "no_such_texture.png";
   arbor::testing::expect_input_error([&] { HeightMap{missing}; }, missing, 0, 0,
-                                     "cannot read the image");
+                                     "image does not exist");
 }
 
 }  // namespace

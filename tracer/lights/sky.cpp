@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include "common/error.h"
+#include "common/input_file.h"
 #include "imaging/color.h"
 #include "common/math.h"
 #include "tracer/lights/nishita.h"
@@ -74,6 +75,7 @@ Sky::Sky(const SkyDesc& sky, const SunDesc& sun, const ColorTransform& xyz_to_li
   if (sky.model == "none") return;
   rotation_ = static_cast<float>(sky.rotation * kPi / 180.0);
   if (sky.model == "envmap") {
+    check_input_file(sky.path, "environment map");
     OIIO::ImageBuf image(sky.path);
     if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
       throw InputError({sky.path, 0, 0}, "cannot read the environment map: " + image.geterror());
