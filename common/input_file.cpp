@@ -38,7 +38,7 @@ int open_regular(const std::string& path, const std::string& what, std::uint64_t
     if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
       refuse(path, what, "is " + kind_of(st.st_mode) + ", not a file");
     }
-    refuse(path, what, std::string("cannot be opened for reading: ") + std::strerror(err));
+    refuse(path, what, err == ENOENT ? std::string("does not exist") : std::string("cannot be opened for reading: ") + std::strerror(err));
   }
   struct stat st;
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {

@@ -26,14 +26,16 @@ inline std::string slurp(const std::string& path) {
   return s.str();
 }
 
-// Runs `arbor ARGS` through /bin/sh, after `shell_prefix` (e.g. "ulimit -f 8;").
-inline CliRun run_arbor_with(const std::string& shell_prefix, const std::string& args) {
+// Runs `arbor ARGS` through /bin/sh, after `shell_prefix` (e.g. "ulimit -f 8;"), started by
+// `launcher` (e.g. "exec timeout 60" to bound it).
+inline CliRun run_arbor_with(const std::string& shell_prefix, const std::string& args,
+                             const std::string& launcher = "exec") {
   // ctest runs tests as parallel processes: name the capture files after the test.
   const std::string stem = ::testing::TempDir() + "cli_" +
                            ::testing::UnitTest::GetInstance()->current_test_info()->name();
   const std::string out = stem + ".out", err = stem + ".err";
   const std::string cmd =
-      shell_prefix + " exec " + std::string(ARBOR_BINARY) + " " + args + " >" + out + " 2>" + err;
+      shell_prefix + " " + launcher + " " + std::string(ARBOR_BINARY) + " " + args + " >" + out + " 2>" + err;
   const int status = std::system(cmd.c_str());
   CliRun r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
