@@ -61,6 +61,12 @@ std::uint64_t usable_memory_bytes() {
   return usable;
 }
 
+std::uint64_t geometry_budget(const SceneDesc& s, bool force, std::uint64_t usable, std::uint64_t record_passes) {
+  if (force) return 0;
+  const std::uint64_t used = estimate_render_memory(s, record_passes).total() + kBaseline;
+  return usable > used ? usable - used : 1;
+}
+
 void check_render_memory(const SceneDesc& s, bool force, std::uint64_t usable, std::uint64_t record_passes) {
   const MemoryEstimate e = estimate_render_memory(s, record_passes);
   if (force || e.total() + kBaseline <= usable) return;

@@ -34,4 +34,9 @@ std::uint64_t usable_memory_bytes();
 void check_render_memory(const SceneDesc& scene, bool force, std::uint64_t usable = usable_memory_bytes(),
                          std::uint64_t record_passes = 0);
 
+// The bytes left for tree geometry once the image, the instances and the libraries have theirs
+// (0 with `force`: no limit). build_scene refuses a forest whose variants would not fit.
+std::uint64_t geometry_budget(const SceneDesc& scene, bool force, std::uint64_t usable = usable_memory_bytes(),
+                              std::uint64_t record_passes = 0);
+
 }  // namespace arbor::trace

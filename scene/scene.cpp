@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <map>
 
@@ -302,7 +303,7 @@ glm::mat4 placement_matrix(const Placement& pl) {
 }
 
 std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::string& ocio_config,
-                                         Progress* progress) {
+                                         Progress* progress, std::uint64_t geometry_budget) {
   const auto start = std::chrono::steady_clock::now();
   auto scene = std::make_unique<Scene>();
   SceneBuilder b(*scene, ocio_config);
@@ -325,9 +326,26 @@ std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::strin
     const TreeLook look = b.look_for(b.species(f.species), f.bark, f.leaf, f.treemaker, f.where);
     std::vector<int> variants;
     for (int v = 0; v < f.variants; ++v) {
+      const std::size_t before = scene->stats.geometry_bytes;
       variants.push_back(b.prototype_for(f.species, derive_key(f.seed, static_cast<std::uint64_t>(v)),
                                          animated(f.species, 0.0), f.where));
       if (progress) progress->update(++done);
+      if (v == 0 && geometry_budget > 0) {
+        // Every variant of a species is about the size of its first (the Weber & Penn size
+        // limits allow a 10^4 spread, but variants differ only by their seed).
+        const double each = 2.0 * static_cast<double>(scene->stats.geometry_bytes - before);
+        const double projected = 2.0 * static_cast<double>(before) + each * f.variants;
+        if (projected > static_cast<double>(geometry_budget)) {
+          char buf[400];
+          std::snprintf(buf, sizeof buf,
+                        "the forest's %d variants would need about %.1f GB of geometry (%.0f MB each, with "
+                        "Embree's structures), more than the %.1f GB left for trees; lower variants, or use "
+                        "--force to render it anyway",
+                        f.variants, projected / double(1ull << 30), each / double(1ull << 20),
+                        static_cast<double>(geometry_budget) / double(1ull << 30));
+          throw InputError(f.where, buf);
+        }
+      }
     }
     for (int i = 0; i < f.count; ++i) {
       Rng rng(derive_key(f.seed ^ 0xf0e57u, static_cast<std::uint64_t>(i)));

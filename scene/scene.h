@@ -94,9 +94,12 @@ struct Scene {
 
 // Builds the scene: loads each species once, grows each tree once, assembles materials (albedo
 // maps converted through the OCIO config `ocio_config`), reads the meshes. InputError for bad
-// species, meshes or textures, at the scene key that names them.
+// species, meshes or textures, at the scene key that names them. With a `geometry_budget` (bytes;
+// 0: none), a forest whose variants would need more is refused once its first variant is grown
+// (InputError at the forest): each variant is taken at the first one's size, twice over for
+// Embree's structures over it.
 std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::string& ocio_config,
-                                         Progress* progress = nullptr);
+                                         Progress* progress = nullptr, std::uint64_t geometry_budget = 0);
 
 // The affine map of a placement: translate · rotate about z · uniform scale.
 glm::mat4 placement_matrix(const Placement& placement);

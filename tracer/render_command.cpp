@@ -286,7 +286,10 @@ int render_command(const RenderRequest& a) {
 
   const EmbreeDevice device(r.threads > 0 ? "threads=" + std::to_string(r.threads) : "");
   Progress build_progress("build", 1);
-  const std::unique_ptr<const Scene> built = build_scene(scene, color.config_path(), &build_progress);
+  const std::unique_ptr<const Scene> built =
+      build_scene(scene, color.config_path(), &build_progress,
+                  geometry_budget(scene, a.force, usable_memory_bytes(),
+                                  pass_begin > 0 ? static_cast<std::uint64_t>(pass_end - pass_begin) : 0));
   const World world(*built, device);
   build_progress.finish();
   if (treemaker) header.treemaker_weights = treemaker_weights_text(*built);

@@ -303,3 +303,16 @@ TEST(Trust, HugePlansAreRefused) {
   EXPECT_NE(r.err.find("a plan has at most 100000 units and 4096 parts per merge"), std::string::npos) << r.err;
   EXPECT_EQ(bounded("plan " + scene + " --tiles 64x64 --width 64 --height 64 -o " + dir + "/x.exr").code, 0);
 }
+
+// A forest of more variants than memory holds is refused once its first variant is grown (each
+// variant's geometry counts), not grown for minutes into "out of memory".
+TEST(Trust, AForestOfTooManyVariantsIsRefusedUpFront) {
+  const std::string dir = fresh_folder("trust_variants");
+  const std::string scene = tiny_scene(dir, 4, "[[forest]]\nspecies = \"" + species("quaking_aspen.toml") +
+                                                   "\"\ncount = 20000\nvariants = 10000\n");
+  const CliRun r = run_arbor_with("ulimit -v 16000000;", "render " + scene + " -o " + dir + "/o.exr",
+                                  "exec timeout -s KILL 60");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find(scene + ":11:1: error: the forest's 10000 variants would need about"), std::string::npos) << r.err;
+  EXPECT_FALSE(exists(dir + "/o.exr"));
+}
