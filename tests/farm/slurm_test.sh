@@ -84,6 +84,14 @@ MpiDefault=none
 NodeName=$node NodeAddr=127.0.0.1 CPUs=$(nproc) RealMemory=2000 State=UNKNOWN
 PartitionName=farmtest Nodes=ALL Default=YES MaxTime=INFINITE State=UP
 EOF
+# No cgroups: a container or chroot has no cgroup file system, and the test needs none. Slurm
+# 22.05 initialises its cgroup plugin even with proctrack/linuxproc and task/none, and its
+# "autodetect" fails without /sys/fs/cgroup; the v1 plugin named outright mounts nothing until a
+# cgroup plugin (proctrack/cgroup, task/cgroup) asks it to, and none does here.
+cat > "$work/cgroup.conf" <<EOF
+CgroupPlugin=cgroup/v1
+CgroupAutomount=no
+EOF
 export SLURM_CONF=$work/slurm.conf
 slurmctld -D -f "$SLURM_CONF" > "$work/slurmctld.out" 2>&1 &
 pids+=($!)
