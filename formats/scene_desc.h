@@ -141,7 +141,10 @@ struct MeshDesc {
 struct OutputDesc {
   std::string exr;  // resolved; empty: none
   std::string png;
-  std::string colorspace = "ACEScg";
+  // Linear Rec.709 by default: what EXR readers assume of an untagged or unread file (Blender's
+  // "Linear", Nuke's "linear", OIIO's "Linear"), so the EXR opens right without setting anything;
+  // "ACEScg" on request (tagged, for ACES pipelines).
+  std::string colorspace = "Linear Rec.709 (sRGB)";
   std::string display = "sRGB";
   std::string view = "ACES 1.0 SDR-video";
   // of "albedo", "normal", "depth", "variance", "samples", "object_id", "material_id",

@@ -88,18 +88,26 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta, c
   if (wants("depth")) plane("Z", Imf::FLOAT) = img.depth;
   const bool variance = wants("variance");
   if (variance) triple("variance.R", "variance.G", "variance.B", Imf::FLOAT, img.variance);
-  if (wants("samples")) plane("samples", Imf::FLOAT) = img.samples;
+  // Single-channel AOVs are PASS.X (Blender's multilayer reader drops a channel named without a
+  // one-letter component, as it drops "object_id"; Nuke reads PASS as the layer).
+  if (wants("samples")) plane("samples.X", Imf::FLOAT) = img.samples;
   const bool ids = wants("object_id") || wants("material_id") || wants("crypto_object") || wants("crypto_material");
   if (ids && img.id_slots == 0) throw std::logic_error("write_exr: id AOVs asked of an image without ids");
   const std::size_t slots = img.id_slots;
-  // object_id / material_id: the id that covers most of the pixel (0: none), as a float (exact
-  // to 2^24), for a quick mask; Cryptomatte for anti-aliased mattes.
-  auto top_id = [&](const char* name, const std::vector<std::uint32_t>& v) {
+  // object_id / material_id: the id that covers most of the pixel, as a float (exact to 2^24),
+  // for a quick mask; Cryptomatte for anti-aliased mattes. Samples that hit nothing (the sky)
+  // count as id 0, which wins ties: a tree covering 40 % of a sky pixel is not its object.
+  auto top_id = [&](const char* name, const std::vector<std::uint32_t>& v, const std::vector<float>& cover) {
     std::vector<float>& out = plane(name, Imf::FLOAT);
-    for (std::size_t p = 0; p < n; ++p) out[p] = static_cast<float>(v[p * slots]);
+    for (std::size_t p = 0; p < n; ++p) {
+      float covered = 0.0f;
+      for (std::size_t k = 0; k < slots; ++k) covered += cover[p * slots + k];
+      const float nothing = 1.0f - covered;
+      out[p] = v[p * slots] != 0 && cover[p * slots] > nothing ? static_cast<float>(v[p * slots]) : 0.0f;
+    }
   };
-  if (wants("object_id")) top_id("object_id", img.object_ids);
-  if (wants("material_id")) top_id("material_id", img.material_ids);
+  if (wants("object_id")) top_id("object_id.X", img.object_ids, img.object_cover);
+  if (wants("material_id")) top_id("material_id.X", img.material_ids, img.material_cover);
   // Cryptomatte: ranks 0..5 in three RGBA channel sets (id, coverage, id, coverage).
   constexpr std::size_t kRanks = 6;
   auto crypto = [&](const std::string& layer, const std::vector<std::uint32_t>& id,

@@ -11,10 +11,12 @@ namespace arbor::trace {
 inline constexpr const char* kTreemakerTermNames[5] = {"ambient", "lambert", "height", "radius", "angle"};
 
 // EXR channel names of the "treemaker" AOV, in the order render writes them: the factors
-// "term.ambient" … "term.angle", the contributions "tm_ambient.R" … "tm_angle.B", "tm_rest.R/G/B".
+// "term_ambient.X" … "term_angle.X", the contributions "tm_ambient.R" … "tm_angle.B",
+// "tm_rest.R/G/B". Every name is PASS.CHANNEL with a one-letter channel, as Blender's multilayer
+// reader and Nuke's layer.channel convention need.
 inline std::vector<std::string> treemaker_channel_names() {
   std::vector<std::string> names;
-  for (const char* t : kTreemakerTermNames) names.push_back(std::string("term.") + t);
+  for (const char* t : kTreemakerTermNames) names.push_back(std::string("term_") + t + ".X");
   for (const char* t : kTreemakerTermNames) {
     for (const char* c : {".R", ".G", ".B"}) names.push_back(std::string("tm_") + t + c);
   }

@@ -175,14 +175,14 @@ TreemakerAovs read_treemaker_aovs(const std::string& path) {
     rest[c] = need(std::string("tm_rest") + kRgb[c]);
     for (int i = 0; i < kFactors; ++i) contribution[i][c] = need(contribution_channel(i, c));
   }
-  const int coverage = need("term.ambient");
+  const int coverage = need("term_ambient.X");
   const std::size_t n = static_cast<std::size_t>(t.width) * t.height;
   t.beauty.resize(3 * n);
   t.rest.resize(3 * n);
   t.coverage.resize(n);
   t.contribution.resize(n * kFactors * 3);
   for (std::size_t p = 0; p < n; ++p) {
-    t.coverage[p] = image.finite(p, coverage, "term.ambient of ");
+    t.coverage[p] = image.finite(p, coverage, "term_ambient.X of ");
     for (int c = 0; c < 3; ++c) {
       t.beauty[3 * p + c] = image.finite(p, beauty[c], "");
       t.rest[3 * p + c] = image.finite(p, rest[c], "tm_rest of ");
@@ -208,7 +208,7 @@ TreemakerFit fit_treemaker(const CompareImage& exact, const TreemakerAovs& tm) {
   TreemakerFit fit;
   const NormalEquations ne = normal_equations(exact, tm, fit.pixels);
   if (fit.pixels == 0) {
-    throw InputError({tm.path, 0, 0}, "shows no tree (term.ambient is 0 everywhere): nothing to fit");
+    throw InputError({tm.path, 0, 0}, "shows no tree (term_ambient.X is 0 everywhere): nothing to fit");
   }
   for (int i = 0; i < kFactors; ++i) fit.determined[static_cast<std::size_t>(i)] = ne.g[i][i] > 0.0;
   fit.weights = non_negative_solution(ne);

@@ -11,7 +11,7 @@
 namespace arbor::trace {
 
 // A treemaker render's AOVs as `arbor render --integrator treemaker` writes them with
-// output.aovs = ["treemaker"]: per pixel the beauty, the tree's coverage (term.ambient), each
+// output.aovs = ["treemaker"]: per pixel the beauty, the tree's coverage (term_ambient.X), each
 // factor's contribution at weight 1 (tm_<factor>.R/G/B) and the rest (tm_rest.R/G/B), so that
 // beauty = rest + Σ weight_i × contribution_i.
 struct TreemakerAovs {
