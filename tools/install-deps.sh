@@ -2,6 +2,8 @@
 # Installs the Debian 12 packages arbor needs: exactly those missing, nothing when all are present.
 # --fuzz: what `make fuzz` needs instead (clang and its libFuzzer and sanitizer runtimes).
 # --farm: what the farm test (`ctest -L farm`) needs instead: a single-node Slurm and munge.
+# --clients: what the clients test (`ctest -L clients`, `make test-clients`) needs instead: Blender
+#   (headless) and OpenImageIO's Python binding, which Blender's Python imports.
 set -euo pipefail
 
 packages=(
@@ -25,6 +27,9 @@ packages=(
 
 if [ "${1:-}" = "--fuzz" ]; then
   packages=(clang libclang-rt-14-dev)
+fi
+if [ "${1:-}" = "--clients" ]; then
+  packages=(blender python3-openimageio python3-numpy)
 fi
 if [ "${1:-}" = "--farm" ]; then
   packages=(slurmctld slurmd slurm-client munge openimageio-tools)
