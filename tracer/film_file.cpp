@@ -1,6 +1,7 @@
 // The film state file: a text header, then the film's arrays in native binary form.
 #include "tracer/film_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -73,6 +74,40 @@ std::string number_text(double v) {
 
 std::string state_path(const std::string& exr) { return exr + ".state"; }
 
+std::string settings_difference(const std::string& a, const std::string& b, const std::string& in_a,
+                                const std::string& in_b) {
+  // "name value" items; the value is the last word (names may have spaces: "input aspen.toml").
+  auto items = [](const std::string& text) {
+    std::vector<std::pair<std::string, std::string>> out;
+    std::size_t start = 0;
+    while (start < text.size()) {
+      std::size_t end = text.find("; ", start);
+      if (end == std::string::npos) end = text.size();
+      const std::string item = text.substr(start, end - start);
+      const std::size_t space = item.rfind(' ');
+      out.emplace_back(space == std::string::npos ? item : item.substr(0, space),
+                       space == std::string::npos ? "" : item.substr(space + 1));
+      start = end + 2;
+    }
+    return out;
+  };
+  const auto ia = items(a), ib = items(b);
+  std::string out;
+  auto add = [&](const std::string& s) { out += (out.empty() ? "" : "; ") + s; };
+  for (std::size_t i = 0; i < std::max(ia.size(), ib.size()); ++i) {
+    if (i < ia.size() && i < ib.size() && ia[i] == ib[i]) continue;
+    if (i < ia.size() && i < ib.size() && ia[i].first == ib[i].first) {
+      const bool digest = ia[i].first.rfind("input", 0) == 0 || ia[i].first.rfind("the ", 0) == 0;
+      add(digest ? ia[i].first + " has other contents" : ia[i].first + " " + ia[i].second + " " + in_a + ", " + ib[i].second + " " + in_b);
+    } else if (i < ia.size() && i < ib.size()) {
+      add(ia[i].first + " " + in_a + ", " + ib[i].first + " " + in_b);
+    } else {
+      add(i < ia.size() ? ia[i].first + " only " + in_a : ib[i].first + " only " + in_b);
+    }
+  }
+  return out.empty() ? "the same settings" : out;
+}
+
 std::uint64_t fnv1a(const std::string& text, std::uint64_t hash) {
   for (const unsigned char c : text) {
     hash ^= c;
@@ -92,6 +127,7 @@ void write_film_state(const std::string& path, const FilmHeader& h, const Film& 
   std::ostringstream head;
   head << kMagic << "\n"
        << "fingerprint " << h.fingerprint << "\n"
+       << "settings " << h.settings << "\n"
        << "scene " << h.scene << "\n"
        << "size " << h.full_width << " " << h.full_height << "\n"
        << "window " << w.x0 << " " << w.y0 << " " << w.x1 << " " << w.y1 << "\n"
@@ -157,6 +193,7 @@ FilmFile read_film_state(const std::string& path) {
   FilmFile f;
   FilmHeader& h = f.header;
   h.fingerprint = keys["fingerprint"];
+  h.settings = keys["settings"];
   h.scene = keys["scene"];
   h.integrator = keys["integrator"];
   h.colorspace = keys["colorspace"];

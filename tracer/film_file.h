@@ -15,6 +15,7 @@ namespace arbor::trace {
 
 struct FilmHeader {
   std::string fingerprint;  // of the scene, its inputs and the settings that decide the pixels
+  std::string settings;     // the same, readable: "name value" items joined by "; "
   std::string scene;        // the scene file, for messages
   int full_width = 0, full_height = 0;
   PassPlan plan;
@@ -47,6 +48,11 @@ void write_film_state(const std::string& path, const FilmHeader& header, const F
 
 // InputError naming the file when it is missing, not a film state, or truncated.
 FilmFile read_film_state(const std::string& path);
+
+// Which settings items differ between two renders' `settings`, as "spp 64 in A, 128 in B; input
+// aspen.toml has other contents" with `in_a`, `in_b` naming them; "the same settings" when none does.
+std::string settings_difference(const std::string& a, const std::string& b, const std::string& in_a,
+                                const std::string& in_b);
 
 // A 64-bit FNV-1a hash of `text` continued from `hash`, as 16 hex digits by fingerprint_hex.
 std::uint64_t fnv1a(const std::string& text, std::uint64_t hash = 0xcbf29ce484222325ull);

@@ -37,8 +37,8 @@ void require_same_render(const Part& a, const Part& b) {
   const FilmHeader &ha = a.file.header, &hb = b.file.header;
   if (hb.fingerprint != ha.fingerprint) {
     throw InputError({b.exr, 0, 0}, "is not a part of the same render as " + a.exr + ": it was rendered from " +
-                                        hb.scene + " with other settings or inputs (fingerprint " + hb.fingerprint +
-                                        ", " + a.exr + "'s " + ha.fingerprint + ")");
+                                        hb.scene + " with other settings or inputs (" +
+                                        settings_difference(ha.settings, hb.settings, "in " + a.exr, "in this part") + ")");
   }
   if (hb.full_width != ha.full_width || hb.full_height != ha.full_height || hb.plan.spp != ha.plan.spp ||
       hb.plan.pass_spp != ha.plan.pass_spp || hb.plan.independent != ha.plan.independent || b.file.film->extras() != a.file.film->extras() ||

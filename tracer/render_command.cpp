@@ -79,26 +79,31 @@ namespace {
 // The hash of everything that decides the pixels: the settings (not the threads, the outputs or
 // the pass range and window of a work unit), the bytes of the scene and each of its inputs, and
 // the OCIO config.
-std::string render_fingerprint(const SceneDesc& scene, const RenderRequest& a, const std::string& ocio) {
+// Also sets `settings` to the same, readable: "name value" items joined by "; ", so that a
+// refused resume or merge can say which differ (settings_difference).
+std::string render_fingerprint(const SceneDesc& scene, const RenderRequest& a, const std::string& ocio,
+                               std::string& settings) {
   const RenderSettings& r = scene.render;
   std::ostringstream s;
   s.precision(17);
-  s << "arbor render 1 " << r.width << "x" << r.height << " spp " << r.spp << " pass_spp " << r.pass_spp
-    << (r.independent_passes ? " independent" : " sequence")
-    << " seed " << r.seed << " " << r.integrator << " depth " << r.max_depth << " treemaker_spp "
-    << r.treemaker_spp << " noise " << r.noise_threshold << " min " << r.min_spp
-    << (scene.output.transparent_sky ? " transparent" : "") << (scene.output.wants_ids() ? " ids" : "") << " time ";
-  if (a.time) s << *a.time;
-  if (a.frame) s << " frame " << *a.frame << " clock " << scene.clock;
-  std::uint64_t hash = fnv1a(s.str());
+  s << "size " << r.width << "x" << r.height << "; spp " << r.spp << "; pass_spp " << r.pass_spp
+    << "; independent_passes " << (r.independent_passes ? "true" : "false") << "; seed " << r.seed
+    << "; integrator " << r.integrator << "; max_depth " << r.max_depth << "; treemaker_spp " << r.treemaker_spp
+    << "; noise_threshold " << r.noise_threshold << "; min_spp " << r.min_spp << "; transparent_sky "
+    << (scene.output.transparent_sky ? "true" : "false") << "; ids " << (scene.output.wants_ids() ? "kept" : "none")
+    << "; --time " << (a.time ? std::to_string(*a.time) : std::string("none"));
+  if (a.frame) s << "; frame " << *a.frame << "; clock " << scene.clock;
   std::vector<std::string> files = scene_inputs(scene);
   files.push_back(ocio);
   // The inputs by their place in the scene and their bytes, not by how their paths are spelt
   // (scene.toml and ./scene.toml are one render; the scene's own text names its inputs).
   for (std::size_t i = 0; i < files.size(); ++i) {
-    hash = fnv1a(std::to_string(i) + " " + fingerprint_hex(input_digest(files[i], i == 0 ? "scene" : "input")) + "\n", hash);
+    const std::string role = i == 0 ? "scene" : i + 1 == files.size() ? "OCIO config" : "input " + std::to_string(i);
+    s << "; " << (i == 0 ? "the scene file" : i + 1 == files.size() ? "the OCIO config" : "input " + file_name(files[i]))
+      << " " << fingerprint_hex(input_digest(files[i], role));
   }
-  return fingerprint_hex(hash);
+  settings = s.str();
+  return fingerprint_hex(fnv1a("arbor render 2 " + settings));
 }
 
 // The EXR's arbor:fingerprint and whether it says it is a finished render, or "" when it cannot
@@ -230,7 +235,7 @@ int render_command(const RenderRequest& a) {
   const std::vector<std::string> extra_names = integrator_aov_names(scene);
 
   FilmHeader header;
-  header.fingerprint = render_fingerprint(scene, a, color.config_path());
+  header.fingerprint = render_fingerprint(scene, a, color.config_path(), header.settings);
   header.scene = scene.path;
   header.full_width = r.width;
   header.full_height = r.height;
@@ -264,8 +269,8 @@ int render_command(const RenderRequest& a) {
     FilmFile saved = read_film_state(state);
     if (saved.header.fingerprint != header.fingerprint) {
       throw InputError({state, 0, 0}, "--resume: it was rendered from " + saved.header.scene +
-                                          " with other settings or inputs (fingerprint " +
-                                          saved.header.fingerprint + ", this render's " + header.fingerprint +
+                                          " with other settings or inputs (" +
+                                          settings_difference(saved.header.settings, header.settings, "in the state", "in this command") +
                                           "); give the same scene, files and options");
     }
     if (saved.film->window() != window || saved.film->pass_begin() != pass_begin || saved.header.pass_end != pass_end) {
@@ -335,10 +340,19 @@ int render_command(const RenderRequest& a) {
   stop_gracefully_on_signal(false);
   const double seconds = std::max(stats.seconds, 1e-9);
   const int done = plan.samples(pass_begin, film->next_pass());
+  // With adaptive sampling pixels stop early: the mean is what was rendered, `done` the most.
+  char spp_text[80];
+  if (r.noise_threshold > 0.0) {
+    double total = 0.0;
+    for (std::size_t p = 0; p < window.pixels(); ++p) total += film->state(p).count;
+    std::snprintf(spp_text, sizeof spp_text, "a mean of %.1f spp (at most %d)", total / double(window.pixels()), done);
+  } else {
+    std::snprintf(spp_text, sizeof spp_text, "%d spp", done);
+  }
   std::fprintf(stderr,
-               "arbor: rendered %dx%d at %d spp (passes %d to %d of %d) in %.2f s (%.3g samples/s, %.3g rays/s; "
+               "arbor: rendered %dx%d at %s (passes %d to %d of %d) in %.2f s (%.3g samples/s, %.3g rays/s; "
                "%zu trees from %zu prototypes, built in %.2f s)\n",
-               window.width(), window.height(), done, pass_begin, film->next_pass() - 1, plan.passes(),
+               window.width(), window.height(), spp_text, pass_begin, film->next_pass() - 1, plan.passes(),
                stats.seconds, double(stats.samples) / seconds, double(stats.rays) / seconds,
                built->stats.instances, built->stats.prototypes, built->stats.build_seconds + world.build_seconds());
   if (!outcome.stopped.empty()) {

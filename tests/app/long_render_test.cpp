@@ -142,7 +142,13 @@ TEST(LongRender, ResumeRefusesOtherSettings) {
   ASSERT_TRUE(exists(dir + "/out.exr.state"));
   const CliRun seed = run_arbor("render " + scene + " -o " + dir + "/out.exr --passes 0:4 --seed 6 --resume");
   EXPECT_EQ(seed.code, 2) << seed.err;
-  EXPECT_NE(seed.err.find("other settings or inputs"), std::string::npos) << seed.err;
+  EXPECT_NE(seed.err.find("other settings or inputs (seed 5 in the state, 6 in this command)"), std::string::npos)
+      << seed.err;
+  // A changed input is named too.
+  std::ofstream(scene, std::ios::app) << "# a comment changes the scene's bytes\n";
+  const CliRun edited = run_arbor("render " + scene + " -o " + dir + "/out.exr --passes 0:4 --resume");
+  EXPECT_EQ(edited.code, 2) << edited.err;
+  EXPECT_NE(edited.err.find("(the scene file has other contents)"), std::string::npos) << edited.err;
   const CliRun none = run_arbor("render " + scene + " -o " + dir + "/none.exr --resume");
   EXPECT_EQ(none.code, 2) << none.err;
   EXPECT_NE(none.err.find("no film state"), std::string::npos) << none.err;

@@ -27,7 +27,7 @@ trap cleanup EXIT
 
 fail() {
   echo "farm test: $*" >&2
-  for log in "$work"/*.log "$work"/out/*.slurm/*.log; do
+  for log in "$work"/*.log "$work"/"farm jobs"/out/*.slurm/*.log; do
     [ -f "$log" ] && { echo "--- $log" >&2; tail -n 20 "$log" >&2; }
   done
   exit 1
@@ -99,8 +99,12 @@ slurmd -D -f "$SLURM_CONF" -N "$node" > "$work/slurmd.out" 2>&1 &
 pids+=($!)
 wait_for 60 bash -c "sinfo -h -N -o '%T' | grep -Eq '^(idle|mixed|allocated)'" || fail "the node did not come up"
 
+# The scene, the parts, the scripts and the outputs in a folder whose name has a space.
+job="$work/farm jobs"
+mkdir -p "$job"
+
 # A small scene: 2x2 tiles x 2 pass groups = 8 units.
-cat > "$work/scene.toml" <<EOF
+cat > "$job/scene.toml" <<EOF
 [render]
 width = 40
 height = 30
@@ -115,20 +119,20 @@ species = "$source_dir/species/quaking_aspen.toml"
 [ground]
 enabled = true
 EOF
-submitted=$("$source_dir/tools/farm/arbor-slurm" "$work/scene.toml" --arbor "$arbor" --tiles 2x2 --pass-groups 2 \
-  --seed 3 --cpus 1 --mem 500M --time-limit 10 -o "$work/out/farm.exr") || fail "arbor-slurm failed"
+submitted=$("$source_dir/tools/farm/arbor-slurm" "$job/scene.toml" --arbor "$arbor" --tiles 2x2 --pass-groups 2 \
+  --seed 3 --cpus 1 --mem 500M --unit-time 10 -o "$job/out/farm.exr") || fail "arbor-slurm failed"
 echo "$submitted"
 units_job=$(printf '%s\n' "$submitted" | awk '/^units:/ {print $2}')
 merge_job=$(printf '%s\n' "$submitted" | awk '/^merge:/ {print $2}')
 [ -n "$units_job" ] && [ -n "$merge_job" ] || fail "no job ids in: $submitted"
-[ "$(wc -l < "$work/out/farm.slurm/units.txt")" -eq 8 ] || fail "expected 8 units"
+[ "$(wc -l < "$job/out/farm.slurm/units.txt")" -eq 8 ] || fail "expected 8 units"
 
 # Done when the merge job has left the queue (bounded); it must have written the EXR.
 wait_for 300 bash -c "! squeue -h -j $units_job,$merge_job 2>/dev/null | grep -q ." || fail "the jobs did not finish in 300 s"
-[ -f "$work/out/farm.exr" ] || fail "the merge job wrote no EXR"
-grep -q "merged 8 parts" "$work/out/farm.slurm/merge.log" || fail "the merge log does not report 8 parts"
+[ -f "$job/out/farm.exr" ] || fail "the merge job wrote no EXR"
+grep -q "merged 8 parts" "$job/out/farm.slurm/merge.log" || fail "the merge log does not report 8 parts"
 
-"$arbor" render "$work/scene.toml" --seed 3 -o "$work/out/local.exr" 2>/dev/null
-idiff -q -fail 0 -failpercent 0 -warn 0 "$work/out/farm.exr" "$work/out/local.exr" ||
+"$arbor" render "$job/scene.toml" --seed 3 -o "$job/out/local.exr" 2>/dev/null
+idiff -q -fail 0 -failpercent 0 -warn 0 "$job/out/farm.exr" "$job/out/local.exr" ||
   fail "the farm's EXR differs from a local render"
 echo "farm test: 8 units through Slurm (jobs $units_job, $merge_job), merged EXR equals the local render"
