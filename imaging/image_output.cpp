@@ -177,38 +177,40 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta, c
   text("arbor:version", ARBOR_VERSION_STRING);
   text("arbor:commit", ARBOR_COMMIT);
   text("arbor:scene", meta.scene);
-  text("arbor:seed", std::to_string(meta.seed));
-  integer("arbor:spp", meta.spp);
-  text("arbor:integrator", meta.integrator);
-  header.insert("arbor:render_seconds", Imf::FloatAttribute(static_cast<float>(meta.stats.seconds)));
-  text("arbor:nonfinite_samples", std::to_string(meta.stats.nonfinite));
-  // What the variance channels hold, only when there are some.
-  if (variance) text("arbor:variance",
-                     meta.passes < 2 ? "variance of the pixel mean, sample variance / spp within one pass "
-                                       "(overstates it for QMC samples)"
-                     : meta.independent_passes ? "variance of the pixel mean, estimated across independent passes"
-                                               : "variance of the pixel mean, estimated across passes of one "
-                                                 "sequence (an upper bound: the passes together are better "
-                                                 "stratified than independent ones)");
-  integer("arbor:independent_passes", meta.independent_passes ? 1 : 0);
-  integer("arbor:passes", meta.passes);
-  integer("arbor:pass_spp", meta.pass_spp);
-  integer("arbor:passes_planned", meta.passes_planned);
-  text("arbor:pass_range", std::to_string(meta.pass_begin) + ":" + std::to_string(meta.pass_end));
-  header.insert("arbor:mean_spp", Imf::FloatAttribute(static_cast<float>(meta.mean_spp)));
-  text("arbor:fingerprint", meta.fingerprint);
-  integer("arbor:transparent_sky", o.transparent_sky ? 1 : 0);
-  if (meta.noise_threshold > 0) {
-    header.insert("arbor:noise_threshold", Imf::FloatAttribute(static_cast<float>(meta.noise_threshold)));
-    integer("arbor:min_spp", meta.min_spp);
+  if (meta.render_attributes) {
+    text("arbor:seed", std::to_string(meta.seed));
+    integer("arbor:spp", meta.spp);
+    text("arbor:integrator", meta.integrator);
+    header.insert("arbor:render_seconds", Imf::FloatAttribute(static_cast<float>(meta.stats.seconds)));
+    text("arbor:nonfinite_samples", std::to_string(meta.stats.nonfinite));
+    // What the variance channels hold, only when there are some.
+    if (variance) text("arbor:variance",
+                       meta.passes < 2 ? "variance of the pixel mean, sample variance / spp within one pass "
+                                         "(overstates it for QMC samples)"
+                       : meta.independent_passes ? "variance of the pixel mean, estimated across independent passes"
+                                                 : "variance of the pixel mean, estimated across passes of one "
+                                                   "sequence (an upper bound: the passes together are better "
+                                                   "stratified than independent ones)");
+    integer("arbor:independent_passes", meta.independent_passes ? 1 : 0);
+    integer("arbor:passes", meta.passes);
+    integer("arbor:pass_spp", meta.pass_spp);
+    integer("arbor:passes_planned", meta.passes_planned);
+    text("arbor:pass_range", std::to_string(meta.pass_begin) + ":" + std::to_string(meta.pass_end));
+    header.insert("arbor:mean_spp", Imf::FloatAttribute(static_cast<float>(meta.mean_spp)));
+    text("arbor:fingerprint", meta.fingerprint);
+    integer("arbor:transparent_sky", o.transparent_sky ? 1 : 0);
+    if (meta.noise_threshold > 0) {
+      header.insert("arbor:noise_threshold", Imf::FloatAttribute(static_cast<float>(meta.noise_threshold)));
+      integer("arbor:min_spp", meta.min_spp);
+    }
+    if (img.width != full_w || img.height != full_h) {
+      text("arbor:crop", std::to_string(img.x0) + "," + std::to_string(img.y0) + "," +
+                             std::to_string(img.x0 + img.width) + "," + std::to_string(img.y0 + img.height));
+    }
+    if (meta.incomplete) integer("arbor:incomplete", 1);
+    if (!meta.stopped.empty()) text("arbor:stopped", meta.stopped);
+    if (!meta.treemaker_weights.empty()) text("arbor:treemaker_weights", meta.treemaker_weights);
   }
-  if (img.width != full_w || img.height != full_h) {
-    text("arbor:crop", std::to_string(img.x0) + "," + std::to_string(img.y0) + "," +
-                           std::to_string(img.x0 + img.width) + "," + std::to_string(img.y0 + img.height));
-  }
-  if (meta.incomplete) integer("arbor:incomplete", 1);
-  if (!meta.stopped.empty()) text("arbor:stopped", meta.stopped);
-  if (!meta.treemaker_weights.empty()) text("arbor:treemaker_weights", meta.treemaker_weights);
   // The numeric ids' names: {"name": id, …}.
   auto id_names = [&](const char* key, const std::vector<std::string>& names) {
     JsonObject ids_json;

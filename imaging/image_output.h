@@ -34,6 +34,9 @@ struct ExrMetadata {
   // and Color Interop Forum id ("" when arbor does not know the space).
   std::vector<float> chromaticities;
   std::string interop_id;
+  // false for an image that is not a render (the sky exported for pbrt): no arbor:spp, seed,
+  // passes and the like, only the version, the scene note and the colour tags.
+  bool render_attributes = true;
 };
 
 // Writes the EXR atomically (a temporary beside it, renamed when complete). Channels: R G B,

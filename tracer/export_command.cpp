@@ -123,7 +123,12 @@ std::string transform_of(const glm::mat4& m) {
   return s + "]";
 }
 
-void write_sky_exr(const Sky& sky, const Colors& colors, const PbrtColorSpace& space, int n,
+// The sky as pbrt-v4's equal-area square. With `fill_below` (the scene has a ground, which the
+// export writes 10 km each way), texels below the horizon take the horizon's radiance at their
+// azimuth instead of black: the ground hides them, and pbrt's bilinear lookup of the texels just
+// above the horizon then blends no black into them (at 512 texels a side the last rows rendered
+// 0.31-0.67x dark).
+void write_sky_exr(const Sky& sky, const Colors& colors, const PbrtColorSpace& space, int n, bool fill_below,
                    const std::string& path) {
   Image img;
   img.width = img.full_width = n;
@@ -133,18 +138,26 @@ void write_sky_exr(const Sky& sky, const Colors& colors, const PbrtColorSpace& s
   img.alpha.assign(count, 1.0f);
   for (int y = 0; y < n; ++y) {
     for (int x = 0; x < n; ++x) {
-      const glm::vec3 d = equal_area_square_to_sphere(
-          glm::vec2((static_cast<float>(x) + 0.5f) / static_cast<float>(n), (static_cast<float>(y) + 0.5f) / static_cast<float>(n)));
+      glm::vec3 d = glm::normalize(equal_area_square_to_sphere(
+          glm::vec2((static_cast<float>(x) + 0.5f) / static_cast<float>(n), (static_cast<float>(y) + 0.5f) / static_cast<float>(n))));
+      if (fill_below && d.z < 0.0f) {
+        const float across = std::hypot(d.x, d.y);
+        d = across > 1e-6f ? glm::normalize(glm::vec3(d.x / across, d.y / across, 1e-4f)) : glm::vec3(1.0f, 0.0f, 1e-4f);
+      }
       img.beauty[static_cast<std::size_t>(y) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x)] =
-          colors.light(sky.radiance(glm::normalize(d)));
+          colors.light(sky.radiance(d));
     }
   }
   OutputDesc output;
-  output.colorspace = space.name;
+  // Linear radiance in pbrt's colour space `space` (its chromaticities say which): OIIO's name for
+  // linear, not pbrt's "srgb", which OIIO reads as the sRGB curve (oiiotool darkened it 5x).
+  output.colorspace = "Linear";
   output.pixel_type = "float";
   ExrMetadata meta;
-  meta.scene = "arbor sky for pbrt-v4 (equal-area octahedral map)";
+  meta.scene = "arbor sky for pbrt-v4 (equal-area octahedral map), linear in pbrt's colour space " +
+               std::string(space.name) + (fill_below ? "; below the horizon, the horizon's radiance" : "");
   meta.chromaticities = space.chromaticities;
+  meta.render_attributes = false;
   write_exr(img, output, meta, path);
 }
 
@@ -341,7 +354,7 @@ int export_command(const ExportRequest& a) {
 
   // The sky goes first: a failed write of the scene leaves at most a new sky beside the old
   // scene, never a scene naming a sky that is not there.
-  if (!sky.empty()) write_sky_exr(sky, colors, space, a.sky_resolution, sky_path);
+  if (!sky.empty()) write_sky_exr(sky, colors, space, a.sky_resolution, built->has_ground, sky_path);
   file.write(out);
   file.commit();
   for (const std::string& c : clamped) {

@@ -262,6 +262,10 @@ TEST(PbrtExport, WritesTheWholeSceneAndASkyWithItsIrradiance) {
   ASSERT_EQ(spec.width, 128);
   ASSERT_EQ(spec.height, 128);
   EXPECT_NE(spec.find_attribute("chromaticities"), nullptr);
+  // Linear, tagged as OIIO reads it (not "srgb", OIIO's sRGB curve), and no render attributes.
+  EXPECT_EQ(spec.get_string_attribute("oiio:ColorSpace"), "Linear");
+  EXPECT_EQ(spec.find_attribute("arbor:spp"), nullptr);
+  EXPECT_EQ(spec.find_attribute("arbor:seed"), nullptr);
   std::vector<float> px(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
   ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
   glm::dvec3 e(0.0);
@@ -272,6 +276,15 @@ TEST(PbrtExport, WritesTheWholeSceneAndASkyWithItsIrradiance) {
       const glm::vec3 d = equal_area_square_to_sphere({(x + 0.5f) / spec.width, (y + 0.5f) / spec.height});
       const float* p = &px[(static_cast<std::size_t>(y) * spec.width + x) * spec.nchannels];
       if (d.z > 0.0f) e += glm::dvec3(p[0], p[1], p[2]) * static_cast<double>(d.z);
+      // Below the horizon (the ground hides it) the horizon's radiance, never black: pbrt's
+      // bilinear lookup of the lowest sky rows blends these in.
+      if (d.z < 0.0f) {
+        const float across = std::hypot(d.x, d.y);
+        const glm::vec3 h = glm::normalize(glm::vec3(d.x / across, d.y / across, 1e-4f));
+        const glm::vec3 horizon = glm::max(sky.radiance(h), glm::vec3(0.0f));  // pbrt's srgb is scene_linear here
+        EXPECT_GT(p[1], 0.0f) << x << "," << y;
+        EXPECT_NEAR(p[1], horizon.y, 1e-3f * horizon.y + 1e-6f) << x << "," << y;
+      }
       if (p[1] > brightest) {
         brightest = p[1];
         brightest_direction = d;
