@@ -11,12 +11,16 @@
 #include <sstream>
 #include <vector>
 
+#include <climits>
+#include <filesystem>
+#include <cstdlib>
 #include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/executable.h"
 #include "common/input_file.h"
 #include "common/progress.h"
 #include "common/rng.h"
@@ -141,8 +145,37 @@ void apply_frame(SceneDesc& scene, std::optional<int> frame) {
   scene.output.png = frame_path(scene.output.png, *frame);
 }
 
+namespace {
+
+// An installed scene (<prefix>/share/arbor/scenes/) names its outputs relative to itself, in a
+// folder users do not write in: those outputs go under the current folder instead, with a note.
+void relocate_installed_outputs(SceneDesc& scene, const RenderRequest& a) {
+  char shared[PATH_MAX], folder[PATH_MAX];
+  const std::size_t slash = scene.path.find_last_of('/');
+  const std::string scene_folder = slash == std::string::npos ? "." : scene.path.substr(0, slash + 1);
+  if (!::realpath(installed_data_path("").c_str(), shared) || !::realpath(scene_folder.c_str(), folder)) return;
+  const std::string root = std::string(shared) + "/";
+  if (std::string(folder).rfind(root, 0) != 0) return;
+  const std::string prefix = slash == std::string::npos ? "" : scene_folder;
+  for (std::string* out : {a.exr.empty() ? &scene.output.exr : nullptr, a.png.empty() ? &scene.output.png : nullptr}) {
+    if (!out || out->empty() || prefix.empty() || out->rfind(prefix, 0) != 0) continue;
+    // Its place under the installed data ("out/default.exr" for scenes/../out/default.exr) is
+    // its place under the current folder; one outside the data keeps only its name.
+    const std::filesystem::path inside =
+        (std::filesystem::path(folder) / out->substr(prefix.size())).lexically_normal().lexically_relative(shared);
+    const std::string here = inside.empty() || *inside.begin() == ".." ? std::filesystem::path(*out).filename().string()
+                                                                         : inside.string();
+    std::fprintf(stderr, "arbor: %s is an installed scene; its output %s goes under the current folder: %s\n",
+                 scene.path.c_str(), out->c_str(), here.c_str());
+    *out = here;
+  }
+}
+
+}  // namespace
+
 int render_command(const RenderRequest& a) {
   SceneDesc scene = load_scene(a.scene);
+  relocate_installed_outputs(scene, a);
   RenderSettings& r = scene.render;
   if (!a.integrator.empty()) r.integrator = a.integrator;
   // --spp sets the sample count of the integrator in use (the scene keeps one for each).

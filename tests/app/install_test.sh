@@ -15,6 +15,15 @@ cd "$work/elsewhere"
 env -u OCIO "$work/prefix/bin/arbor" render "$work/prefix/share/arbor/scenes/default.toml" \
   -o out.exr --png out.png --spp 1 --width 32 --height 24
 [ -s out.exr ] && [ -s out.png ] || { echo "install_test.sh: no image written" >&2; exit 1; }
+# Without -o, an installed scene's own outputs (out/default.exr, relative to the scene) go under
+# the current folder, not into <prefix>/share/arbor/.
+env -u OCIO "$work/prefix/bin/arbor" render "$work/prefix/share/arbor/scenes/default.toml" \
+  --spp 1 --width 32 --height 24 2> own.log
+[ -s out/default.exr ] || { echo "install_test.sh: the installed scene's output is not under the current folder" >&2; cat own.log >&2; exit 1; }
+if [ -e "$work/prefix/share/arbor/scenes/out" ]; then
+  echo "install_test.sh: the installed scene wrote into the installed share folder" >&2; exit 1
+fi
+grep -q "is an installed scene" own.log || { echo "install_test.sh: no note of where the outputs went" >&2; exit 1; }
 # The installed binary must not lean on the source or build tree's config.
 if strings "$work/prefix/bin/arbor" | grep -q "$(dirname "$build")/imaging/ocio"; then
   echo "install_test.sh: the binary names the source tree's OCIO config" >&2
