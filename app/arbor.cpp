@@ -115,7 +115,9 @@ int main(int argc, char** argv) {
                        "(Blender's OBJ importer, Maya, game engines)")
       ->check(CLI::IsMember({"z", "y"}))
       ->capture_default_str();
-  grow_cmd->add_flag("--stats", grow.stats, "print statistics of the tree");
+  grow_cmd->add_flag("--stats", grow.stats,
+                     "print statistics of the tree (height and crown width are its envelope's: an upper "
+                     "bound within a few cm)");
   grow_cmd->add_flag("--json", grow.json, "print the statistics as one JSON object");
   grow_cmd->add_flag("--force", grow.force,
                      "grow even a tree estimated at over 10 million stems or 100 million leaves");
