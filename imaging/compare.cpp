@@ -258,7 +258,13 @@ ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alph
         ratio[(static_cast<std::size_t>(j) * bx + k) * 3 + c] = vb[c] > 0 ? va[c] / vb[c] : t.spp_ratio;
         const double v = va[c] + vb[c] + q[c];
         const double z = pooled_z(d[c], v);
-        chi2 += z * z;
+        // A block that differs by more than its rounding where neither image has noise is a
+        // deterministic difference: counted and failed on its own, not an infinite chi-square.
+        if (std::isfinite(z)) {
+          chi2 += z * z;
+        } else {
+          ++t.noiseless_blocks_differing;
+        }
         // A block without noise (sky seen directly) tests only that it does not differ by more
         // than its rounding: its z is 0 or infinite, and it adds no degree of freedom.
         if (noisy[c] > 0) ++blocks;
@@ -278,7 +284,11 @@ ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alph
     for (int c = 0; c < 3 && ok; ++c) {
       const std::size_t i = 3 * p + c;
       const double d = static_cast<double>(a.rgb[i]) - b.rgb[i];
-      const double var = (1.0 + ratio[block * 3 + c]) * b.variance[i] + rounding(i);
+      // The larger of two estimates of var(a - b): B's pixel scaled to A's level by the block,
+      // and each image's own pixel estimate summed. The first alone fails wherever B's few
+      // passes missed a rare bright path that A caught (Monte Carlo pixels are heavy-tailed):
+      // A's own passes then carry that path's variance.
+      const double var = std::max((1.0 + ratio[block * 3 + c]) * b.variance[i], var_a(i) + b.variance[i]) + rounding(i);
       ok = std::fabs(d) <= t.z_critical * std::sqrt(var);
     }
     if (!ok) ++t.failed;
@@ -290,13 +300,15 @@ ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alph
   t.mean_z_critical = normal_two_sided_critical(-std::expm1(std::log1p(-t.alpha_pooled) / 3.0));
   t.mean_passed = true;
   for (int c = 0; c < 3; ++c) {
-    t.mean_z[c] = pooled_z(image_d[c], image_v[c]);
+    // An image mean that differs without any noise: its z is capped (stated as such) to stay a
+    // number; the test fails either way.
+    t.mean_z[c] = std::max(-1e30, std::min(1e30, pooled_z(image_d[c], image_v[c])));
     t.mean_passed = t.mean_passed && std::fabs(t.mean_z[c]) <= t.mean_z_critical;
   }
   t.block_chi2 = chi2;
   t.block_dof = blocks;
   t.block_p = blocks > 0 ? chi_square_upper_tail(chi2, blocks) : (chi2 > 0 ? 0.0 : 1.0);
-  t.blocks_passed = t.block_p >= t.alpha_pooled;
+  t.blocks_passed = t.block_p >= t.alpha_pooled && t.noiseless_blocks_differing == 0;
   t.passed = t.pixels_passed && t.mean_passed && t.blocks_passed;
   return t;
 }

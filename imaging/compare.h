@@ -50,6 +50,9 @@ struct ZTest {
   double mean_z[3] = {0, 0, 0}; // (mean of A - mean of B) / its standard error, per channel
   double mean_z_critical = 0;
   double block_chi2 = 0, block_dof = 0, block_p = 1;
+  // Channels of blocks that differ beyond their rounding where neither image has noise (a
+  // deterministic difference, e.g. in a sky seen directly): any fails the block test.
+  long long noiseless_blocks_differing = 0;
   double variance_ratio = 0;    // Σ var_a / Σ var_b: how much noisier A is than B
   double spp_ratio = 0;         // spp_b / spp_a when both say, else 0: A's variance over a block is
                                 // at least B's times this (quasi-Monte Carlo converges at least as 1/n)

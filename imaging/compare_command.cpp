@@ -77,6 +77,7 @@ int compare_command(const CompareRequest& args) {
       j.number("z_test_pass_fraction", z.pass_fraction).number("z_critical", z.z_critical);
       j.number("z_dof", z.dof).integer("pixels", z.pixels).integer("failed_pixels", z.failed);
       j.boolean("pixels_passed", z.pixels_passed);
+      j.integer("noiseless_blocks_differing", z.noiseless_blocks_differing);
       j.numbers("mean_z", {z.mean_z[0], z.mean_z[1], z.mean_z[2]}).number("mean_z_critical", z.mean_z_critical);
       j.boolean("mean_passed", z.mean_passed);
       j.number("block_chi2", z.block_chi2).number("block_dof", z.block_dof).number("block_p", z.block_p);
@@ -109,8 +110,13 @@ int compare_command(const CompareRequest& args) {
                   z.pixels_passed ? "pass" : "FAIL");
       std::printf("          image mean: z = %.2f %.2f %.2f (|z| <= %.2f: alpha %g): %s\n", z.mean_z[0],
                   z.mean_z[1], z.mean_z[2], z.mean_z_critical, z.alpha_pooled, z.mean_passed ? "pass" : "FAIL");
-      std::printf("          16x16 blocks: chi-square %.1f on %g dof, p = %.3g (alpha %g): %s\n", z.block_chi2,
-                  z.block_dof, z.block_p, z.alpha_pooled, z.blocks_passed ? "pass" : "FAIL");
+      std::printf("          16x16 blocks: chi-square %.1f on %g dof, p = %.3g (alpha %g)%s: %s\n", z.block_chi2,
+                  z.block_dof, z.block_p, z.alpha_pooled,
+                  z.noiseless_blocks_differing > 0
+                      ? (", and " + std::to_string(z.noiseless_blocks_differing) +
+                         " block channels differ where neither image has noise").c_str()
+                      : "",
+                  z.blocks_passed ? "pass" : "FAIL");
       std::printf("          A is %.3g times as noisy as B (variance; in each block at least %.3g times B's, "
                   "their spp ratio); %s\n",
                   z.variance_ratio, z.spp_ratio, z.passed ? "PASS" : "FAIL");
