@@ -1,6 +1,7 @@
 // `arbor compare`: read both images, measure, test, fit, draw, report.
 #include "imaging/compare_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -143,6 +144,13 @@ int compare_command(const CompareRequest& args) {
                          "freedom a pixel, and a block whose noise sits in a few pixels can fail by chance; "
                          "render it in at least 8 passes (pass_spp = spp / 8)\n",
                  args.a.c_str(), a.passes, a.passes - 1, a.passes == 2 ? "" : "s");
+  }
+  if (args.reference_test && b.passes >= 1 && b.passes < 8) {
+    std::fprintf(stderr, "arbor compare: warning: the reference %s has %d pass%s: its variance is estimated from "
+                         "%d degree%s of freedom a pixel, below the 8 passes the test's false-alarm rate was "
+                         "measured for (docs/rendering.md); render references in at least 8 independent passes\n",
+                 args.b.c_str(), b.passes, b.passes == 1 ? "" : "es", std::max(0, b.passes - 1),
+                 b.passes == 2 ? "" : "s");
   }
   for (const CompareImage* im : {&a, &b}) {
     if (args.reference_test && im->sequence_passes && !im->variance.empty()) {

@@ -111,6 +111,30 @@ TEST(Compare, ZeroVariancePixelsTolerateFloatRoundingOnly) {
   EXPECT_FALSE(reference_z_test(flat(8, 8, 0.6f * (1.0f + 1e-5f), 0.0f), b).passed);
 }
 
+// Monte Carlo pixels are heavy-tailed: a rare bright path that B's few passes missed leaves B's
+// pixel variance near 0 there, while A, which caught it, says so in its own variance. Such pixels
+// pass (each image's own estimate counts); a local error A's variance does not explain still fails.
+TEST(Compare, ZTestTakesEachImagesOwnVarianceAndStillFindsALocalError) {
+  const CompareImage b = flat(64, 64, 1.0f, 1e-4f);
+  CompareImage a = noisy(b, 1e-4f, 0.0f, 7);
+  CompareImage spiky = b;
+  for (int k = 0; k < 60; ++k) {  // 1.5 % of the pixels: three times what the test allows
+    const std::size_t p = static_cast<std::size_t>(k) * 67 % (64 * 64);
+    spiky.variance[3 * p] = 1e-9f;  // B never saw the path: its estimate is ~0
+    a.rgb[3 * p] += 0.2f;           // A caught it in one of its passes: 0.2 off, and it says so
+    a.variance[3 * p] = 0.2f * 0.2f;
+  }
+  EXPECT_TRUE(reference_z_test(a, spiky).pixels_passed);
+  // 25 pixels 20 % too bright, with the variance of ordinary noise: found.
+  CompareImage wrong = noisy(b, 1e-4f, 0.0f, 8);
+  for (int y = 30; y < 35; ++y) {
+    for (int x = 30; x < 35; ++x) wrong.rgb[3 * (static_cast<std::size_t>(y) * 64 + x) + 1] += 0.2f;
+  }
+  const ZTest t = reference_z_test(wrong, b);
+  EXPECT_EQ(t.failed, 25);
+  EXPECT_FALSE(t.passed);
+}
+
 TEST(Compare, ZTestNeedsTheReferenceVariance) {
   try {
     reference_z_test(flat(4, 4, 1.0f), flat(4, 4, 1.0f));
