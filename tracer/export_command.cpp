@@ -91,7 +91,8 @@ class Materials {
         body = "\"diffuse\" " + colors_.rgb("reflectance", m.bark.albedo, label);
         break;
       case mat::Material::Kind::Ground: {
-        // The patches' noise has no pbrt counterpart: their cover-weighted mean.
+        // The patches' noise has no pbrt counterpart: their cover-weighted mean, for the ground
+        // beyond the baked square around the camera (write_ground_exr).
         const float c = m.ground.cover;
         body = "\"diffuse\" " + colors_.rgb("reflectance", (1.0f - c) * m.albedo + c * m.ground.patch_albedo, label);
         break;
@@ -188,6 +189,44 @@ std::string sky_path_for(const std::string& pbrt_path) {
   return (ends_with(pbrt_path, ".pbrt") ? pbrt_path.substr(0, pbrt_path.size() - 5) : pbrt_path) + ".sky.exr";
 }
 
+std::string ground_path_for(const std::string& pbrt_path) {
+  return (ends_with(pbrt_path, ".pbrt") ? pbrt_path.substr(0, pbrt_path.size() - 5) : pbrt_path) + ".ground.exr";
+}
+
+// The ground's patches have no pbrt counterpart (arbor's noise): near the camera they are baked
+// into an image, kGroundTexels a side over kGroundHalf metres each way (0.25 m a texel, a dozen
+// or more across a patch); the rest of the 10 km ground takes their cover-weighted mean.
+constexpr int kGroundTexels = 1024;
+constexpr float kGroundHalf = 128.0f;
+
+// The ground's albedo over the square centred at `centre`, in pbrt's colour space, as pbrt's
+// imagemap reads it: row 0 at the square's +y edge (pbrt flips v: texture (0,0) is the image's
+// lower left), column 0 at its −x edge.
+void write_ground_exr(const mat::Material& ground, const Colors& colors, const PbrtColorSpace& space,
+                      glm::vec2 centre, const std::string& path) {
+  Image img;
+  img.width = img.full_width = img.height = img.full_height = kGroundTexels;
+  img.beauty.resize(static_cast<std::size_t>(kGroundTexels) * kGroundTexels);
+  img.alpha.assign(img.beauty.size(), 1.0f);
+  const float texel = 2.0f * kGroundHalf / kGroundTexels;
+  for (int row = 0; row < kGroundTexels; ++row) {
+    for (int column = 0; column < kGroundTexels; ++column) {
+      const glm::vec2 xy(centre.x - kGroundHalf + (column + 0.5f) * texel, centre.y + kGroundHalf - (row + 0.5f) * texel);
+      const float w = ground.ground.patch(xy);
+      img.beauty[static_cast<std::size_t>(row) * kGroundTexels + column] =
+          colors.reflectance(ground.albedo + (ground.ground.patch_albedo - ground.albedo) * w, "the ground's patches");
+    }
+  }
+  OutputDesc output;
+  output.colorspace = "Linear";
+  output.pixel_type = "half";
+  ExrMetadata meta;
+  meta.scene = "arbor ground albedo for pbrt-v4 (its patches), linear in pbrt's colour space " + std::string(space.name);
+  meta.chromaticities = space.chromaticities;
+  meta.render_attributes = false;
+  write_exr(img, output, meta, path);
+}
+
 int export_command(const ExportRequest& a) {
   if (!ends_with(a.out, ".pbrt")) throw InputError({}, "-o " + a.out + ": the pbrt-v4 scene must end in .pbrt");
   if (a.sky_resolution < 16 || a.sky_resolution > 8192) {
@@ -205,10 +244,11 @@ int export_command(const ExportRequest& a) {
   scene.output.exr.clear();
   scene.output.png.clear();
   apply_frame(scene, a.frame);
-  const std::string sky_path = sky_path_for(a.out);
+  const std::string sky_path = sky_path_for(a.out), ground_path = ground_path_for(a.out);
   const std::vector<std::string> inputs = scene_inputs(scene);
   refuse_overwriting("-o", a.out, inputs);
   refuse_overwriting("the sky beside -o", sky_path, inputs, {a.out});
+  refuse_overwriting("the ground's image beside -o", ground_path, inputs, {a.out, sky_path});
 
   const ColorPipeline color(a.ocio_config);
   const std::vector<float> linear = color.chromaticities("scene_linear");
@@ -237,8 +277,9 @@ int export_command(const ExportRequest& a) {
          "\" space (arbor's scene_linear" + (colors.to_pbrt ? ", converted" : "") + ").\n"
          "# Not in pbrt-v4, so not here: the sun's disk (a distant light is a point), the leaves'\n"
          "# two sides (one reflectance, the mean of front and back) and their cuticle, bark\n"
-         "# roughness (Oren-Nayar) and relief, albedo maps, the ground's patches (their mean\n"
-         "# albedo), the transparent sky, the AOVs, arbor's sampling (pbrt samples its own way).\n";
+         "# roughness (Oren-Nayar) and relief, albedo maps, the ground's patches beyond 128 m of the\n"
+         "# camera (their mean albedo there; nearer, an image), the transparent sky, the AOVs, arbor's\n"
+         "# sampling (pbrt samples its own way).\n";
   out += "ColorSpace \"" + std::string(space.name) + "\"\n";
   // pbrt's camera space is left-handed: mirroring x keeps arbor's right-handed image unmirrored.
   const CameraDesc& cam = scene.camera;
@@ -346,21 +387,42 @@ int export_command(const ExportRequest& a) {
       gen::flush_if_large(out, file);
     }
   }
-  if (built->has_ground) {
+  const bool ground_patches = built->has_ground && built->ground.kind == mat::Material::Kind::Ground &&
+                              built->ground.ground.cover > 0.0f;
+  // Centred on the camera, on a whole metre (the same export twice gives the same files).
+  const glm::vec2 ground_centre(std::round(static_cast<float>(scene.camera.position[0])),
+                                std::round(static_cast<float>(scene.camera.position[1])));
+  if (built->has_ground && !ground_patches) {
     out += "AttributeBegin # ground: the plane z = 0, 10 km each way\n  NamedMaterial \"" + ground +
            "\"\n  Shape \"trianglemesh\" \"point3 P\" [ -1e4 -1e4 0  1e4 -1e4 0  1e4 1e4 0  -1e4 1e4 0 ]"
            " \"integer indices\" [ 0 1 2 0 2 3 ]\nAttributeEnd\n";
+  } else if (ground_patches) {
+    const float x0 = ground_centre.x - kGroundHalf, x1 = ground_centre.x + kGroundHalf;
+    const float y0 = ground_centre.y - kGroundHalf, y1 = ground_centre.y + kGroundHalf;
+    const std::string inner = number(x0) + " " + number(y0) + " 0  " + number(x1) + " " + number(y0) + " 0  " +
+                              number(x1) + " " + number(y1) + " 0  " + number(x0) + " " + number(y1) + " 0";
+    out += "# the ground's patches near the camera, baked (" + file_name(ground_path) + "); beyond, their mean\n"
+           "Texture \"ground patches\" \"spectrum\" \"imagemap\" \"string filename\" \"" + file_name(ground_path) +
+           "\"\nMakeNamedMaterial \"ground patches\" \"string type\" \"diffuse\" \"texture reflectance\" \"ground patches\"\n"
+           "AttributeBegin # ground near the camera: " + number(2.0f * kGroundHalf) + " m square\n  NamedMaterial \"ground patches\"\n"
+           "  Shape \"trianglemesh\" \"point3 P\" [ " + inner + " ] \"point2 uv\" [ 0 0  1 0  1 1  0 1 ]"
+           " \"integer indices\" [ 0 1 2 0 2 3 ]\nAttributeEnd\n"
+           "AttributeBegin # the rest of the ground: the plane z = 0 to 10 km each way, around that square\n"
+           "  NamedMaterial \"" + ground + "\"\n  Shape \"trianglemesh\" \"point3 P\" [ -1e4 -1e4 0  1e4 -1e4 0  1e4 1e4 0  -1e4 1e4 0  " +
+           inner + " ] \"integer indices\" [ 0 1 5  0 5 4  1 2 6  1 6 5  2 3 7  2 7 6  3 0 4  3 4 7 ]\nAttributeEnd\n";
   }
 
   // The sky goes first: a failed write of the scene leaves at most a new sky beside the old
   // scene, never a scene naming a sky that is not there.
   if (!sky.empty()) write_sky_exr(sky, colors, space, a.sky_resolution, built->has_ground, sky_path);
+  if (ground_patches) write_ground_exr(built->ground, colors, space, ground_centre, ground_path);
   file.write(out);
   file.commit();
   for (const std::string& c : clamped) {
     std::fprintf(stderr, "arbor: warning: %s is outside [0, 1] in pbrt's %s space; clamped\n", c.c_str(), space.name);
   }
-  std::fprintf(stderr, "arbor: wrote %s%s\n", a.out.c_str(), sky.empty() ? "" : (" and " + sky_path).c_str());
+  std::fprintf(stderr, "arbor: wrote %s%s%s\n", a.out.c_str(), sky.empty() ? "" : (", " + sky_path).c_str(),
+               ground_patches ? (", " + ground_path).c_str() : "");
   return 0;
 }
 

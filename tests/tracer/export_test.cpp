@@ -2,7 +2,9 @@
 // read back: its syntax, camera, lights, objects and the sky image's irradiance and orientation.
 #include "tracer/export_command.h"
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -16,6 +18,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "imaging/color.h"
+#include "scene/scene.h"
 #include "tracer/lights/sky.h"
 #include "tracer/test_world.h"
 
@@ -89,16 +92,17 @@ std::vector<Statement> parse_pbrt(const std::string& text) {
   const std::set<std::string> known = {
       "ColorSpace", "Scale", "LookAt", "Camera", "Film", "PixelFilter", "Sampler", "Integrator", "WorldBegin",
       "LightSource", "MakeNamedMaterial", "NamedMaterial", "Material", "ObjectBegin", "ObjectEnd",
-      "ObjectInstance", "AttributeBegin", "AttributeEnd", "Shape", "Transform"};
-  const std::set<std::string> types = {"float", "integer", "point3", "point2", "normal", "rgb", "string", "bool"};
+      "ObjectInstance", "AttributeBegin", "AttributeEnd", "Shape", "Transform", "Texture"};
+  const std::set<std::string> types = {"float", "integer", "point3", "point2", "normal", "rgb", "string", "bool",
+                                       "texture"};
   for (const Statement& s : out) {
     EXPECT_TRUE(known.count(s.directive)) << s.directive;
     // Parameter lists: "type name" then one value or a bracketed list.
     std::size_t i = 0;
     if (s.directive == "Camera" || s.directive == "Film" || s.directive == "PixelFilter" || s.directive == "Sampler" ||
         s.directive == "Integrator" || s.directive == "LightSource" || s.directive == "Shape" ||
-        s.directive == "MakeNamedMaterial" || s.directive == "Material") {
-      i = 1;
+        s.directive == "MakeNamedMaterial" || s.directive == "Material" || s.directive == "Texture") {
+      i = s.directive == "Texture" ? 3 : 1;  // Texture "name" "type" "class" params
       while (i < s.args.size()) {
         const std::string& decl = s.args[i];
         const std::size_t space = decl.find(' ');
@@ -295,6 +299,73 @@ TEST(PbrtExport, WritesTheWholeSceneAndASkyWithItsIrradiance) {
   const glm::vec3 expected = sky.irradiance_up();
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(e[k], expected[k], 0.02 * expected[k]) << k;
   EXPECT_GT(glm::dot(glm::normalize(brightest_direction), sky.sun_direction()), std::cos(15.0 * kPi / 180.0));
+}
+
+}  // namespace arbor::trace
+
+namespace arbor::trace {
+
+// The ground's patches near the camera are an image pbrt reads as a texture: each texel is
+// arbor's ground albedo at its place (row 0 at the square's +y edge, as pbrt's flipped v reads
+// it), and the square sits on the camera; farther out, the patches' mean.
+TEST(PbrtExport, GroundPatchesNearTheCameraAreAnImage) {
+  const std::string dir = ::testing::TempDir() + "pbrt_ground/";
+  std::system(("mkdir -p " + dir).c_str());
+  const std::string scene_path = dir + "scene.toml";
+  std::ofstream(scene_path) << "[render]\nwidth = 40\nheight = 30\nspp = 4\n"
+                               "[camera]\nposition = [12.4, -18.6, 2.5]\nlook_at = [0.0, 0.0, 1.0]\n"
+                               "[sky]\nmodel = \"constant\"\ncolor = [0.5, 0.5, 0.5]\n"
+                               "[ground]\nalbedo = [0.2, 0.15, 0.1]\npatch_albedo = [0.05, 0.1, 0.03]\n"
+                               "patch_cover = 0.5\npatch_scale = 4.0\n";
+  ExportRequest request;
+  request.scene = scene_path;
+  request.out = dir + "scene.pbrt";
+  request.sky_resolution = 16;
+  request.ocio_config = kOcioConfig;
+  ASSERT_EQ(export_command(request), 0);
+  const std::vector<Statement> pbrt = parse_pbrt(slurp(request.out));
+  const Statement* texture = find(pbrt, "Texture", "ground patches");
+  ASSERT_NE(texture, nullptr);
+  EXPECT_NE(std::find(texture->args.begin(), texture->args.end(), "scene.ground.exr"), texture->args.end());
+
+  auto in = OIIO::ImageInput::open(dir + "scene.ground.exr");
+  ASSERT_TRUE(in);
+  const OIIO::ImageSpec spec = in->spec();
+  ASSERT_EQ(spec.width, 1024);
+  EXPECT_EQ(spec.get_string_attribute("oiio:ColorSpace"), "Linear");
+  std::vector<float> px(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
+  ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
+
+  const SceneDesc desc = load_scene(scene_path);
+  const std::unique_ptr<const Scene> built = build_scene(desc, kOcioConfig);
+  const mat::Material& ground = built->ground;
+  // The camera at (12.4, -18.6) puts the square's centre on (12, -19); 0.25 m texels.
+  double mean = 0.0;
+  int patched = 0, bare = 0;
+  for (int row = 0; row < 1024; row += 37) {
+    for (int column = 0; column < 1024; column += 41) {
+      const glm::vec2 xy(12.0f - 128.0f + (column + 0.5f) * 0.25f, -19.0f + 128.0f - (row + 0.5f) * 0.25f);
+      const float w = ground.ground.patch(xy);
+      const glm::vec3 expected = ground.albedo + (ground.ground.patch_albedo - ground.albedo) * w;
+      const float* p = &px[(static_cast<std::size_t>(row) * 1024 + column) * spec.nchannels];
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(p[k], expected[k], 2e-3f * expected[k] + 1e-5f) << row << "," << column;
+      patched += w > 0.99f;
+      bare += w < 0.01f;
+      mean += p[1];
+    }
+  }
+  EXPECT_GT(patched, 50);  // both kinds of ground are in the sample, so orientation shows
+  EXPECT_GT(bare, 50);
+  // The mean ground beyond the square: between the two albedos.
+  const Statement* outer = nullptr;
+  for (const Statement& s : pbrt) {
+    const std::string name = s.args.empty() ? "" : s.args[0];
+    if (s.directive == "MakeNamedMaterial" && name.size() >= 6 && name.compare(name.size() - 6, 6, "ground") == 0) outer = &s;
+  }
+  ASSERT_NE(outer, nullptr);
+  const double g = numbers(*outer, "rgb reflectance").at(1);
+  EXPECT_GT(g, 0.1);
+  EXPECT_LT(g, 0.15);
 }
 
 }  // namespace arbor::trace
