@@ -418,7 +418,7 @@ TEST(ArborCli, ExportWritesAPbrtSceneAndRefusesBadOutputs) {
   std::remove((dir + "s.sky.exr").c_str());
   const CliRun r = run_arbor("export " + scene + " -o " + dir + "s.pbrt --spp 7 --sky-resolution 32");
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.err.find("wrote " + dir + "s.pbrt and " + dir + "s.sky.exr"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("wrote " + dir + "s.pbrt, " + dir + "s.sky.exr"), std::string::npos) << r.err;
   const std::string text = slurp(dir + "s.pbrt");
   EXPECT_NE(text.find("Sampler \"zsobol\" \"integer pixelsamples\" 7"), std::string::npos);
   EXPECT_NE(text.find("\"string filename\" \"s.sky.exr\""), std::string::npos);
