@@ -18,6 +18,7 @@ max_depth = 6
 position = [2.6, -3.6, 1.1]
 look_at = [0.0, 0.0, 0.7]
 fov = 45.0
+exposure = 0.75
 
 [sun]
 elevation = 35.0
@@ -25,11 +26,14 @@ azimuth = -40.0
 irradiance = 3.0
 
 [sky]
-model = "preetham"
-turbidity = 3.0
+model = "nishita"          # the default scene's look (issue 14): a clear day with a little haze
+dust_density = 3.0
 
 [ground]
 albedo = [0.16, 0.14, 0.10]
+patch_albedo = [0.06, 0.11, 0.035]
+patch_cover = 0.6
+patch_scale = 2.5
 
 [[tree]]
 species = "$work/tupelo_roots.toml"
