@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "common/error.h"
+#include "common/input_file.h"
 
 namespace arbor {
 
@@ -170,12 +171,7 @@ void check_output_target(const std::string& path) {
   const std::string target = resolve_output_path(path);
   struct stat st;
   if (::stat(target.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return;
-  const std::string kind = S_ISDIR(st.st_mode)    ? "a folder"
-                           : S_ISFIFO(st.st_mode) ? "a FIFO (named pipe)"
-                           : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
-                           : S_ISSOCK(st.st_mode) ? "a socket"
-                                                  : "not a regular file";
-  throw InputError({}, "cannot write " + path + ": " + (target == path ? "it" : target) + " is " + kind +
+  throw InputError({}, "cannot write " + path + ": " + (target == path ? "it" : target) + " is " + file_kind(st.st_mode) +
                            "; an output must be a regular file or not exist yet");
 }
 

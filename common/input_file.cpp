@@ -13,10 +13,7 @@
 
 namespace arbor {
 
-namespace {
-
-// What a non-regular file is, for messages.
-std::string kind_of(mode_t mode) {
+std::string file_kind(unsigned mode) {
   if (S_ISDIR(mode)) return "a folder";
   if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
   if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
@@ -24,19 +21,23 @@ std::string kind_of(mode_t mode) {
   return "not a regular file";
 }
 
+namespace {
+
 [[noreturn]] void refuse(const std::string& path, const std::string& what, const std::string& why) {
   throw InputError({path, 0, 0}, what + " " + why);
 }
 
+using FileId = std::pair<dev_t, ino_t>;
+
 // Opens `path` for reading without blocking (a FIFO with no writer would block open()), and
-// refuses anything but a regular file. Returns the descriptor and its size.
-int open_regular(const std::string& path, const std::string& what, std::uint64_t& size) {
+// refuses anything but a regular file. Returns the descriptor, its size and its identity.
+int open_regular(const std::string& path, const std::string& what, std::uint64_t& size, FileId& id) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) {
     const int err = errno;
     struct stat st;
     if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
-      refuse(path, what, "is " + kind_of(st.st_mode) + ", not a file");
+      refuse(path, what, "is " + file_kind(st.st_mode) + ", not a file");
     }
     refuse(path, what, err == ENOENT ? std::string("does not exist") : std::string("cannot be opened for reading: ") + std::strerror(err));
   }
@@ -44,11 +45,12 @@ int open_regular(const std::string& path, const std::string& what, std::uint64_t
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     const mode_t mode = st.st_mode;
     ::close(fd);
-    refuse(path, what, "is " + kind_of(mode) + ", not a file");
+    refuse(path, what, "is " + file_kind(mode) + ", not a file");
   }
   // Regular files never block; reads may now wait as usual.
   ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
   size = static_cast<std::uint64_t>(st.st_size);
+  id = {st.st_dev, st.st_ino};
   return fd;
 }
 
@@ -77,11 +79,11 @@ std::string read_all(int fd, const std::string& path, const std::string& what, s
 constexpr std::uint64_t kKeptBytes = 64ull << 20;
 struct Digests {
   std::mutex mutex;
-  std::map<std::pair<dev_t, ino_t>, std::uint64_t> by_inode;
-  std::map<std::pair<dev_t, ino_t>, std::string> kept;
+  std::map<FileId, std::uint64_t> by_inode;
+  std::map<FileId, std::string> kept;
 } g_digests;
 
-bool identity(const std::string& path, std::pair<dev_t, ino_t>& id) {
+bool identity(const std::string& path, FileId& id) {
   struct stat st;
   if (::stat(path.c_str(), &st) != 0) return false;
   id = {st.st_dev, st.st_ino};
@@ -104,7 +106,7 @@ std::string input_file_problem(const std::string& path) {
   if (::stat(path.c_str(), &st) != 0) {
     return errno == ENOENT ? "does not exist" : std::string("cannot be opened for reading: ") + std::strerror(errno);
   }
-  if (!S_ISREG(st.st_mode)) return "is " + kind_of(st.st_mode) + ", not a file";
+  if (!S_ISREG(st.st_mode)) return "is " + file_kind(st.st_mode) + ", not a file";
   if (::access(path.c_str(), R_OK) != 0) return std::string("cannot be opened for reading: ") + std::strerror(errno);
   return "";
 }
@@ -115,10 +117,10 @@ void check_input_file(const std::string& path, const std::string& what) {
 }
 
 std::string read_text_input(const std::string& path, const std::string& what, std::uint64_t max_bytes) {
-  std::pair<dev_t, ino_t> kept_id;
-  if (identity(path, kept_id)) {
+  FileId id;
+  if (identity(path, id)) {
     std::lock_guard<std::mutex> lock(g_digests.mutex);
-    const auto it = g_digests.kept.find(kept_id);
+    const auto it = g_digests.kept.find(id);
     if (it != g_digests.kept.end() && it->second.size() <= max_bytes) {
       std::string text = std::move(it->second);
       g_digests.kept.erase(it);
@@ -126,38 +128,33 @@ std::string read_text_input(const std::string& path, const std::string& what, st
     }
   }
   std::uint64_t size = 0;
-  const int fd = open_regular(path, what, size);
+  const int fd = open_regular(path, what, size, id);
   if (size > max_bytes) {
     ::close(fd);
     refuse(path, what, "is " + std::to_string(size) + " bytes; " + what + " files are limited to " +
                            std::to_string(max_bytes >> 20) + " MiB");
   }
   std::string text = read_all(fd, path, what, size);
-  std::pair<dev_t, ino_t> id;
-  if (identity(path, id)) {
-    std::lock_guard<std::mutex> lock(g_digests.mutex);
-    g_digests.by_inode[id] = fnv1a_bytes(text.data(), text.size());
-  }
+  std::lock_guard<std::mutex> lock(g_digests.mutex);
+  g_digests.by_inode[id] = fnv1a_bytes(text.data(), text.size());
   return text;
 }
 
 std::uint64_t input_digest(const std::string& path, const std::string& what) {
-  std::pair<dev_t, ino_t> id;
+  FileId id;
   if (identity(path, id)) {
     std::lock_guard<std::mutex> lock(g_digests.mutex);
     const auto it = g_digests.by_inode.find(id);
     if (it != g_digests.by_inode.end()) return it->second;
   }
   std::uint64_t size = 0;
-  const int fd = open_regular(path, what, size);
+  const int fd = open_regular(path, what, size, id);
   if (size <= kKeptBytes) {
     std::string text = read_all(fd, path, what, size);
     const std::uint64_t hash = fnv1a_bytes(text.data(), text.size());
-    if (identity(path, id)) {
-      std::lock_guard<std::mutex> lock(g_digests.mutex);
-      g_digests.by_inode[id] = hash;
-      g_digests.kept[id] = std::move(text);
-    }
+    std::lock_guard<std::mutex> lock(g_digests.mutex);
+    g_digests.by_inode[id] = hash;
+    g_digests.kept[id] = std::move(text);
     return hash;
   }
   std::uint64_t hash = 0xcbf29ce484222325ull;

@@ -17,6 +17,10 @@ constexpr std::uint64_t kMaxTomlBytes = 16ull << 20;
 constexpr std::uint64_t kMaxTextInputBytes = 256ull << 20;
 constexpr std::uint64_t kMaxMeshBytes = 2048ull << 20;
 
+// What a file that is not a regular file is, for messages: "a folder", "a FIFO (named pipe)",
+// "a device", "a socket" (`mode` is stat's st_mode).
+std::string file_kind(unsigned mode);
+
 // "" when `path` names a regular file this process can read (after symlinks), else why not:
 // "does not exist", "is a folder, not a file", "is a FIFO (named pipe), not a file", …
 std::string input_file_problem(const std::string& path);

@@ -108,13 +108,7 @@ std::string settings_difference(const std::string& a, const std::string& b, cons
   return out.empty() ? "the same settings" : out;
 }
 
-std::uint64_t fnv1a(const std::string& text, std::uint64_t hash) {
-  for (const unsigned char c : text) {
-    hash ^= c;
-    hash *= 0x100000001b3ull;
-  }
-  return hash;
-}
+std::uint64_t fnv1a(const std::string& text, std::uint64_t hash) { return fnv1a_bytes(text.data(), text.size(), hash); }
 
 std::string fingerprint_hex(std::uint64_t hash) {
   char buf[24];

@@ -102,9 +102,8 @@ std::string render_fingerprint(const SceneDesc& scene, const RenderRequest& a, c
   // The inputs by their place in the scene and their bytes, not by how their paths are spelt
   // (scene.toml and ./scene.toml are one render; the scene's own text names its inputs).
   for (std::size_t i = 0; i < files.size(); ++i) {
-    const std::string role = i == 0 ? "scene" : i + 1 == files.size() ? "OCIO config" : "input " + std::to_string(i);
-    s << "; " << (i == 0 ? "the scene file" : i + 1 == files.size() ? "the OCIO config" : "input " + file_name(files[i]))
-      << " " << fingerprint_hex(input_digest(files[i], role));
+    const std::string role = i == 0 ? "the scene file" : i + 1 == files.size() ? "the OCIO config" : "input " + file_name(files[i]);
+    s << "; " << role << " " << fingerprint_hex(input_digest(files[i], role));
   }
   settings = s.str();
   return fingerprint_hex(fnv1a("arbor render 2 " + settings));
