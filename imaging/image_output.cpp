@@ -62,56 +62,89 @@ struct Plane {
 
 }  // namespace
 
-void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta, const std::string& path) {
-  const std::size_t n = static_cast<std::size_t>(img.width) * img.height;
-  const Imf::PixelType colour = o.pixel_type == "float" ? Imf::FLOAT : Imf::HALF;
-  auto wants = [&](const char* aov) { return std::find(o.aovs.begin(), o.aovs.end(), aov) != o.aovs.end(); };
-  std::vector<Plane> planes;
-  auto plane = [&](const std::string& name, Imf::PixelType type) -> std::vector<float>& {
-    planes.push_back({name, type, std::vector<float>(n, 0.0f)});
-    return planes.back().values;
-  };
-  auto triple = [&](const char* a, const char* b, const char* c, Imf::PixelType type,
-                    const std::vector<glm::vec3>& v) {
+namespace {
+
+// The planes of an EXR, added in channel order: the colour, alpha and the asked-for AOVs.
+class Planes {
+ public:
+  Planes(const Image& img, const OutputDesc& o)
+      : img_(img), o_(o), n_(static_cast<std::size_t>(img.width) * img.height),
+        colour_(o.pixel_type == "float" ? Imf::FLOAT : Imf::HALF) {}
+
+  bool wants(const char* aov) const { return std::find(o_.aovs.begin(), o_.aovs.end(), aov) != o_.aovs.end(); }
+  Imf::PixelType colour() const { return colour_; }
+  std::vector<Plane>& planes() { return planes_; }
+
+  // Colour, alpha, albedo, normal, depth, variance, samples.
+  void add_pixels() {
+    triple("R", "G", "B", colour_, img_.beauty);
+    // Alpha: the share of camera rays that hit something (RGB is premultiplied by it).
+    plane("A", colour_) = img_.alpha.size() == n_ ? img_.alpha : std::vector<float>(n_, 1.0f);
+    if (wants("albedo")) triple("albedo.R", "albedo.G", "albedo.B", colour_, img_.albedo);
+    if (wants("normal")) triple("N.X", "N.Y", "N.Z", colour_, img_.normal);
+    // Depth and variance keep full precision: reference tests divide by the variance.
+    if (wants("depth")) plane("Z", Imf::FLOAT) = img_.depth;
+    if (wants("variance")) triple("variance.R", "variance.G", "variance.B", Imf::FLOAT, img_.variance);
+    // Single-channel AOVs are PASS.X (Blender's multilayer reader drops a channel named without a
+    // one-letter component, as it drops "object_id"; Nuke reads PASS as the layer).
+    if (wants("samples")) plane("samples.X", Imf::FLOAT) = img_.samples;
+  }
+
+  // object_id / material_id: the id that covers most of the pixel, as a float (exact to 2^24),
+  // for a quick mask; Cryptomatte for anti-aliased mattes.
+  void add_ids() {
+    const bool ids = wants("object_id") || wants("material_id") || wants("crypto_object") || wants("crypto_material");
+    if (ids && img_.id_slots == 0) throw std::logic_error("write_exr: id AOVs asked of an image without ids");
+    if (wants("object_id")) top_id("object_id.X", img_.object_ids, img_.object_cover);
+    if (wants("material_id")) top_id("material_id.X", img_.material_ids, img_.material_cover);
+    if (wants("crypto_object")) crypto("crypto_object", img_.object_ids, img_.object_cover, img_.object_names);
+    if (wants("crypto_material")) crypto("crypto_material", img_.material_ids, img_.material_cover, img_.material_names);
+  }
+
+  // The treemaker integrator's factors and contributions; they stay float: compare
+  // --fit-treemaker solves with them.
+  void add_treemaker() {
+    if (!wants("treemaker")) return;
+    if (img_.extra_names.empty()) {
+      // render_command refuses this scene (at its key) before rendering; reaching here is a bug.
+      throw std::logic_error("write_exr: \"treemaker\" AOVs asked of an image without them");
+    }
+    const std::size_t e = img_.extra_names.size();
+    for (std::size_t i = 0; i < e; ++i) {
+      std::vector<float>& out = plane(img_.extra_names[i], Imf::FLOAT);
+      for (std::size_t p = 0; p < n_; ++p) out[p] = img_.extra[p * e + i];
+    }
+  }
+
+ private:
+  std::vector<float>& plane(const std::string& name, Imf::PixelType type) {
+    planes_.push_back({name, type, std::vector<float>(n_, 0.0f)});
+    return planes_.back().values;
+  }
+  void triple(const char* a, const char* b, const char* c, Imf::PixelType type, const std::vector<glm::vec3>& v) {
     const char* names[3] = {a, b, c};
     for (int k = 0; k < 3; ++k) {
       std::vector<float>& out = plane(names[k], type);
-      for (std::size_t p = 0; p < n; ++p) out[p] = v[p][k];
+      for (std::size_t p = 0; p < n_; ++p) out[p] = v[p][k];
     }
-  };
-  triple("R", "G", "B", colour, img.beauty);
-  // Alpha: the share of camera rays that hit something (RGB is premultiplied by it).
-  plane("A", colour) = img.alpha.size() == n ? img.alpha : std::vector<float>(n, 1.0f);
-  if (wants("albedo")) triple("albedo.R", "albedo.G", "albedo.B", colour, img.albedo);
-  if (wants("normal")) triple("N.X", "N.Y", "N.Z", colour, img.normal);
-  // Depth and variance keep full precision: reference tests divide by the variance.
-  if (wants("depth")) plane("Z", Imf::FLOAT) = img.depth;
-  const bool variance = wants("variance");
-  if (variance) triple("variance.R", "variance.G", "variance.B", Imf::FLOAT, img.variance);
-  // Single-channel AOVs are PASS.X (Blender's multilayer reader drops a channel named without a
-  // one-letter component, as it drops "object_id"; Nuke reads PASS as the layer).
-  if (wants("samples")) plane("samples.X", Imf::FLOAT) = img.samples;
-  const bool ids = wants("object_id") || wants("material_id") || wants("crypto_object") || wants("crypto_material");
-  if (ids && img.id_slots == 0) throw std::logic_error("write_exr: id AOVs asked of an image without ids");
-  const std::size_t slots = img.id_slots;
-  // object_id / material_id: the id that covers most of the pixel, as a float (exact to 2^24),
-  // for a quick mask; Cryptomatte for anti-aliased mattes. Samples that hit nothing (the sky)
-  // count as id 0, which wins ties: a tree covering 40 % of a sky pixel is not its object.
-  auto top_id = [&](const char* name, const std::vector<std::uint32_t>& v, const std::vector<float>& cover) {
+  }
+  // Samples that hit nothing (the sky) count as id 0, which wins ties: a tree covering 40 % of a
+  // sky pixel is not its object.
+  void top_id(const char* name, const std::vector<std::uint32_t>& v, const std::vector<float>& cover) {
+    const std::size_t slots = img_.id_slots;
     std::vector<float>& out = plane(name, Imf::FLOAT);
-    for (std::size_t p = 0; p < n; ++p) {
+    for (std::size_t p = 0; p < n_; ++p) {
       float covered = 0.0f;
       for (std::size_t k = 0; k < slots; ++k) covered += cover[p * slots + k];
       const float nothing = 1.0f - covered;
       out[p] = v[p * slots] != 0 && cover[p * slots] > nothing ? static_cast<float>(v[p * slots]) : 0.0f;
     }
-  };
-  if (wants("object_id")) top_id("object_id.X", img.object_ids, img.object_cover);
-  if (wants("material_id")) top_id("material_id.X", img.material_ids, img.material_cover);
+  }
   // Cryptomatte: ranks 0..5 in three RGBA channel sets (id, coverage, id, coverage).
-  constexpr std::size_t kRanks = 6;
-  auto crypto = [&](const std::string& layer, const std::vector<std::uint32_t>& id,
-                    const std::vector<float>& cover, const std::vector<std::string>& names) {
+  void crypto(const std::string& layer, const std::vector<std::uint32_t>& id, const std::vector<float>& cover,
+              const std::vector<std::string>& names) {
+    constexpr std::size_t kRanks = 6;
+    const std::size_t slots = img_.id_slots;
     std::vector<float> hashed(names.size() + 1, 0.0f);
     for (std::size_t i = 0; i < names.size(); ++i) hashed[i + 1] = cryptomatte_id(names[i]);
     for (std::size_t set = 0; set < kRanks / 2; ++set) {
@@ -122,48 +155,76 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta, c
         std::vector<float>& out = plane(layer + suffix + rgba[c], Imf::FLOAT);
         const std::size_t rank = 2 * set + static_cast<std::size_t>(c / 2);
         if (rank >= slots) continue;
-        for (std::size_t p = 0; p < n; ++p) {
+        for (std::size_t p = 0; p < n_; ++p) {
           const std::uint32_t k = id[p * slots + rank];
           if (k == 0) continue;
           out[p] = c % 2 == 0 ? (k < hashed.size() ? hashed[k] : 0.0f) : cover[p * slots + rank];
         }
       }
     }
-  };
-  if (wants("crypto_object")) crypto("crypto_object", img.object_ids, img.object_cover, img.object_names);
-  if (wants("crypto_material")) crypto("crypto_material", img.material_ids, img.material_cover, img.material_names);
-  const bool treemaker = wants("treemaker");
-  if (treemaker && img.extra_names.empty()) {
-    // render_command refuses this scene (at its key) before rendering; reaching here is a bug.
-    throw std::logic_error("write_exr: \"treemaker\" AOVs asked of an image without them");
-  }
-  // The factors and contributions stay float: compare --fit-treemaker solves with them.
-  if (treemaker) {
-    const std::size_t e = img.extra_names.size();
-    for (std::size_t i = 0; i < e; ++i) {
-      std::vector<float>& out = plane(img.extra_names[i], Imf::FLOAT);
-      for (std::size_t p = 0; p < n; ++p) out[p] = img.extra[p * e + i];
-    }
   }
 
+  const Image& img_;
+  const OutputDesc& o_;
+  std::size_t n_;
+  Imf::PixelType colour_;
+  std::vector<Plane> planes_;
+};
+
+void text_attribute(Imf::Header& header, const std::string& key, const std::string& value) {
+  header.insert(key, Imf::StringAttribute(value));
+}
+void int_attribute(Imf::Header& header, const char* key, int value) { header.insert(key, Imf::IntAttribute(value)); }
+
+// The render's own attributes (arbor:…): how it was made, how far it got.
+void add_render_attributes(Imf::Header& header, const Image& img, const OutputDesc& o, const ExrMetadata& meta,
+                           bool variance) {
+  auto text = [&](const char* key, const std::string& value) { text_attribute(header, key, value); };
+  auto integer = [&](const char* key, int value) { int_attribute(header, key, value); };
   const int full_w = img.full_width > 0 ? img.full_width : img.width;
   const int full_h = img.full_height > 0 ? img.full_height : img.height;
-  const Imath::Box2i display(Imath::V2i(0, 0), Imath::V2i(full_w - 1, full_h - 1));
-  const Imath::Box2i data(Imath::V2i(img.x0, img.y0), Imath::V2i(img.x0 + img.width - 1, img.y0 + img.height - 1));
-  // An ACES container (SMPTE ST 2065-4) only when the file is one: ACES2065-1, half RGBA, no AOVs.
-  const bool aces_container = meta.interop_id == "lin_ap0_scene" && meta.chromaticities.size() == 8 &&
-                              colour == Imf::HALF && planes.size() == 4;
-  Imf::Header header(display, data, 1.0f, Imath::V2f(0.0f, 0.0f), 1.0f, Imf::INCREASING_Y,
-                     aces_container ? Imf::PIZ_COMPRESSION : Imf::ZIP_COMPRESSION);
-  for (const Plane& pl : planes) header.channels().insert(pl.name, Imf::Channel(pl.type));
-  auto text = [&](const char* key, const std::string& value) { header.insert(key, Imf::StringAttribute(value)); };
-  auto integer = [&](const char* key, int value) { header.insert(key, Imf::IntAttribute(value)); };
-  // The colour space, stated as readers look for it: OIIO (and what is built on it) takes
-  // "oiio:ColorSpace" from the header; colorInteropID is the Color Interop Forum's id; the
-  // chromaticities are the EXR standard's own statement.
-  text("oiio:ColorSpace", o.colorspace);
-  text("arbor:colorspace", o.colorspace);
-  if (!meta.interop_id.empty()) text("colorInteropID", meta.interop_id);
+  text("arbor:seed", std::to_string(meta.seed));
+  integer("arbor:spp", meta.spp);
+  text("arbor:integrator", meta.integrator);
+  header.insert("arbor:render_seconds", Imf::FloatAttribute(static_cast<float>(meta.stats.seconds)));
+  text("arbor:nonfinite_samples", std::to_string(meta.stats.nonfinite));
+  // What the variance channels hold, only when there are some.
+  if (variance) text("arbor:variance",
+                     meta.passes < 2 ? "variance of the pixel mean, sample variance / spp within one pass "
+                                       "(overstates it for QMC samples)"
+                     : meta.independent_passes ? "variance of the pixel mean, estimated across independent passes"
+                                               : "variance of the pixel mean, estimated across passes of one "
+                                                 "sequence (an upper bound: the passes together are better "
+                                                 "stratified than independent ones)");
+  integer("arbor:independent_passes", meta.independent_passes ? 1 : 0);
+  integer("arbor:passes", meta.passes);
+  integer("arbor:pass_spp", meta.pass_spp);
+  integer("arbor:passes_planned", meta.passes_planned);
+  text("arbor:pass_range", std::to_string(meta.pass_begin) + ":" + std::to_string(meta.pass_end));
+  header.insert("arbor:mean_spp", Imf::FloatAttribute(static_cast<float>(meta.mean_spp)));
+  text("arbor:fingerprint", meta.fingerprint);
+  integer("arbor:transparent_sky", o.transparent_sky ? 1 : 0);
+  if (meta.noise_threshold > 0) {
+    header.insert("arbor:noise_threshold", Imf::FloatAttribute(static_cast<float>(meta.noise_threshold)));
+    integer("arbor:min_spp", meta.min_spp);
+  }
+  if (img.width != full_w || img.height != full_h) {
+    text("arbor:crop", std::to_string(img.x0) + "," + std::to_string(img.y0) + "," +
+                           std::to_string(img.x0 + img.width) + "," + std::to_string(img.y0 + img.height));
+  }
+  if (meta.incomplete) integer("arbor:incomplete", 1);
+  if (!meta.stopped.empty()) text("arbor:stopped", meta.stopped);
+  if (!meta.treemaker_weights.empty()) text("arbor:treemaker_weights", meta.treemaker_weights);
+}
+
+// The colour space, stated as readers look for it: OIIO (and what is built on it) takes
+// "oiio:ColorSpace" from the header; colorInteropID is the Color Interop Forum's id; the
+// chromaticities are the EXR standard's own statement. An ACES container (SMPTE ST 2065-4) says
+// so.
+void add_colour_attributes(Imf::Header& header, const OutputDesc& o, const ExrMetadata& meta, bool aces_container) {
+  text_attribute(header, "oiio:ColorSpace", o.colorspace);
+  text_attribute(header, "arbor:colorspace", o.colorspace);
+  if (!meta.interop_id.empty()) text_attribute(header, "colorInteropID", meta.interop_id);
   const float* c = meta.chromaticities.size() == 8 ? meta.chromaticities.data() : nullptr;
   if (c) {
     header.insert("chromaticities", Imf::ChromaticitiesAttribute(Imf::Chromaticities(
@@ -171,83 +232,80 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta, c
                                         Imath::V2f(c[4], c[5]), Imath::V2f(c[6], c[7]))));
   }
   if (aces_container) {
-    integer("acesImageContainerFlag", 1);
+    int_attribute(header, "acesImageContainerFlag", 1);
     header.insert("adoptedNeutral", Imf::V2fAttribute(Imath::V2f(c[6], c[7])));
   }
-  text("arbor:version", ARBOR_VERSION_STRING);
-  text("arbor:commit", ARBOR_COMMIT);
-  text("arbor:scene", meta.scene);
-  if (meta.render_attributes) {
-    text("arbor:seed", std::to_string(meta.seed));
-    integer("arbor:spp", meta.spp);
-    text("arbor:integrator", meta.integrator);
-    header.insert("arbor:render_seconds", Imf::FloatAttribute(static_cast<float>(meta.stats.seconds)));
-    text("arbor:nonfinite_samples", std::to_string(meta.stats.nonfinite));
-    // What the variance channels hold, only when there are some.
-    if (variance) text("arbor:variance",
-                       meta.passes < 2 ? "variance of the pixel mean, sample variance / spp within one pass "
-                                         "(overstates it for QMC samples)"
-                       : meta.independent_passes ? "variance of the pixel mean, estimated across independent passes"
-                                                 : "variance of the pixel mean, estimated across passes of one "
-                                                   "sequence (an upper bound: the passes together are better "
-                                                   "stratified than independent ones)");
-    integer("arbor:independent_passes", meta.independent_passes ? 1 : 0);
-    integer("arbor:passes", meta.passes);
-    integer("arbor:pass_spp", meta.pass_spp);
-    integer("arbor:passes_planned", meta.passes_planned);
-    text("arbor:pass_range", std::to_string(meta.pass_begin) + ":" + std::to_string(meta.pass_end));
-    header.insert("arbor:mean_spp", Imf::FloatAttribute(static_cast<float>(meta.mean_spp)));
-    text("arbor:fingerprint", meta.fingerprint);
-    integer("arbor:transparent_sky", o.transparent_sky ? 1 : 0);
-    if (meta.noise_threshold > 0) {
-      header.insert("arbor:noise_threshold", Imf::FloatAttribute(static_cast<float>(meta.noise_threshold)));
-      integer("arbor:min_spp", meta.min_spp);
-    }
-    if (img.width != full_w || img.height != full_h) {
-      text("arbor:crop", std::to_string(img.x0) + "," + std::to_string(img.y0) + "," +
-                             std::to_string(img.x0 + img.width) + "," + std::to_string(img.y0 + img.height));
-    }
-    if (meta.incomplete) integer("arbor:incomplete", 1);
-    if (!meta.stopped.empty()) text("arbor:stopped", meta.stopped);
-    if (!meta.treemaker_weights.empty()) text("arbor:treemaker_weights", meta.treemaker_weights);
-  }
-  // The numeric ids' names: {"name": id, …}.
+}
+
+// The names of the numeric ids ({"name": id, …}) and the Cryptomatte layers' manifests.
+void add_id_attributes(Imf::Header& header, const Image& img, const Planes& planes) {
   auto id_names = [&](const char* key, const std::vector<std::string>& names) {
     JsonObject ids_json;
     for (std::size_t i = 0; i < names.size(); ++i) ids_json.integer(names[i], static_cast<long long>(i + 1));
-    text(key, ids_json.str());
+    text_attribute(header, key, ids_json.str());
   };
-  if (wants("object_id")) id_names("arbor:object_ids", img.object_names);
-  if (wants("material_id")) id_names("arbor:material_ids", img.material_names);
+  if (planes.wants("object_id")) id_names("arbor:object_ids", img.object_names);
+  if (planes.wants("material_id")) id_names("arbor:material_ids", img.material_names);
   auto crypto_header = [&](const std::string& layer, const std::vector<std::string>& names) {
     const std::string k = "cryptomatte/" + cryptomatte_key(layer) + "/";
-    text((k + "name").c_str(), layer);
-    text((k + "hash").c_str(), "MurmurHash3_32");
-    text((k + "conversion").c_str(), "uint32_to_float32");
-    text((k + "manifest").c_str(), cryptomatte_manifest(names));
+    text_attribute(header, k + "name", layer);
+    text_attribute(header, k + "hash", "MurmurHash3_32");
+    text_attribute(header, k + "conversion", "uint32_to_float32");
+    text_attribute(header, k + "manifest", cryptomatte_manifest(names));
   };
-  if (wants("crypto_object")) crypto_header("crypto_object", img.object_names);
-  if (wants("crypto_material")) crypto_header("crypto_material", img.material_names);
+  if (planes.wants("crypto_object")) crypto_header("crypto_object", img.object_names);
+  if (planes.wants("crypto_material")) crypto_header("crypto_material", img.material_names);
+}
+
+// The file encoded whole in memory.
+void encode(const Image& img, const Imf::Header& header, std::vector<Plane>& planes, const Imath::Box2i& data,
+            MemoryStream& memory) {
+  Imf::OutputFile file(memory, header, 1);
+  Imf::FrameBuffer frame;
+  // OpenEXR writes a channel from a slice of its own type: half channels from half copies
+  // (rounded to nearest, as Imath's conversion does).
+  std::vector<std::vector<half>> halves;
+  halves.reserve(planes.size());
+  for (Plane& pl : planes) {
+    const std::size_t row = static_cast<std::size_t>(img.width);
+    if (pl.type == Imf::HALF) {
+      halves.emplace_back(pl.values.begin(), pl.values.end());
+      frame.insert(pl.name, Imf::Slice::Make(Imf::HALF, halves.back().data(), data, sizeof(half), sizeof(half) * row));
+    } else {
+      frame.insert(pl.name, Imf::Slice::Make(Imf::FLOAT, pl.values.data(), data, sizeof(float), sizeof(float) * row));
+    }
+  }
+  file.setFrameBuffer(frame);
+  file.writePixels(img.height);
+}
+
+}  // namespace
+
+void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta, const std::string& path) {
+  Planes planes(img, o);
+  planes.add_pixels();
+  planes.add_ids();
+  planes.add_treemaker();
+  const int full_w = img.full_width > 0 ? img.full_width : img.width;
+  const int full_h = img.full_height > 0 ? img.full_height : img.height;
+  const Imath::Box2i display(Imath::V2i(0, 0), Imath::V2i(full_w - 1, full_h - 1));
+  const Imath::Box2i data(Imath::V2i(img.x0, img.y0), Imath::V2i(img.x0 + img.width - 1, img.y0 + img.height - 1));
+  // An ACES container (SMPTE ST 2065-4) only when the file is one: ACES2065-1, half RGBA, no AOVs.
+  const bool aces_container = meta.interop_id == "lin_ap0_scene" && meta.chromaticities.size() == 8 &&
+                              planes.colour() == Imf::HALF && planes.planes().size() == 4;
+  Imf::Header header(display, data, 1.0f, Imath::V2f(0.0f, 0.0f), 1.0f, Imf::INCREASING_Y,
+                     aces_container ? Imf::PIZ_COMPRESSION : Imf::ZIP_COMPRESSION);
+  for (const Plane& pl : planes.planes()) header.channels().insert(pl.name, Imf::Channel(pl.type));
+  add_colour_attributes(header, o, meta, aces_container);
+  text_attribute(header, "arbor:version", ARBOR_VERSION_STRING);
+  text_attribute(header, "arbor:commit", ARBOR_COMMIT);
+  text_attribute(header, "arbor:scene", meta.scene);
+  if (meta.render_attributes) add_render_attributes(header, img, o, meta, planes.wants("variance"));
+  add_id_attributes(header, img, planes);
 
   MemoryStream memory;
   try {
-    Imf::OutputFile file(memory, header, 1);
-    Imf::FrameBuffer frame;
-    // OpenEXR writes a channel from a slice of its own type: half channels from half copies
-    // (rounded to nearest, as Imath's conversion does).
-    std::vector<std::vector<half>> halves;
-    halves.reserve(planes.size());
-    for (Plane& pl : planes) {
-      const std::size_t row = static_cast<std::size_t>(img.width);
-      if (pl.type == Imf::HALF) {
-        halves.emplace_back(pl.values.begin(), pl.values.end());
-        frame.insert(pl.name, Imf::Slice::Make(Imf::HALF, halves.back().data(), data, sizeof(half), sizeof(half) * row));
-      } else {
-        frame.insert(pl.name, Imf::Slice::Make(Imf::FLOAT, pl.values.data(), data, sizeof(float), sizeof(float) * row));
-      }
-    }
-    file.setFrameBuffer(frame);
-    file.writePixels(img.height);
+    encode(img, header, planes.planes(), data, memory);
   } catch (const std::exception& e) {
     throw RuntimeFailure("cannot write " + path + ": " + e.what());
   }

@@ -31,6 +31,15 @@ echo "fit.txt $(strip "$out/fit.txt")"
 for f in "$out/heatmap.png" "$out/side.png"; do
   echo "$(basename "$f") $(iinfo --hash "$f" | sed -n 's/.*SHA-1: *//p')"
 done
+# The pbrt-v4 export of every shipped scene: the scene text, its sky and its ground image.
+for scene in "$root"/scenes/*.toml; do
+  name=export_$(basename "$scene" .toml)
+  "$arbor" export "$scene" -o "$out/$name.pbrt" --width 96 --height 72 --sky-resolution 64 2>>"$out/log"
+  (cd "$out" && sed "s|$out|OUT|g" "$name.pbrt" | sha1sum | sed "s|-|$name.pbrt|")
+  for f in "$out/$name".*.exr; do
+    echo "$(basename "$f") $(iinfo --hash "$f" | sed -n 's/.*SHA-1: *//p')"
+  done
+done
 for species in "$root"/species/*; do
   name=$(basename "$species")
   "$arbor" grow "$species" --seed 7 --json > "$out/$name.json"

@@ -173,12 +173,16 @@ RenderOutcome render_treemaker(const SceneDesc& scene, const World& world, const
   return render_passes(scene, job, film, trace, to_output, progress, stats);
 }
 
+PassPlan pass_plan_for(const RenderSettings& r) {
+  return {r.integrator == "treemaker" ? r.treemaker_spp : r.spp, r.pass_spp, r.independent_passes};
+}
+
 Image render_image(const SceneDesc& scene, const World& world, const Sky& sky,
                    const ColorTransform& to_output, RenderStats& stats) {
   const RenderSettings& r = scene.render;
   const bool treemaker = r.integrator == "treemaker";
   RenderJob job;
-  job.plan = {treemaker ? r.treemaker_spp : r.spp, r.pass_spp, r.independent_passes};
+  job.plan = pass_plan_for(r);
   job.pass_end = job.plan.passes();
   job.adaptive = {r.noise_threshold, r.min_spp};
   const std::vector<std::string> names = integrator_aov_names(scene);

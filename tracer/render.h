@@ -31,6 +31,9 @@ struct RenderJob {
   const std::atomic<int>* stop = nullptr;       // nonzero: stop after the running pass
 };
 
+// The passes of the scene's render: the sample count of its integrator in passes of pass_spp.
+PassPlan pass_plan_for(const RenderSettings& render);
+
 // Why the loop ended before pass_end: "" (it did not), "interrupted" or "time limit".
 struct RenderOutcome {
   std::string stopped;

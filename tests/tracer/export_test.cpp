@@ -1,6 +1,6 @@
-// Tests of `arbor export`: pbrt-v4's equal-area map, the colour space, and a whole exported scene
+// Tests of the pbrt-v4 scene writer (`arbor export`): pbrt-v4's equal-area map, the colour space, and a whole exported scene
 // read back: its syntax, camera, lights, objects and the sky image's irradiance and orientation.
-#include "tracer/export_command.h"
+#include "tracer/pbrt_scene.h"
 
 #include <algorithm>
 #include <cmath>
@@ -212,13 +212,9 @@ TEST(PbrtExport, WritesTheWholeSceneAndASkyWithItsIrradiance) {
     std::system(("mkdir -p " + dir).c_str());
     std::ofstream(scene_path) << text;
   }
-  ExportRequest request;
-  request.scene = scene_path;
-  request.out = dir + "scene.pbrt";
-  request.sky_resolution = 128;
-  request.ocio_config = kOcioConfig;
-  ASSERT_EQ(export_command(request), 0);
-  const std::vector<Statement> pbrt = parse_pbrt(slurp(request.out));
+  const std::string pbrt_out = dir + "scene.pbrt";
+  write_pbrt_scene(load_scene(scene_path), ColorPipeline(kOcioConfig), pbrt_out, 128);
+  const std::vector<Statement> pbrt = parse_pbrt(slurp(pbrt_out));
   ASSERT_FALSE(pbrt.empty());
 
   EXPECT_EQ(find(pbrt, "ColorSpace")->args.at(0), "srgb");
@@ -317,13 +313,9 @@ TEST(PbrtExport, GroundPatchesNearTheCameraAreAnImage) {
                                "[sky]\nmodel = \"constant\"\ncolor = [0.5, 0.5, 0.5]\n"
                                "[ground]\nalbedo = [0.2, 0.15, 0.1]\npatch_albedo = [0.05, 0.1, 0.03]\n"
                                "patch_cover = 0.5\npatch_scale = 4.0\n";
-  ExportRequest request;
-  request.scene = scene_path;
-  request.out = dir + "scene.pbrt";
-  request.sky_resolution = 16;
-  request.ocio_config = kOcioConfig;
-  ASSERT_EQ(export_command(request), 0);
-  const std::vector<Statement> pbrt = parse_pbrt(slurp(request.out));
+  const std::string pbrt_out = dir + "scene.pbrt";
+  write_pbrt_scene(load_scene(scene_path), ColorPipeline(kOcioConfig), pbrt_out, 16);
+  const std::vector<Statement> pbrt = parse_pbrt(slurp(pbrt_out));
   const Statement* texture = find(pbrt, "Texture", "ground patches");
   ASSERT_NE(texture, nullptr);
   EXPECT_NE(std::find(texture->args.begin(), texture->args.end(), "scene.ground.exr"), texture->args.end());

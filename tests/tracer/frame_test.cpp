@@ -8,7 +8,7 @@
 #include "common/rng.h"
 #include "expect_input_error.h"
 #include "formats/scene_desc.h"
-#include "tracer/render_command.h"
+#include "scene/frame.h"
 #include "tracer/test_world.h"
 
 namespace arbor::trace {

@@ -4,7 +4,9 @@
 #include <cstdint>
 #include <string>
 
-namespace arbor::trace {
+#include <CLI/CLI.hpp>
+
+namespace arbor::app {
 
 struct GrowRequest {
   std::string species;
@@ -18,8 +20,11 @@ struct GrowRequest {
   bool force = false;  // grow even past the size limits
 };
 
+// Adds `arbor grow` to `app`, its options bound to `request`.
+CLI::App* add_grow_command(CLI::App& app, GrowRequest& request);
+
 // Grows and writes; returns the exit status (0). InputError for bad input, RuntimeFailure when
 // the work fails.
 int grow_command(const GrowRequest& request);
 
-}  // namespace arbor::trace
+}  // namespace arbor::app

@@ -1,11 +1,14 @@
 // `arbor plan`: a render split into work units any scheduler can run (docs/farm.md).
 #pragma once
 
-#include <optional>
 #include <string>
 #include <vector>
 
-namespace arbor::trace {
+#include <CLI/CLI.hpp>
+
+#include "app/commands/options.h"
+
+namespace arbor::app {
 
 // The largest plan: units over all frames, and parts one merge reads (64x64 tiles, say).
 constexpr long long kMaxPlanUnits = 100000;
@@ -14,12 +17,7 @@ constexpr long long kMaxMergeParts = 4096;
 struct PlanRequest {
   std::string scene;
   std::string exr, png;  // the merged outputs (with a run of '#' for the frame number when --frames)
-  // The render overrides, handed on to every unit as given (0 / empty / unset: the scene's).
-  int width = 0, height = 0, spp = 0;
-  std::optional<std::uint64_t> seed;
-  std::optional<double> time;
-  std::string integrator;
-  bool transparent = false;
+  RenderOverrides overrides;  // handed on to every unit as given
   std::string tiles = "1x1";  // CxR: columns × rows of crop windows
   int pass_groups = 1;        // K: contiguous runs of passes per tile
   std::string frames;         // "A:B": frames A to B-1 of the [animation]; empty: a still
@@ -39,6 +37,9 @@ struct PlanStep {
   std::vector<std::string> argv;     // the whole command, argv[0] the executable
 };
 
+// Adds `arbor plan` to `app`, its options bound to `request`.
+CLI::App* add_plan_command(CLI::App& app, PlanRequest& request);
+
 // The units, then the merges (one per frame). InputError for bad requests.
 std::vector<PlanStep> make_plan(const PlanRequest& request);
 
@@ -48,4 +49,4 @@ std::string shell_line(const std::vector<std::string>& argv);
 // Prints the plan (shell lines, or JSON with --json); returns 0.
 int plan_command(const PlanRequest& request);
 
-}  // namespace arbor::trace
+}  // namespace arbor::app

@@ -1,9 +1,8 @@
 // `arbor render`: load the scene, apply the overrides, check the outputs, build, render in
 // passes (stopping, checkpointing or resuming as asked), write.
-#include "tracer/render_command.h"
+#include "app/commands/render.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -24,9 +23,11 @@
 #include "common/input_file.h"
 #include "common/progress.h"
 #include "common/rng.h"
+#include "common/parse.h"
 #include "common/strings.h"
 #include "formats/scene_desc.h"
 #include "imaging/color.h"
+#include "scene/frame.h"
 #include "scene/render_budget.h"
 #include "scene/scene.h"
 #include "tracer/embree/embree_device.h"
@@ -36,7 +37,9 @@
 #include "tracer/render.h"
 #include "tracer/render_output.h"
 
-namespace arbor::trace {
+namespace arbor::app {
+
+using namespace arbor::trace;
 
 namespace {
 
@@ -56,28 +59,6 @@ std::string treemaker_weights_text(const Scene& scene) {
 
 }  // namespace
 
-std::vector<int> parse_integers(const std::string& text, char sep, std::size_t count, const char* option,
-                                const char* form) {
-  std::vector<int> v;
-  const char* p = text.data();
-  const char* end = text.data() + text.size();
-  while (v.size() < count) {
-    int x = 0;
-    const auto [next, ec] = std::from_chars(p, end, x);
-    if (ec != std::errc() || x < 0) break;
-    v.push_back(x);
-    p = next;
-    if (v.size() < count) {
-      if (p == end || *p != sep) break;
-      ++p;
-    }
-  }
-  if (v.size() != count || p != end) {
-    throw InputError({}, std::string(option) + " '" + text + "' is not of the form " + form);
-  }
-  return v;
-}
-
 namespace {
 
 // The hash of everything that decides the pixels: the settings (not the threads, the outputs or
@@ -95,7 +76,7 @@ std::string render_fingerprint(const SceneDesc& scene, const RenderRequest& a, c
     << "; integrator " << r.integrator << "; max_depth " << r.max_depth << "; treemaker_spp " << r.treemaker_spp
     << "; noise_threshold " << r.noise_threshold << "; min_spp " << r.min_spp << "; transparent_sky "
     << (scene.output.transparent_sky ? "true" : "false") << "; ids " << (scene.output.wants_ids() ? "kept" : "none")
-    << "; --time " << (a.time ? std::to_string(*a.time) : std::string("none"));
+    << "; --time " << (a.overrides.time ? std::to_string(*a.overrides.time) : std::string("none"));
   if (a.frame) s << "; frame " << *a.frame << "; clock " << scene.clock;
   std::vector<std::string> files = scene_inputs(scene);
   files.push_back(ocio);
@@ -120,29 +101,6 @@ std::string finished_fingerprint(const std::string& exr) {
 }
 
 }  // namespace
-
-void apply_frame(SceneDesc& scene, std::optional<int> frame) {
-  const bool numbered = scene.output.exr.find('#') != std::string::npos || scene.output.png.find('#') != std::string::npos;
-  if (!frame) {
-    if (numbered) {
-      throw InputError({}, "the output " + (scene.output.exr.find('#') != std::string::npos ? scene.output.exr : scene.output.png) +
-                               " names a frame number (#): give --frame N");
-    }
-    return;
-  }
-  const AnimationDesc& an = scene.animation;
-  if (an.frames == 0) {
-    throw InputError({scene.path, 0, 0}, "--frame " + std::to_string(*frame) + ": the scene has no [animation] table");
-  }
-  if (*frame < 0 || *frame >= an.frames) {
-    throw InputError(an.where, "--frame " + std::to_string(*frame) + " is outside the animation's frames 0 to " +
-                                   std::to_string(an.frames - 1));
-  }
-  scene.clock = *frame / an.fps;
-  if (!an.pin_seed) scene.render.seed = derive_key(scene.render.seed, static_cast<std::uint64_t>(*frame));
-  scene.output.exr = frame_path(scene.output.exr, *frame);
-  scene.output.png = frame_path(scene.output.png, *frame);
-}
 
 namespace {
 
@@ -170,23 +128,15 @@ void relocate_installed_outputs(SceneDesc& scene, const RenderRequest& a) {
   }
 }
 
-}  // namespace
 
-int render_command(const RenderRequest& a) {
+// The scene as this command renders it: loaded, its installed outputs moved under the current
+// folder, the overrides, -o/--png, the frame and the checkpoint interval applied; InputError
+// when it has nothing to write or an output of the wrong kind.
+SceneDesc prepared_scene(const RenderRequest& a) {
   SceneDesc scene = load_scene(a.scene);
   relocate_installed_outputs(scene, a);
-  RenderSettings& r = scene.render;
-  if (!a.integrator.empty()) r.integrator = a.integrator;
-  // --spp sets the sample count of the integrator in use (the scene keeps one for each).
-  const bool treemaker = r.integrator == "treemaker";
-  if (a.spp > 0) (treemaker ? r.treemaker_spp : r.spp) = a.spp;
-  if (a.width > 0) r.width = a.width;
-  if (a.height > 0) r.height = a.height;
-  if (a.seed) r.seed = *a.seed;
-  r.threads = a.threads;
-  if (a.time) {
-    for (TreeDesc& t : scene.trees) t.time = *a.time;
-  }
+  apply_overrides(scene, a.overrides);
+  scene.render.threads = a.threads;
   // -o replaces the scene's outputs: its PNG too, which is then written only with --png.
   if (!a.exr.empty()) {
     scene.output.exr = a.exr;
@@ -195,7 +145,7 @@ int render_command(const RenderRequest& a) {
   if (!a.png.empty()) scene.output.png = a.png;
   apply_frame(scene, a.frame);
   if (a.checkpoint_seconds) scene.output.checkpoint_seconds = *a.checkpoint_seconds;
-  if (a.transparent) scene.output.transparent_sky = true;
+  const bool treemaker = scene.render.integrator == "treemaker";
   if (!treemaker &&
       std::find(scene.output.aovs.begin(), scene.output.aovs.end(), "treemaker") != scene.output.aovs.end()) {
     throw InputError(scene.output.treemaker_aov_where,
@@ -212,10 +162,18 @@ int render_command(const RenderRequest& a) {
   if (!scene.output.png.empty() && !ends_with(scene.output.png, ".png")) {
     throw InputError({}, "the PNG output must end in .png: " + scene.output.png);
   }
+  return scene;
+}
 
-  // The passes and the window of this run.
-  const PassPlan plan{treemaker ? r.treemaker_spp : r.spp, r.pass_spp, r.independent_passes};
-  int pass_begin = 0, pass_end = plan.passes();
+// The passes and the window this run renders (--passes, --crop), checked against the render.
+struct RunRange {
+  int pass_begin = 0, pass_end = 0;
+  Window window;
+};
+
+RunRange run_range(const SceneDesc& scene, const RenderRequest& a, const PassPlan& plan) {
+  const RenderSettings& r = scene.render;
+  RunRange run{0, plan.passes(), {0, 0, r.width, r.height}};
   if (!a.passes.empty()) {
     const std::vector<int> v = parse_integers(a.passes, ':', 2, "--passes", "A:B (passes A to B-1)");
     if (v[0] >= v[1] || v[1] > plan.passes()) {
@@ -223,19 +181,18 @@ int render_command(const RenderRequest& a) {
                                " (" + std::to_string(plan.spp) + " spp in passes of " + std::to_string(plan.pass_spp) +
                                "), so A:B needs 0 <= A < B <= " + std::to_string(plan.passes()));
     }
-    pass_begin = v[0];
-    pass_end = v[1];
+    run.pass_begin = v[0];
+    run.pass_end = v[1];
   }
-  Window window{0, 0, r.width, r.height};
   if (!a.crop.empty()) {
     const std::vector<int> v = parse_integers(a.crop, ',', 4, "--crop", "X0,Y0,X1,Y1 (pixels, end exclusive)");
-    window = {v[0], v[1], v[2], v[3]};
-    if (window.width() <= 0 || window.height() <= 0 || window.x1 > r.width || window.y1 > r.height) {
+    run.window = {v[0], v[1], v[2], v[3]};
+    if (run.window.width() <= 0 || run.window.height() <= 0 || run.window.x1 > r.width || run.window.y1 > r.height) {
       throw InputError({}, "--crop " + a.crop + " is not a window of the " + std::to_string(r.width) + "x" +
                                std::to_string(r.height) + " image (X0 < X1 <= width, Y0 < Y1 <= height)");
     }
   }
-  if (a.resume && exr.empty()) {
+  if (a.resume && scene.output.exr.empty()) {
     throw InputError({}, "--resume needs an EXR output (-o OUT.exr or the scene's output.exr): its film state is kept beside it");
   }
   // A work unit is never written over the scene's own outputs: it names its part with -o.
@@ -244,12 +201,17 @@ int render_command(const RenderRequest& a) {
                              " renders a part of the image: name the part with -o PART.exr (the scene's own "
                              "outputs are not overwritten by a part)");
   }
-  if (pass_begin > 0 && r.noise_threshold > 0) {
+  if (run.pass_begin > 0 && r.noise_threshold > 0) {
     throw InputError({}, "--passes " + a.passes + " starts after pass 0, but adaptive sampling "
                          "(render.noise_threshold) decides each pass from the passes before it; "
                          "split an adaptive render by --crop instead");
   }
+  return run;
+}
 
+// InputError when an output would overwrite an input; then makes the outputs' missing folders.
+void check_outputs(const SceneDesc& scene) {
+  const std::string& exr = scene.output.exr;
   const std::vector<std::string> inputs = scene_inputs(scene);
   if (!exr.empty()) {
     refuse_overwriting("the EXR output", exr, inputs);
@@ -258,21 +220,18 @@ int render_command(const RenderRequest& a) {
   if (!scene.output.png.empty()) {
     refuse_overwriting("the PNG output", scene.output.png, inputs, {exr, exr.empty() ? "" : state_path(exr)});
   }
-  const ColorPipeline color(a.ocio_config);
-  color.check(scene.output);
-  // Last of the checks (nothing is left behind when an earlier one fails): make missing folders.
-  for (const std::string& out : {exr, scene.output.png}) {
-    if (!out.empty()) prepare_output_folder(out);
-  }
-  const std::vector<std::string> extra_names = integrator_aov_names(scene);
+}
 
+FilmHeader film_header(const SceneDesc& scene, const RenderRequest& a, const ColorPipeline& color,
+                       const PassPlan& plan, const RunRange& run) {
+  const RenderSettings& r = scene.render;
   FilmHeader header;
   header.fingerprint = render_fingerprint(scene, a, color.config_path(), header.settings);
   header.scene = scene.path;
   header.full_width = r.width;
   header.full_height = r.height;
   header.plan = plan;
-  header.pass_end = pass_end;
+  header.pass_end = run.pass_end;
   header.noise_threshold = r.noise_threshold;
   header.min_spp = r.min_spp;
   header.integrator = r.integrator;
@@ -283,50 +242,70 @@ int render_command(const RenderRequest& a) {
   header.pixel_type = scene.output.pixel_type;
   header.aovs = scene.output.aovs;
   header.transparent_sky = scene.output.transparent_sky;
+  return header;
+}
 
-  check_render_memory(scene, a.force, usable_memory_bytes(),
-                      pass_begin > 0 ? static_cast<std::uint64_t>(pass_end - pass_begin) : 0);
-  std::unique_ptr<Film> film;
-  if (a.resume) {
-    const std::string state = state_path(exr);
-    if (::access(state.c_str(), F_OK) != 0) {
-      if (finished_fingerprint(exr) == header.fingerprint) {
-        std::fprintf(stderr, "arbor: %s is already finished; nothing to resume\n", exr.c_str());
-        return 0;
-      }
-      throw InputError({state, 0, 0}, "--resume: there is no film state beside " + exr +
-                                          " (it is written when a render stops early, at checkpoints and "
-                                          "for --passes/--crop parts)");
-    }
-    FilmFile saved = read_film_state(state);
-    if (saved.header.fingerprint != header.fingerprint) {
-      throw InputError({state, 0, 0}, "--resume: it was rendered from " + saved.header.scene +
-                                          " with other settings or inputs (" +
-                                          settings_difference(saved.header.settings, header.settings, "in the state", "in this command") +
-                                          "); give the same scene, files and options");
-    }
-    if (saved.film->window() != window || saved.film->pass_begin() != pass_begin || saved.header.pass_end != pass_end) {
-      throw InputError({state, 0, 0}, "--resume: it holds another --crop or --passes than this command asks for");
-    }
-    film = std::move(saved.film);
-    header.seconds = saved.header.seconds;
-    header.nonfinite = saved.header.nonfinite;
-    header.rays = saved.header.rays;
-    if (film->next_pass() == pass_end) {
-      std::fprintf(stderr, "arbor: %s already holds passes %d to %d; nothing to resume\n", exr.c_str(),
-                   pass_begin, pass_end - 1);
-      return 0;
-    }
-  } else {
-    film = std::make_unique<Film>(window, extra_names.size(), pass_begin, pass_begin > 0, scene.output.wants_ids());
+// The film this run continues (--resume: the state beside the EXR, its totals copied into
+// `header`) or a new one; nullptr when a resume finds nothing left to do.
+std::unique_ptr<Film> open_film(const SceneDesc& scene, const RenderRequest& a, const RunRange& run,
+                                FilmHeader& header) {
+  if (!a.resume) {
+    return std::make_unique<Film>(run.window, integrator_aov_names(scene).size(), run.pass_begin, run.pass_begin > 0,
+                                  scene.output.wants_ids());
   }
+  const std::string& exr = scene.output.exr;
+  const std::string state = state_path(exr);
+  if (::access(state.c_str(), F_OK) != 0) {
+    if (finished_fingerprint(exr) == header.fingerprint) {
+      std::fprintf(stderr, "arbor: %s is already finished; nothing to resume\n", exr.c_str());
+      return nullptr;
+    }
+    throw InputError({state, 0, 0}, "--resume: there is no film state beside " + exr +
+                                        " (it is written when a render stops early, at checkpoints and "
+                                        "for --passes/--crop parts)");
+  }
+  FilmFile saved = read_film_state(state);
+  if (saved.header.fingerprint != header.fingerprint) {
+    throw InputError({state, 0, 0}, "--resume: it was rendered from " + saved.header.scene +
+                                        " with other settings or inputs (" +
+                                        settings_difference(saved.header.settings, header.settings, "in the state", "in this command") +
+                                        "); give the same scene, files and options");
+  }
+  if (saved.film->window() != run.window || saved.film->pass_begin() != run.pass_begin ||
+      saved.header.pass_end != run.pass_end) {
+    throw InputError({state, 0, 0}, "--resume: it holds another --crop or --passes than this command asks for");
+  }
+  header.seconds = saved.header.seconds;
+  header.nonfinite = saved.header.nonfinite;
+  header.rays = saved.header.rays;
+  if (saved.film->next_pass() == run.pass_end) {
+    std::fprintf(stderr, "arbor: %s already holds passes %d to %d; nothing to resume\n", exr.c_str(), run.pass_begin,
+                 run.pass_end - 1);
+    return nullptr;
+  }
+  return std::move(saved.film);
+}
 
+// What the render did, for the report.
+struct RunResult {
+  RenderStats stats;
+  RenderOutcome outcome;
+  int first_pass = 0;
+  std::size_t instances = 0, prototypes = 0;
+  double build_seconds = 0;
+};
+
+// Builds the scene and renders the film's remaining passes, writing checkpoints and, at the end,
+// the outputs (unless no pass finished).
+RunResult build_and_render(const SceneDesc& scene, const RenderRequest& a, const ColorPipeline& color,
+                           const PassPlan& plan, const RunRange& run, FilmHeader& header, Film& film) {
+  const RenderSettings& r = scene.render;
+  const bool treemaker = r.integrator == "treemaker";
+  const std::uint64_t unit_passes = run.pass_begin > 0 ? static_cast<std::uint64_t>(run.pass_end - run.pass_begin) : 0;
   const EmbreeDevice device(r.threads > 0 ? "threads=" + std::to_string(r.threads) : "");
   Progress build_progress("build", 1);
-  const std::unique_ptr<const Scene> built =
-      build_scene(scene, color.config_path(), &build_progress,
-                  geometry_budget(scene, a.force, usable_memory_bytes(),
-                                  pass_begin > 0 ? static_cast<std::uint64_t>(pass_end - pass_begin) : 0));
+  const std::unique_ptr<const Scene> built = build_scene(scene, color.config_path(), &build_progress,
+                                                         geometry_budget(scene, a.force, usable_memory_bytes(), unit_passes));
   const World world(*built, device);
   build_progress.finish();
   if (treemaker) header.treemaker_weights = treemaker_weights_text(*built);
@@ -334,11 +313,14 @@ int render_command(const RenderRequest& a) {
   header.material_names = built->material_names;
   const Sky sky(scene.sky, scene.sun, color.xyz_to_scene_linear());
 
-  RenderWrite write{exr, scene.output.png, &color, ""};
-  RenderStats stats;
+  RunResult result;
+  result.instances = built->stats.instances;
+  result.prototypes = built->stats.prototypes;
+  result.build_seconds = built->stats.build_seconds + world.build_seconds();
+  RenderWrite write{scene.output.exr, scene.output.png, &color, ""};
   RenderJob job;
   job.plan = plan;
-  job.pass_end = pass_end;
+  job.pass_end = run.pass_end;
   job.adaptive = {r.noise_threshold, r.min_spp};
   job.time_limit = a.time_limit;
   job.checkpoint_seconds = scene.output.checkpoint_seconds;
@@ -346,37 +328,43 @@ int render_command(const RenderRequest& a) {
   const double seconds_before = header.seconds;
   job.checkpoint = [&](const Film& f) {
     FilmHeader h = header;
-    h.seconds = seconds_before + stats.seconds;
+    h.seconds = seconds_before + result.stats.seconds;
     RenderWrite w = write;
     w.stopped = "in progress";
     write_render(h, f, w);
   };
-  const int first_pass = film->next_pass();
+  result.first_pass = film.next_pass();
   Progress progress("render", 1);
   stop_gracefully_on_signal(true);
   const ColorTransform to_output = color.to_output(scene.output.colorspace);
-  const RenderOutcome outcome = treemaker ? render_treemaker(scene, world, sky, to_output, job, *film, &progress, stats)
-                                          : render_path(scene, world, sky, to_output, job, *film, &progress, stats);
+  result.outcome = treemaker ? render_treemaker(scene, world, sky, to_output, job, film, &progress, result.stats)
+                             : render_path(scene, world, sky, to_output, job, film, &progress, result.stats);
   progress.finish();
-  const int signal = stop_signal().load();
-  header.seconds = seconds_before + stats.seconds;
-  header.nonfinite += stats.nonfinite;
-  header.rays += stats.rays;
-  write.stopped = outcome.stopped;
-  if (film->next_pass() == first_pass) {
+  header.seconds = seconds_before + result.stats.seconds;
+  header.nonfinite += result.stats.nonfinite;
+  header.rays += result.stats.rays;
+  write.stopped = result.outcome.stopped;
+  if (film.next_pass() == result.first_pass) {
     // Stopped before one pass finished: the old outputs stay as they were.
     std::fprintf(stderr, "arbor: stopped before a pass finished; nothing written\n");
   } else {
-    write_render(header, *film, write);
+    write_render(header, film, write);
   }
   stop_gracefully_on_signal(false);
+  return result;
+}
+
+void report(const SceneDesc& scene, const PassPlan& plan, const RunRange& run, const Film& film,
+            const RunResult& result) {
+  const RenderStats& stats = result.stats;
+  const Window& window = run.window;
   const double seconds = std::max(stats.seconds, 1e-9);
-  const int done = plan.samples(pass_begin, film->next_pass());
+  const int done = plan.samples(run.pass_begin, film.next_pass());
   // With adaptive sampling pixels stop early: the mean is what was rendered, `done` the most.
   char spp_text[80];
-  if (r.noise_threshold > 0.0) {
+  if (scene.render.noise_threshold > 0.0) {
     double total = 0.0;
-    for (std::size_t p = 0; p < window.pixels(); ++p) total += film->state(p).count;
+    for (std::size_t p = 0; p < window.pixels(); ++p) total += film.state(p).count;
     std::snprintf(spp_text, sizeof spp_text, "a mean of %.1f spp (at most %d)", total / double(window.pixels()), done);
   } else {
     std::snprintf(spp_text, sizeof spp_text, "%d spp", done);
@@ -384,23 +372,81 @@ int render_command(const RenderRequest& a) {
   std::fprintf(stderr,
                "arbor: rendered %dx%d at %s (passes %d to %d of %d) in %.2f s (%.3g samples/s, %.3g rays/s; "
                "%zu trees from %zu prototypes, built in %.2f s)\n",
-               window.width(), window.height(), spp_text, pass_begin, film->next_pass() - 1, plan.passes(),
-               stats.seconds, double(stats.samples) / seconds, double(stats.rays) / seconds,
-               built->stats.instances, built->stats.prototypes, built->stats.build_seconds + world.build_seconds());
-  if (!outcome.stopped.empty()) {
+               window.width(), window.height(), spp_text, run.pass_begin, film.next_pass() - 1, plan.passes(),
+               stats.seconds, double(stats.samples) / seconds, double(stats.rays) / seconds, result.instances,
+               result.prototypes, result.build_seconds);
+  if (!result.outcome.stopped.empty()) {
     std::fprintf(stderr, "arbor: stopped early (%s) after %d of %d passes; continue with --resume\n",
-                 outcome.stopped.c_str(), film->next_pass() - pass_begin, pass_end - pass_begin);
+                 result.outcome.stopped.c_str(), film.next_pass() - run.pass_begin, run.pass_end - run.pass_begin);
   }
   if (stats.nonfinite > 0) {
     std::fprintf(stderr, "arbor: warning: %llu samples were NaN or infinite and were left out\n",
                  static_cast<unsigned long long>(stats.nonfinite));
   }
-  if (film->next_pass() != first_pass) {
-    for (const std::string& out : {exr, scene.output.png}) {
+  if (film.next_pass() != result.first_pass) {
+    for (const std::string& out : {scene.output.exr, scene.output.png}) {
       if (!out.empty()) std::fprintf(stderr, "arbor: wrote %s\n", out.c_str());
     }
   }
+}
+
+}  // namespace
+
+CLI::App* add_render_command(CLI::App& app, RenderRequest& render) {
+  CLI::App* cmd = app.add_subcommand("render", "Render a scene file to EXR/PNG (path tracer, or TREE-MAKER's shading)");
+  cmd->add_option("SCENE", render.scene, "scene file (.toml)")->required();
+  cmd->add_option("-o,--output", render.exr,
+                  "EXR to write: replaces the scene's [output] exr and png (a PNG is then written only with --png)");
+  cmd->add_option("--png", render.png, "PNG to write through the display view");
+  add_override_options(cmd, render.overrides, kSppOption | kSeedOption | kIntegratorOption | kTransparentOption,
+                       "samples per pixel of the integrator in use (overrides render.spp, or "
+                       "render.treemaker_spp for treemaker)");
+  cmd->add_option("--threads", render.threads, "threads (0: all cores)")->check(CLI::Range(0, 1024));
+  cmd->add_option("--frame", render.frame,
+                  "render frame N of the scene's [animation]: every tree at time N / fps, the "
+                  "frame's own seed (unless animation.pin_seed), N in place of #### in the outputs")
+      ->check(CLI::Range(0, 1000000));
+  cmd->add_flag("--force", render.force,
+                "render even when the image and trees are estimated to need more memory "
+                "than this machine (or ulimit) allows");
+  cmd->add_flag("--resume", render.resume,
+                "continue the render from the film state beside its EXR (OUT.exr.state), to the "
+                "image an uninterrupted render gives");
+  cmd->add_option("--time-limit", render.time_limit,
+                  "seconds: stop after the last pass that fits (at least one pass is rendered; 0: no limit)")
+      ->check(finite_in(0.0, 1e9));
+  cmd->add_option("--checkpoint-seconds", render.checkpoint_seconds,
+                  "rewrite the outputs this often as passes finish (overrides output.checkpoint_seconds)")
+      ->check(finite_in(0.0, 1e7));
+  cmd->add_option("--passes", render.passes, "A:B: render only passes A to B-1 (a work unit for arbor merge; needs -o)")
+      ->check(non_empty());
+  cmd->add_option("--crop", render.crop,
+                  "X0,Y0,X1,Y1: render only that window (pixels, end exclusive), each pixel as in the "
+                  "whole image (needs -o)")
+      ->check(non_empty());
+  return cmd;
+}
+
+int render_command(const RenderRequest& a) {
+  const SceneDesc scene = prepared_scene(a);
+  const PassPlan plan = pass_plan_for(scene.render);
+  const RunRange run = run_range(scene, a, plan);
+  check_outputs(scene);
+  const ColorPipeline color(a.ocio_config);
+  color.check(scene.output);
+  // Last of the checks (nothing is left behind when an earlier one fails): make missing folders.
+  for (const std::string& out : {scene.output.exr, scene.output.png}) {
+    if (!out.empty()) prepare_output_folder(out);
+  }
+  FilmHeader header = film_header(scene, a, color, plan, run);
+  check_render_memory(scene, a.force, usable_memory_bytes(),
+                      run.pass_begin > 0 ? static_cast<std::uint64_t>(run.pass_end - run.pass_begin) : 0);
+  const std::unique_ptr<Film> film = open_film(scene, a, run, header);
+  if (!film) return 0;
+  const RunResult result = build_and_render(scene, a, color, plan, run, header, *film);
+  report(scene, plan, run, *film, result);
+  const int signal = stop_signal().load();
   return signal != 0 ? 128 + signal : 0;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::app

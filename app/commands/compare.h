@@ -4,7 +4,9 @@
 
 #include <string>
 
-namespace arbor::trace {
+#include <CLI/CLI.hpp>
+
+namespace arbor::app {
 
 struct CompareRequest {
   std::string a, b;
@@ -14,8 +16,11 @@ struct CompareRequest {
   std::string ocio_config;  // the run's OCIO config (default_ocio_config())
 };
 
+// Adds `arbor compare` to `app`, its options bound to `request`.
+CLI::App* add_compare_command(CLI::App& app, CompareRequest& request);
+
 // Prints the report (text or JSON) on stdout; returns the exit status: 1 when the reference
 // test fails, else 0. InputError for bad input.
 int compare_command(const CompareRequest& request);
 
-}  // namespace arbor::trace
+}  // namespace arbor::app

@@ -1,8 +1,10 @@
 // `arbor grow`: load, grow, measure, export.
-#include "scene/grow_command.h"
+#include "app/commands/grow.h"
 
 #include <chrono>
 #include <cstdio>
+
+#include "app/commands/options.h"
 
 #include "common/atomic_file.h"
 #include "common/error.h"
@@ -17,7 +19,38 @@
 #include "generator/geometry/tree_mesh.h"
 #include "generator/grow.h"
 
-namespace arbor::trace {
+namespace arbor::app {
+
+CLI::App* add_grow_command(CLI::App& app, GrowRequest& grow) {
+  CLI::App* cmd = app.add_subcommand("grow", "Grow a tree from a species file and report or export it");
+  cmd->add_option("SPECIES", grow.species,
+                  "species file: .toml (model = weber-penn or fractal), .xml (Arbaro), .lsys (L-system), .tmpl (TREE-MAKER) or .skel (skeleton)")
+      ->required();
+  cmd->add_option("--seed", grow.seed, "random seed (same seed, same tree)")->check(seed_check())->capture_default_str();
+  cmd->add_option("--time", grow.time,
+                  "Weber & Penn species: seconds of wind sway (needs WindSpeed/WindGust); fractal "
+                  "(time-aware) trees: the age in years (0: the species' own age); other models ignore it")
+      ->check(finite_in(-1e6, 1e6))
+      ->capture_default_str();
+  cmd->add_option("--quality", grow.quality, "leaf quality factor: leaf count x Q, leaf size / sqrt(Q)")
+      ->check(finite_in(1e-6, 100.0))
+      ->capture_default_str();
+  cmd->add_option("-o,--output", grow.out,
+                  "write the tree: .obj (tessellated mesh, bark and leaf groups, with a .mtl "
+                  "beside it) or .ply (binary), .pbrt (pbrt-v4, limbs as curves) or .skel "
+                  "(skeleton file)");
+  cmd->add_option("--up", grow.up, "up axis of the .obj, .ply or .pbrt: z (arbor's) or y "
+                  "(Blender's OBJ importer, Maya, game engines)")
+      ->check(CLI::IsMember({"z", "y"}))
+      ->capture_default_str();
+  cmd->add_flag("--stats", grow.stats,
+                "print statistics of the tree (height and crown width are its envelope's: an upper "
+                "bound within a few cm)");
+  cmd->add_flag("--json", grow.json, "print the statistics as one JSON object");
+  cmd->add_flag("--force", grow.force, "grow even a tree estimated at over 10 million stems or 100 million leaves");
+  return cmd;
+}
+
 
 int grow_command(const GrowRequest& a) {
   if (a.out.empty() && !a.stats && !a.json) {
@@ -95,4 +128,4 @@ int grow_command(const GrowRequest& a) {
   return 0;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::app

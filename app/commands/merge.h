@@ -5,7 +5,9 @@
 #include <string>
 #include <vector>
 
-namespace arbor::trace {
+#include <CLI/CLI.hpp>
+
+namespace arbor::app {
 
 struct MergeRequest {
   std::vector<std::string> parts;  // EXRs with their film states beside them
@@ -13,8 +15,11 @@ struct MergeRequest {
   std::string ocio_config;         // the run's OCIO config (default_ocio_config())
 };
 
+// Adds `arbor merge` to `app`, its options bound to `request`.
+CLI::App* add_merge_command(CLI::App& app, MergeRequest& request);
+
 // Merges and writes; returns the exit status (0). InputError (exit 2) for parts that are not of
 // one render, overlap, or leave a gap; RuntimeFailure when writing fails.
 int merge_command(const MergeRequest& request);
 
-}  // namespace arbor::trace
+}  // namespace arbor::app

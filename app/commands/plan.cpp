@@ -1,7 +1,6 @@
 // `arbor plan`: tiles × pass groups (× frames) as `arbor render` commands, then the merges.
-#include "tracer/plan_command.h"
+#include "app/commands/plan.h"
 
-#include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <system_error>
@@ -10,12 +9,15 @@
 #include "common/error.h"
 #include "common/executable.h"
 #include "common/json.h"
+#include "common/parse.h"
 #include "common/strings.h"
 #include "formats/scene_desc.h"
 #include "tracer/film.h"
-#include "tracer/render_command.h"
+#include "tracer/render.h"
 
-namespace arbor::trace {
+namespace arbor::app {
+
+using namespace arbor::trace;
 
 namespace {
 
@@ -31,6 +33,69 @@ std::string json_strings(const std::vector<std::string>& v) {
   std::string out = "[";
   for (std::size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + json_string(v[i]);
   return out + "]";
+}
+
+// The frames of the plan: --frames A:B, checked against the [animation] and the outputs' '#'
+// runs; {-1} for a still.
+std::vector<int> plan_frames(const SceneDesc& scene, const PlanRequest& a) {
+  std::vector<int> frames;
+  if (!a.frames.empty()) {
+    if (scene.animation.frames == 0) throw InputError({scene.path, 0, 0}, "--frames " + a.frames + ": the scene has no [animation] table");
+    const std::vector<int> range = parse_integers(a.frames, ':', 2, "--frames", "A:B (frames A to B-1)");
+    const int first = range[0], end = range[1];
+    if (first < 0 || first >= end || end > scene.animation.frames) {
+      throw InputError({}, "--frames " + a.frames + ": the animation has frames 0 to " +
+                               std::to_string(scene.animation.frames - 1) + ", so A:B needs 0 <= A < B <= " +
+                               std::to_string(scene.animation.frames));
+    }
+    if (a.exr.find('#') == std::string::npos || (!a.png.empty() && a.png.find('#') == std::string::npos)) {
+      throw InputError({}, "--frames: the outputs need a run of '#' for the frame number (e.g. out.####.exr)");
+    }
+    for (int f = first; f < end; ++f) frames.push_back(f);
+  } else {
+    if (a.exr.find('#') != std::string::npos || a.png.find('#') != std::string::npos) {
+      throw InputError({}, "the outputs name a frame number (#): give --frames A:B");
+    }
+    frames.push_back(-1);
+  }
+  return frames;
+}
+
+// A tile of the image: its place in the grid and the image's size.
+struct Tile {
+  int columns, rows, column, row, width, height;
+};
+
+// The render unit of one tile and pass range of a frame (-1: a still), its part in `folder`.
+PlanStep tile_unit(const std::vector<std::string>& common, int frame, const std::string& folder, const Tile& t,
+                   int pass_begin, int pass_end) {
+  PlanStep u;
+  u.kind = "render";
+  u.frame = frame;
+  u.column = t.column;
+  u.row = t.row;
+  u.crop[0] = static_cast<int>(static_cast<long long>(t.column) * t.width / t.columns);
+  u.crop[1] = static_cast<int>(static_cast<long long>(t.row) * t.height / t.rows);
+  u.crop[2] = static_cast<int>(static_cast<long long>(t.column + 1) * t.width / t.columns);
+  u.crop[3] = static_cast<int>(static_cast<long long>(t.row + 1) * t.height / t.rows);
+  u.pass_begin = pass_begin;
+  u.pass_end = pass_end;
+  u.output = folder + "tile-" + std::to_string(t.column) + "-" + std::to_string(t.row) + ".passes-" +
+             std::to_string(u.pass_begin) + "-" + std::to_string(u.pass_end) + ".exr";
+  u.argv = common;
+  if (frame >= 0) {
+    u.argv.push_back("--frame");
+    u.argv.push_back(std::to_string(frame));
+  }
+  for (const std::string& w : {std::string("--crop"),
+                               std::to_string(u.crop[0]) + "," + std::to_string(u.crop[1]) + "," +
+                                   std::to_string(u.crop[2]) + "," + std::to_string(u.crop[3]),
+                               std::string("--passes"),
+                               std::to_string(u.pass_begin) + ":" + std::to_string(u.pass_end),
+                               std::string("-o"), u.output}) {
+    u.argv.push_back(w);
+  }
+  return u;
 }
 
 }  // namespace
@@ -58,11 +123,11 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
   const std::vector<int> grid = parse_integers(a.tiles, 'x', 2, "--tiles", "CxR (columns x rows, e.g. 4x2)");
   const int columns = grid[0], rows = grid[1];
   SceneDesc scene = load_scene(a.scene);
+  apply_overrides(scene, a.overrides);
   const RenderSettings& r = scene.render;
-  const int width = a.width > 0 ? a.width : r.width, height = a.height > 0 ? a.height : r.height;
-  const bool treemaker = (a.integrator.empty() ? r.integrator : a.integrator) == "treemaker";
-  const int spp = a.spp > 0 ? a.spp : (treemaker ? r.treemaker_spp : r.spp);
-  const PassPlan passes{spp, r.pass_spp, r.independent_passes};
+  const int width = r.width, height = r.height;
+  const PassPlan passes = pass_plan_for(r);
+  const int spp = passes.spp;
   if (columns < 1 || rows < 1 || columns > width || rows > height) {
     throw InputError({}, "--tiles " + a.tiles + ": the " + std::to_string(width) + "x" + std::to_string(height) +
                              " image splits into 1 to " + std::to_string(width) + " columns and 1 to " +
@@ -78,26 +143,7 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
                              ": adaptive sampling (render.noise_threshold) decides each pass from the ones before "
                              "it, so its passes cannot be split; split it by --tiles only");
   }
-  std::vector<int> frames;
-  if (!a.frames.empty()) {
-    if (scene.animation.frames == 0) throw InputError({scene.path, 0, 0}, "--frames " + a.frames + ": the scene has no [animation] table");
-    const std::vector<int> range = parse_integers(a.frames, ':', 2, "--frames", "A:B (frames A to B-1)");
-    const int first = range[0], end = range[1];
-    if (first < 0 || first >= end || end > scene.animation.frames) {
-      throw InputError({}, "--frames " + a.frames + ": the animation has frames 0 to " +
-                               std::to_string(scene.animation.frames - 1) + ", so A:B needs 0 <= A < B <= " +
-                               std::to_string(scene.animation.frames));
-    }
-    if (a.exr.find('#') == std::string::npos || (!a.png.empty() && a.png.find('#') == std::string::npos)) {
-      throw InputError({}, "--frames: the outputs need a run of '#' for the frame number (e.g. out.####.exr)");
-    }
-    for (int f = first; f < end; ++f) frames.push_back(f);
-  } else {
-    if (a.exr.find('#') != std::string::npos || a.png.find('#') != std::string::npos) {
-      throw InputError({}, "the outputs name a frame number (#): give --frames A:B");
-    }
-    frames.push_back(-1);
-  }
+  const std::vector<int> frames = plan_frames(scene, a);
   // A plan is a list a person and a scheduler read: bounded (docs/farm.md, "Limits").
   const long long unit_count = static_cast<long long>(columns) * rows * a.pass_groups * static_cast<long long>(frames.size());
   if (unit_count > kMaxPlanUnits || static_cast<long long>(columns) * rows * a.pass_groups > kMaxMergeParts) {
@@ -111,21 +157,7 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
   const std::string arbor = a.arbor.empty() ? executable_path() : a.arbor;
   if (arbor.empty()) throw RuntimeFailure("cannot find the path of this arbor (/proc/self/exe)");
   std::vector<std::string> common = {arbor, "render", absolute(a.scene)};
-  const auto add = [&](const std::string& option, const std::string& value) {
-    common.push_back(option);
-    common.push_back(value);
-  };
-  if (a.width > 0) add("--width", std::to_string(a.width));
-  if (a.height > 0) add("--height", std::to_string(a.height));
-  if (a.spp > 0) add("--spp", std::to_string(a.spp));
-  if (a.seed) add("--seed", std::to_string(*a.seed));
-  if (a.time) {
-    char buf[32];
-    const auto end = std::to_chars(buf, buf + sizeof buf, *a.time).ptr;  // shortest exact form
-    add("--time", std::string(buf, end));
-  }
-  if (!a.integrator.empty()) add("--integrator", a.integrator);
-  if (a.transparent) common.push_back("--transparent");
+  for (const std::string& w : override_arguments(a.overrides)) common.push_back(w);
 
   std::vector<PlanStep> units, merges;
   for (const int frame : frames) {
@@ -139,32 +171,8 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
     for (int row = 0; row < rows; ++row) {
       for (int column = 0; column < columns; ++column) {
         for (int g = 0; g < a.pass_groups; ++g) {
-          PlanStep u;
-          u.kind = "render";
-          u.frame = frame;
-          u.column = column;
-          u.row = row;
-          u.crop[0] = static_cast<int>(static_cast<long long>(column) * width / columns);
-          u.crop[1] = static_cast<int>(static_cast<long long>(row) * height / rows);
-          u.crop[2] = static_cast<int>(static_cast<long long>(column + 1) * width / columns);
-          u.crop[3] = static_cast<int>(static_cast<long long>(row + 1) * height / rows);
-          u.pass_begin = g * passes.passes() / a.pass_groups;
-          u.pass_end = (g + 1) * passes.passes() / a.pass_groups;
-          u.output = folder + "tile-" + std::to_string(column) + "-" + std::to_string(row) + ".passes-" +
-                     std::to_string(u.pass_begin) + "-" + std::to_string(u.pass_end) + ".exr";
-          u.argv = common;
-          if (frame >= 0) {
-            u.argv.push_back("--frame");
-            u.argv.push_back(std::to_string(frame));
-          }
-          for (const std::string& w : {std::string("--crop"),
-                                       std::to_string(u.crop[0]) + "," + std::to_string(u.crop[1]) + "," +
-                                           std::to_string(u.crop[2]) + "," + std::to_string(u.crop[3]),
-                                       std::string("--passes"),
-                                       std::to_string(u.pass_begin) + ":" + std::to_string(u.pass_end),
-                                       std::string("-o"), u.output}) {
-            u.argv.push_back(w);
-          }
+          const PlanStep u = tile_unit(common, frame, folder, {columns, rows, column, row, width, height},
+                                       g * passes.passes() / a.pass_groups, (g + 1) * passes.passes() / a.pass_groups);
           merge.inputs.push_back(u.output);
           units.push_back(u);
         }
@@ -180,6 +188,26 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
   }
   units.insert(units.end(), merges.begin(), merges.end());
   return units;
+}
+
+CLI::App* add_plan_command(CLI::App& app, PlanRequest& plan) {
+  CLI::App* cmd = app.add_subcommand(
+      "plan", "Split a render into work units for any scheduler: prints one shell command per unit, then the merge(s)");
+  cmd->add_option("SCENE", plan.scene, "scene file (.toml)")->required();
+  cmd->add_option("-o,--output", plan.exr,
+                  "the merged EXR (with --frames, a run of # takes the frame number: out.####.exr); "
+                  "the parts go in OUT.parts/ beside it")
+      ->required();
+  cmd->add_option("--png", plan.png, "the merged PNG (with #### for --frames)");
+  cmd->add_option("--tiles", plan.tiles, "CxR: crop windows in C columns and R rows")->capture_default_str();
+  cmd->add_option("--pass-groups", plan.pass_groups, "K: each tile's passes in K contiguous runs")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  cmd->add_option("--frames", plan.frames, "A:B: frames A to B-1 of the scene's [animation], one merge each");
+  cmd->add_flag("--json", plan.json, "print the plan as one JSON object (units, merges, argv and shell lines)");
+  add_override_options(cmd, plan.overrides, kSppOption | kSeedOption | kIntegratorOption | kTransparentOption,
+                       "samples per pixel (handed to every unit)");
+  return cmd;
 }
 
 int plan_command(const PlanRequest& a) {
@@ -213,4 +241,4 @@ int plan_command(const PlanRequest& a) {
   return 0;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::app

@@ -1,6 +1,6 @@
-// `arbor export`: the scene as pbrt-v4 sees it. What pbrt-v4 cannot state is said in the file's
+// The scene as pbrt-v4 sees it. What pbrt-v4 cannot state is said in the file's
 // opening comment and in docs/rendering.md.
-#include "tracer/export_command.h"
+#include "tracer/pbrt_scene.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,7 +23,6 @@
 #include "imaging/image_output.h"
 #include "scene/scene.h"
 #include "tracer/lights/sky.h"
-#include "tracer/render_command.h"
 
 namespace arbor::trace {
 
@@ -193,6 +192,8 @@ std::string ground_path_for(const std::string& pbrt_path) {
   return (ends_with(pbrt_path, ".pbrt") ? pbrt_path.substr(0, pbrt_path.size() - 5) : pbrt_path) + ".ground.exr";
 }
 
+namespace {
+
 // The ground's patches have no pbrt counterpart (arbor's noise): near the camera they are baked
 // into an image, kGroundTexels a side over kGroundHalf metres each way (0.25 m a texel, a dozen
 // or more across a patch); the rest of the 10 km ground takes their cover-weighted mean.
@@ -227,65 +228,23 @@ void write_ground_exr(const mat::Material& ground, const Colors& colors, const P
   write_exr(img, output, meta, path);
 }
 
-int export_command(const ExportRequest& a) {
-  if (!ends_with(a.out, ".pbrt")) throw InputError({}, "-o " + a.out + ": the pbrt-v4 scene must end in .pbrt");
-  if (a.sky_resolution < 16 || a.sky_resolution > 8192) {
-    throw InputError({}, "--sky-resolution " + std::to_string(a.sky_resolution) + " must be 16 to 8192");
-  }
-  SceneDesc scene = load_scene(a.scene);
-  RenderSettings& r = scene.render;
-  if (a.width > 0) r.width = a.width;
-  if (a.height > 0) r.height = a.height;
-  if (a.spp > 0) r.spp = a.spp;
-  if (a.time) {
-    for (TreeDesc& t : scene.trees) t.time = *a.time;
-  }
-  // A frame of an animation: its clock (the scene's own outputs are not written here).
-  scene.output.exr.clear();
-  scene.output.png.clear();
-  apply_frame(scene, a.frame);
-  const std::string sky_path = sky_path_for(a.out), ground_path = ground_path_for(a.out);
-  const std::vector<std::string> inputs = scene_inputs(scene);
-  refuse_overwriting("-o", a.out, inputs);
-  refuse_overwriting("the sky beside -o", sky_path, inputs, {a.out});
-  refuse_overwriting("the ground's image beside -o", ground_path, inputs, {a.out, sky_path});
-
-  const ColorPipeline color(a.ocio_config);
-  const std::vector<float> linear = color.chromaticities("scene_linear");
-  if (linear.empty()) {
-    throw InputError({}, "the OCIO config " + color.config_path() +
-                             ": arbor cannot tell the primaries of its scene_linear space, so it cannot "
-                             "state the scene's colours in a pbrt-v4 colour space");
-  }
-  const PbrtColorSpace space = pbrt_color_space_for(linear);
-  std::vector<std::string> clamped;
-  Colors colors;
-  colors.clamped = &clamped;
-  if (space.chromaticities != linear) colors.to_pbrt = rgb_to_rgb(linear, space.chromaticities);
-  prepare_output_folder(a.out);
-
-  Progress build_progress("build", 1);
-  const std::unique_ptr<const Scene> built = build_scene(scene, color.config_path(), &build_progress);
-  build_progress.finish();
-  const Sky sky(scene.sky, scene.sun, color.xyz_to_scene_linear());
-  const float exposure = std::exp2(static_cast<float>(scene.camera.exposure));
-
-  AtomicFile file(a.out);
-  std::string out;
-  out += "# pbrt-v4 scene written by arbor from " + scene.path + "\n";
-  out += "# Units are metres, z is up; colours are in pbrt's \"" + std::string(space.name) +
-         "\" space (arbor's scene_linear" + (colors.to_pbrt ? ", converted" : "") + ").\n"
-         "# Not in pbrt-v4, so not here: the sun's disk (a distant light is a point), the leaves'\n"
-         "# two sides (one reflectance, the mean of front and back) and their cuticle, bark\n"
-         "# roughness (Oren-Nayar) and relief, albedo maps, the ground's patches beyond 128 m of the\n"
-         "# camera (their mean albedo there; nearer, an image), the transparent sky, the AOVs, arbor's\n"
-         "# sampling (pbrt samples its own way).\n";
-  out += "ColorSpace \"" + std::string(space.name) + "\"\n";
+// The opening comment, colour space, camera, film, sampler and integrator, up to WorldBegin.
+std::string camera_text(const SceneDesc& scene, const PbrtColorSpace& space, bool converted, const std::string& out) {
+  const RenderSettings& r = scene.render;
+  std::string text = "# pbrt-v4 scene written by arbor from " + scene.path + "\n";
+  text += "# Units are metres, z is up; colours are in pbrt's \"" + std::string(space.name) +
+          "\" space (arbor's scene_linear" + (converted ? ", converted" : "") + ").\n"
+          "# Not in pbrt-v4, so not here: the sun's disk (a distant light is a point), the leaves'\n"
+          "# two sides (one reflectance, the mean of front and back) and their cuticle, bark\n"
+          "# roughness (Oren-Nayar) and relief, albedo maps, the ground's patches beyond 128 m of the\n"
+          "# camera (their mean albedo there; nearer, an image), the transparent sky, the AOVs, arbor's\n"
+          "# sampling (pbrt samples its own way).\n";
+  text += "ColorSpace \"" + std::string(space.name) + "\"\n";
   // pbrt's camera space is left-handed: mirroring x keeps arbor's right-handed image unmirrored.
   const CameraDesc& cam = scene.camera;
-  out += "Scale -1 1 1\nLookAt " + number(cam.position[0]) + " " + number(cam.position[1]) + " " +
-         number(cam.position[2]) + "  " + number(cam.look_at[0]) + " " + number(cam.look_at[1]) + " " +
-         number(cam.look_at[2]) + "  " + number(cam.up[0]) + " " + number(cam.up[1]) + " " + number(cam.up[2]) + "\n";
+  text += "Scale -1 1 1\nLookAt " + number(cam.position[0]) + " " + number(cam.position[1]) + " " +
+          number(cam.position[2]) + "  " + number(cam.look_at[0]) + " " + number(cam.look_at[1]) + " " +
+          number(cam.look_at[2]) + "  " + number(cam.up[0]) + " " + number(cam.up[1]) + " " + number(cam.up[2]) + "\n";
   // arbor's fov is vertical; pbrt's spans the image's shorter side.
   const double aspect = static_cast<double>(r.width) / r.height;
   const double fov = aspect >= 1.0 ? cam.fov
@@ -295,69 +254,76 @@ int export_command(const ExportRequest& a) {
                            : std::sqrt(std::pow(cam.look_at[0] - cam.position[0], 2) +
                                        std::pow(cam.look_at[1] - cam.position[1], 2) +
                                        std::pow(cam.look_at[2] - cam.position[2], 2));
-  out += "Camera \"perspective\" \"float fov\" " + number(fov);
+  text += "Camera \"perspective\" \"float fov\" " + number(fov);
   if (cam.aperture_radius > 0.0) {
-    out += " \"float lensradius\" " + number(cam.aperture_radius) + " \"float focaldistance\" " + number(focus);
+    text += " \"float lensradius\" " + number(cam.aperture_radius) + " \"float focaldistance\" " + number(focus);
   }
-  out += "\nFilm \"rgb\" \"integer xresolution\" " + std::to_string(r.width) + " \"integer yresolution\" " +
-         std::to_string(r.height) + " \"string filename\" \"" +
-         file_name(a.out.substr(0, a.out.size() - 5)) + ".exr\"\n";
-  out += "PixelFilter \"triangle\" \"float xradius\" 1 \"float yradius\" 1\n";
-  out += "Sampler \"zsobol\" \"integer pixelsamples\" " + std::to_string(r.spp) + "\n";
-  out += "Integrator \"volpath\" \"integer maxdepth\" " + std::to_string(r.max_depth) + "\n";
-  out += "\nWorldBegin\n\n";
+  text += "\nFilm \"rgb\" \"integer xresolution\" " + std::to_string(r.width) + " \"integer yresolution\" " +
+          std::to_string(r.height) + " \"string filename\" \"" + file_name(out.substr(0, out.size() - 5)) + ".exr\"\n";
+  text += "PixelFilter \"triangle\" \"float xradius\" 1 \"float yradius\" 1\n";
+  text += "Sampler \"zsobol\" \"integer pixelsamples\" " + std::to_string(r.spp) + "\n";
+  text += "Integrator \"volpath\" \"integer maxdepth\" " + std::to_string(r.max_depth) + "\n";
+  return text + "\nWorldBegin\n\n";
+}
 
-  // The lights; the camera's exposure scales them (pbrt's film has no exposure of its own).
+// The sun and the sky; the camera's exposure scales them (pbrt's film has no exposure of its own).
+std::string lights_text(const SceneDesc& scene, const Sky& sky, const Colors& colors, const std::string& sky_path) {
+  const float exposure = std::exp2(static_cast<float>(scene.camera.exposure));
+  std::string text;
   if (sky.has_sun() && sky.sun_irradiance() > 0.0f) {
     const glm::vec3 e = colors.light(sky.sun_irradiance_color());
-    out += "# the sun: irradiance on a plane facing it\nLightSource \"distant\" \"point3 from\" [ " +
-           triple(sky.sun_direction()) + " ] \"point3 to\" [ 0 0 0 ] " + gen::pbrt_rgb("L", Colors::to_rgb(e)) +
-           " \"float scale\" " + number(exposure) + "\n";
+    text += "# the sun: irradiance on a plane facing it\nLightSource \"distant\" \"point3 from\" [ " +
+            triple(sky.sun_direction()) + " ] \"point3 to\" [ 0 0 0 ] " + gen::pbrt_rgb("L", Colors::to_rgb(e)) +
+            " \"float scale\" " + number(exposure) + "\n";
   }
   if (!sky.empty()) {
-    out += "# the sky (" + scene.sky.model + "), sampled into an equal-area square\nLightSource \"infinite\" \"string filename\" \"" +
-           file_name(sky_path) + "\" \"float scale\" " + number(exposure) + "\n";
+    text += "# the sky (" + scene.sky.model + "), sampled into an equal-area square\nLightSource \"infinite\" \"string filename\" \"" +
+            file_name(sky_path) + "\" \"float scale\" " + number(exposure) + "\n";
   }
+  return text;
+}
 
-  // Materials first, then the trees as object instances (one object per prototype and its pair of
-  // materials), the meshes, the ground.
-  Materials materials(colors);
-  std::map<std::tuple<int, std::string, std::string>, std::string> objects;
+// The trees as object instances: one object per prototype and its pair of materials (named in
+// `materials` on first use), and the instances of them.
+struct TreeObjects {
+  std::map<std::tuple<int, std::string, std::string>, std::string> objects;  // (prototype, bark, leaf) → name
   std::string instances;
-  for (const TreeInstance& inst : built->instances) {
-    const std::string label = built->object_names.at(inst.object_id - 1);
+};
+
+TreeObjects tree_objects(const Scene& built, Materials& materials) {
+  TreeObjects trees;
+  for (const TreeInstance& inst : built.instances) {
+    const std::string label = built.object_names.at(inst.object_id - 1);
     const std::string species = label.substr(0, label.rfind('.'));
     const std::string bark = materials.name_of(inst.bark, species + " bark");
     const std::string leaf = materials.name_of(inst.leaf, species + " leaf");
-    auto [at, fresh] = objects.emplace(std::make_tuple(inst.prototype, bark, leaf), "");
-    if (fresh) at->second = "tree" + std::to_string(objects.size()) + " " + species;
-    instances += "AttributeBegin # " + label + "\n  " + transform_of(inst.to_world) + "\n  ObjectInstance \"" +
-                 at->second + "\"\nAttributeEnd\n";
+    auto [at, fresh] = trees.objects.emplace(std::make_tuple(inst.prototype, bark, leaf), "");
+    if (fresh) at->second = "tree" + std::to_string(trees.objects.size()) + " " + species;
+    trees.instances += "AttributeBegin # " + label + "\n  " + transform_of(inst.to_world) + "\n  ObjectInstance \"" +
+                       at->second + "\"\nAttributeEnd\n";
   }
-  std::vector<std::vector<std::string>> mesh_materials;
-  for (const MeshObject& m : built->meshes) {
-    std::vector<std::string> names;
-    const std::string label = built->object_names.at(m.object_id - 1);
-    for (std::size_t k = 0; k < m.materials.size(); ++k) {
-      names.push_back(materials.name_of(m.materials[k], built->material_names.at(m.material_ids[k] - 1)));
-    }
-    mesh_materials.push_back(names);
-  }
-  const std::string ground = built->has_ground ? materials.name_of(built->ground, "ground") : "";
-  out += "\n" + materials.text() + "\n";
+  return trees;
+}
 
-  for (const auto& [key, name] : objects) {
-    const gen::TreeGeometry& g = *built->prototypes.at(static_cast<std::size_t>(std::get<0>(key))).geometry;
+// The objects' shapes, then the instances, appended to `out` (flushed to `file` as it grows).
+void write_trees(const Scene& built, const TreeObjects& trees, std::string& out, AtomicFile& file) {
+  for (const auto& [key, name] : trees.objects) {
+    const gen::TreeGeometry& g = *built.prototypes.at(static_cast<std::size_t>(std::get<0>(key))).geometry;
     out += "ObjectBegin \"" + name + "\"\n";
     gen::append_pbrt_shapes(g, "NamedMaterial \"" + std::get<1>(key) + "\"",
                             "NamedMaterial \"" + std::get<2>(key) + "\"", gen::UpAxis::Z, out, file);
     out += "ObjectEnd\n";
     gen::flush_if_large(out, file);
   }
-  out += "\n" + instances;
+  out += "\n" + trees.instances;
+}
 
-  for (std::size_t i = 0; i < built->meshes.size(); ++i) {
-    const MeshObject& m = built->meshes[i];
+// The OBJ meshes, one trianglemesh per mesh and material, with the materials named in
+// `mesh_materials`.
+void write_meshes(const Scene& built, const std::vector<std::vector<std::string>>& mesh_materials, std::string& out,
+                  AtomicFile& file) {
+  for (std::size_t i = 0; i < built.meshes.size(); ++i) {
+    const MeshObject& m = built.meshes[i];
     const bool has_normals = !m.normals.empty();
     for (std::size_t k = 0; k < m.materials.size(); ++k) {
       // Each triangle's corners on their own (the OBJ's normals are indexed apart from its points).
@@ -378,7 +344,7 @@ int export_command(const ExportRequest& a) {
         }
       }
       if (corners == 0) continue;
-      out += "AttributeBegin # " + built->object_names.at(m.object_id - 1) + "\n  NamedMaterial \"" +
+      out += "AttributeBegin # " + built.object_names.at(m.object_id - 1) + "\n  NamedMaterial \"" +
              mesh_materials[i][k] + "\"\n  Shape \"trianglemesh\" \"point3 P\" [ " + p + "]";
       if (has_normals) out += "\n    \"normal N\" [ " + n + "]";
       out += "\n    \"integer indices\" [ ";
@@ -387,43 +353,98 @@ int export_command(const ExportRequest& a) {
       gen::flush_if_large(out, file);
     }
   }
+}
+
+// The ground: the plane z = 0, 10 km each way, in material `ground`; with patches, the square
+// around `centre` in their baked image (ground_image) and the rest around it in `ground`.
+std::string ground_text(const std::string& ground, bool patches, glm::vec2 centre, const std::string& ground_image) {
+  if (!patches) {
+    return "AttributeBegin # ground: the plane z = 0, 10 km each way\n  NamedMaterial \"" + ground +
+           "\"\n  Shape \"trianglemesh\" \"point3 P\" [ -1e4 -1e4 0  1e4 -1e4 0  1e4 1e4 0  -1e4 1e4 0 ]"
+           " \"integer indices\" [ 0 1 2 0 2 3 ]\nAttributeEnd\n";
+  }
+  const float x0 = centre.x - kGroundHalf, x1 = centre.x + kGroundHalf;
+  const float y0 = centre.y - kGroundHalf, y1 = centre.y + kGroundHalf;
+  const std::string inner = number(x0) + " " + number(y0) + " 0  " + number(x1) + " " + number(y0) + " 0  " +
+                            number(x1) + " " + number(y1) + " 0  " + number(x0) + " " + number(y1) + " 0";
+  return "# the ground's patches near the camera, baked (" + file_name(ground_image) + "); beyond, their mean\n"
+         "Texture \"ground patches\" \"spectrum\" \"imagemap\" \"string filename\" \"" + file_name(ground_image) +
+         "\"\nMakeNamedMaterial \"ground patches\" \"string type\" \"diffuse\" \"texture reflectance\" \"ground patches\"\n"
+         "AttributeBegin # ground near the camera: " + number(2.0f * kGroundHalf) + " m square\n  NamedMaterial \"ground patches\"\n"
+         "  Shape \"trianglemesh\" \"point3 P\" [ " + inner + " ] \"point2 uv\" [ 0 0  1 0  1 1  0 1 ]"
+         " \"integer indices\" [ 0 1 2 0 2 3 ]\nAttributeEnd\n"
+         "AttributeBegin # the rest of the ground: the plane z = 0 to 10 km each way, around that square\n"
+         "  NamedMaterial \"" + ground + "\"\n  Shape \"trianglemesh\" \"point3 P\" [ -1e4 -1e4 0  1e4 -1e4 0  1e4 1e4 0  -1e4 1e4 0  " +
+         inner + " ] \"integer indices\" [ 0 1 5  0 5 4  1 2 6  1 6 5  2 3 7  2 7 6  3 0 4  3 4 7 ]\nAttributeEnd\n";
+}
+
+}  // namespace
+
+PbrtColorSpace pbrt_color_space_of(const ColorPipeline& color) {
+  const std::vector<float> linear = color.chromaticities("scene_linear");
+  if (linear.empty()) {
+    throw InputError({}, "the OCIO config " + color.config_path() +
+                             ": arbor cannot tell the primaries of its scene_linear space, so it cannot "
+                             "state the scene's colours in a pbrt-v4 colour space");
+  }
+  return pbrt_color_space_for(linear);
+}
+
+PbrtExport write_pbrt_scene(const SceneDesc& scene, const ColorPipeline& color, const std::string& out,
+                            int sky_resolution) {
+  const std::vector<float> linear = color.chromaticities("scene_linear");
+  PbrtExport result;
+  const PbrtColorSpace space = pbrt_color_space_of(color);
+  result.space = space.name;
+  Colors colors;
+  colors.clamped = &result.clamped;
+  if (space.chromaticities != linear) colors.to_pbrt = rgb_to_rgb(linear, space.chromaticities);
+
+  Progress build_progress("build", 1);
+  const std::unique_ptr<const Scene> built = build_scene(scene, color.config_path(), &build_progress);
+  build_progress.finish();
+  const Sky sky(scene.sky, scene.sun, color.xyz_to_scene_linear());
+  const std::string sky_path = sky_path_for(out), ground_path = ground_path_for(out);
+
+  AtomicFile file(out);
+  std::string text = camera_text(scene, space, static_cast<bool>(colors.to_pbrt), out);
+  text += lights_text(scene, sky, colors, sky_path);
+  // Materials first, then the trees, the meshes, the ground.
+  Materials materials(colors);
+  const TreeObjects trees = tree_objects(*built, materials);
+  std::vector<std::vector<std::string>> mesh_materials;
+  for (const MeshObject& m : built->meshes) {
+    std::vector<std::string> names;
+    for (std::size_t k = 0; k < m.materials.size(); ++k) {
+      names.push_back(materials.name_of(m.materials[k], built->material_names.at(m.material_ids[k] - 1)));
+    }
+    mesh_materials.push_back(names);
+  }
+  const std::string ground = built->has_ground ? materials.name_of(built->ground, "ground") : "";
+  text += "\n" + materials.text() + "\n";
+  write_trees(*built, trees, text, file);
+  write_meshes(*built, mesh_materials, text, file);
   const bool ground_patches = built->has_ground && built->ground.kind == mat::Material::Kind::Ground &&
                               built->ground.ground.cover > 0.0f;
   // Centred on the camera, on a whole metre (the same export twice gives the same files).
   const glm::vec2 ground_centre(std::round(static_cast<float>(scene.camera.position[0])),
                                 std::round(static_cast<float>(scene.camera.position[1])));
-  if (built->has_ground && !ground_patches) {
-    out += "AttributeBegin # ground: the plane z = 0, 10 km each way\n  NamedMaterial \"" + ground +
-           "\"\n  Shape \"trianglemesh\" \"point3 P\" [ -1e4 -1e4 0  1e4 -1e4 0  1e4 1e4 0  -1e4 1e4 0 ]"
-           " \"integer indices\" [ 0 1 2 0 2 3 ]\nAttributeEnd\n";
-  } else if (ground_patches) {
-    const float x0 = ground_centre.x - kGroundHalf, x1 = ground_centre.x + kGroundHalf;
-    const float y0 = ground_centre.y - kGroundHalf, y1 = ground_centre.y + kGroundHalf;
-    const std::string inner = number(x0) + " " + number(y0) + " 0  " + number(x1) + " " + number(y0) + " 0  " +
-                              number(x1) + " " + number(y1) + " 0  " + number(x0) + " " + number(y1) + " 0";
-    out += "# the ground's patches near the camera, baked (" + file_name(ground_path) + "); beyond, their mean\n"
-           "Texture \"ground patches\" \"spectrum\" \"imagemap\" \"string filename\" \"" + file_name(ground_path) +
-           "\"\nMakeNamedMaterial \"ground patches\" \"string type\" \"diffuse\" \"texture reflectance\" \"ground patches\"\n"
-           "AttributeBegin # ground near the camera: " + number(2.0f * kGroundHalf) + " m square\n  NamedMaterial \"ground patches\"\n"
-           "  Shape \"trianglemesh\" \"point3 P\" [ " + inner + " ] \"point2 uv\" [ 0 0  1 0  1 1  0 1 ]"
-           " \"integer indices\" [ 0 1 2 0 2 3 ]\nAttributeEnd\n"
-           "AttributeBegin # the rest of the ground: the plane z = 0 to 10 km each way, around that square\n"
-           "  NamedMaterial \"" + ground + "\"\n  Shape \"trianglemesh\" \"point3 P\" [ -1e4 -1e4 0  1e4 -1e4 0  1e4 1e4 0  -1e4 1e4 0  " +
-           inner + " ] \"integer indices\" [ 0 1 5  0 5 4  1 2 6  1 6 5  2 3 7  2 7 6  3 0 4  3 4 7 ]\nAttributeEnd\n";
-  }
+  if (built->has_ground) text += ground_text(ground, ground_patches, ground_centre, ground_path);
 
   // The sky goes first: a failed write of the scene leaves at most a new sky beside the old
   // scene, never a scene naming a sky that is not there.
-  if (!sky.empty()) write_sky_exr(sky, colors, space, a.sky_resolution, built->has_ground, sky_path);
-  if (ground_patches) write_ground_exr(built->ground, colors, space, ground_centre, ground_path);
-  file.write(out);
-  file.commit();
-  for (const std::string& c : clamped) {
-    std::fprintf(stderr, "arbor: warning: %s is outside [0, 1] in pbrt's %s space; clamped\n", c.c_str(), space.name);
+  result.written.push_back(out);
+  if (!sky.empty()) {
+    write_sky_exr(sky, colors, space, sky_resolution, built->has_ground, sky_path);
+    result.written.push_back(sky_path);
   }
-  std::fprintf(stderr, "arbor: wrote %s%s%s\n", a.out.c_str(), sky.empty() ? "" : (", " + sky_path).c_str(),
-               ground_patches ? (", " + ground_path).c_str() : "");
-  return 0;
+  if (ground_patches) {
+    write_ground_exr(built->ground, colors, space, ground_centre, ground_path);
+    result.written.push_back(ground_path);
+  }
+  file.write(text);
+  file.commit();
+  return result;
 }
 
 }  // namespace arbor::trace

@@ -1,0 +1,69 @@
+// `arbor export`: load the scene, apply the overrides, check the outputs, write the pbrt-v4
+// scene, report.
+#include "app/commands/export.h"
+
+#include <cstdio>
+#include <vector>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "common/strings.h"
+#include "formats/scene_desc.h"
+#include "imaging/color.h"
+#include "scene/frame.h"
+#include "tracer/pbrt_scene.h"
+
+namespace arbor::app {
+
+using namespace arbor::trace;
+
+CLI::App* add_export_command(CLI::App& app, ExportRequest& exp) {
+  CLI::App* cmd = app.add_subcommand(
+      "export", "Write a scene as a complete pbrt-v4 scene (camera, sun and sky, materials, trees, meshes, ground)");
+  cmd->add_option("SCENE", exp.scene, "scene file (.toml)")->required();
+  cmd->add_option("-o,--output", exp.out, "the pbrt-v4 scene to write (OUT.pbrt; its sky goes beside it as OUT.sky.exr)")
+      ->required();
+  add_override_options(cmd, exp.overrides, kSppOption, "pbrt's pixel samples (overrides render.spp)");
+  cmd->add_option("--frame", exp.frame, "frame N of the scene's [animation]: every tree at time N / fps")
+      ->check(CLI::Range(0, 1000000));
+  cmd->add_option("--sky-resolution", exp.sky_resolution, "texels along each side of the sky's equal-area square image")
+      ->check(CLI::Range(16, 8192))
+      ->capture_default_str();
+  return cmd;
+}
+
+int export_command(const ExportRequest& a) {
+  if (!ends_with(a.out, ".pbrt")) throw InputError({}, "-o " + a.out + ": the pbrt-v4 scene must end in .pbrt");
+  if (a.sky_resolution < 16 || a.sky_resolution > 8192) {
+    throw InputError({}, "--sky-resolution " + std::to_string(a.sky_resolution) + " must be 16 to 8192");
+  }
+  SceneDesc scene = load_scene(a.scene);
+  // pbrt renders the exact image: --spp is the path integrator's sample count.
+  RenderOverrides overrides = a.overrides;
+  overrides.integrator = "path";
+  apply_overrides(scene, overrides);
+  // A frame of an animation: its clock (the scene's own outputs are not written here).
+  scene.output.exr.clear();
+  scene.output.png.clear();
+  apply_frame(scene, a.frame);
+  const std::string sky_path = sky_path_for(a.out), ground_path = ground_path_for(a.out);
+  const std::vector<std::string> inputs = scene_inputs(scene);
+  refuse_overwriting("-o", a.out, inputs);
+  refuse_overwriting("the sky beside -o", sky_path, inputs, {a.out});
+  refuse_overwriting("the ground's image beside -o", ground_path, inputs, {a.out, sky_path});
+  const ColorPipeline color(a.ocio_config);
+  pbrt_color_space_of(color);  // refused before anything is made
+  prepare_output_folder(a.out);
+
+  const PbrtExport result = write_pbrt_scene(scene, color, a.out, a.sky_resolution);
+  for (const std::string& c : result.clamped) {
+    std::fprintf(stderr, "arbor: warning: %s is outside [0, 1] in pbrt's %s space; clamped\n", c.c_str(),
+                 result.space.c_str());
+  }
+  std::string files;
+  for (const std::string& f : result.written) files += (files.empty() ? "" : ", ") + f;
+  std::fprintf(stderr, "arbor: wrote %s\n", files.c_str());
+  return 0;
+}
+
+}  // namespace arbor::app
