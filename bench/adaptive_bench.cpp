@@ -42,9 +42,9 @@ trace::Image render(const trace::SceneDesc& s) {
   const std::unique_ptr<const trace::Scene> scene = trace::build_scene(s, kOcioConfig);
   const trace::World world(*scene, device);
   const trace::ColorPipeline color(kOcioConfig);
-  const trace::Sky sky(s.sky, s.sun, color.xyz_to_scene_linear());
+  const trace::Sky sky(sky_spec(s.sky), sun_spec(s.sun), color.xyz_to_scene_linear());
   trace::RenderStats stats;
-  return trace::render_image(s, world, sky, color.to_output(s.output.colorspace), stats);
+  return trace::render_image(render_input(s), world, sky, color.to_output(s.output.colorspace), stats);
 }
 
 const trace::Image& reference() {

@@ -109,7 +109,7 @@ void scene(benchmark::State& state, trace::SceneDesc (*make)()) {
   const trace::World world(*built, device);
   const double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
   const trace::ColorPipeline color(kOcioConfig);
-  const trace::Sky sky(s.sky, s.sun, color.xyz_to_scene_linear());
+  const trace::Sky sky(sky_spec(s.sky), sun_spec(s.sun), color.xyz_to_scene_linear());
   const trace::ColorTransform to_output = color.to_output(s.output.colorspace);
   double seconds = 0, variance = 0;
   std::uint64_t samples = 0, rays = 0;
@@ -120,7 +120,7 @@ void scene(benchmark::State& state, trace::SceneDesc (*make)()) {
       s.render.seed = static_cast<std::uint64_t>(k + 1);
       trace::RenderStats stats;
       const auto start = std::chrono::steady_clock::now();
-      images[k] = trace::render_image(s, world, sky, to_output, stats);
+      images[k] = trace::render_image(render_input(s), world, sky, to_output, stats);
       seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       samples += stats.samples;
       rays += stats.rays;

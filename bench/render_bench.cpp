@@ -91,11 +91,11 @@ void render_frames(benchmark::State& state, int spp, bool treemaker) {
   const trace::EmbreeDevice device("threads=1");
   const BuiltWorld built(scene, device);
   const trace::World& world = built.world;
-  const trace::Sky sky(scene.sky, scene.sun, trace::ColorPipeline(kOcioConfig).xyz_to_scene_linear());
+  const trace::Sky sky(sky_spec(scene.sky), sun_spec(scene.sun), trace::ColorPipeline(kOcioConfig).xyz_to_scene_linear());
   std::uint64_t rays = 0, samples = 0;
   for (auto _ : state) {
     trace::RenderStats stats;
-    const trace::Image img = trace::render_image(scene, world, sky, [](float*) {}, stats);
+    const trace::Image img = trace::render_image(render_input(scene), world, sky, [](float*) {}, stats);
     benchmark::DoNotOptimize(img.beauty.data());
     rays += stats.rays;
     samples += stats.samples;

@@ -11,6 +11,7 @@
 
 #include "common/error.h"
 #include "common/math.h"
+#include "imaging/output_spec.h"
 
 namespace arbor::trace {
 
@@ -138,31 +139,15 @@ struct MeshDesc {
   std::map<std::string, MeshMaterialDesc> materials;  // by OBJ group or material name
 };
 
-struct OutputDesc {
+// The [output] table: the files, and the output specification they are written by
+// (imaging/output_spec.h: colour space, display and view, pixel type, AOVs, transparent sky).
+struct OutputDesc : OutputSpec {
   std::string exr;  // resolved; empty: none
   std::string png;
-  // Linear Rec.709 by default: what EXR readers assume of an untagged or unread file (Blender's
-  // "Linear", Nuke's "linear", OIIO's "Linear"), so the EXR opens right without setting anything;
-  // "ACEScg" on request (tagged, for ACES pipelines).
-  std::string colorspace = "Linear Rec.709 (sRGB)";
-  std::string display = "sRGB";
-  std::string view = "ACES 1.0 SDR-video";
-  // of "albedo", "normal", "depth", "variance", "samples", "object_id", "material_id",
-  // "crypto_object", "crypto_material", "treemaker"
-  std::vector<std::string> aovs;
-  bool transparent_sky = false;  // camera rays that escape add nothing: alpha 0, premultiplied
   double checkpoint_seconds = 0.0;  // rewrite the outputs this often as passes finish; 0: never
   SourceLocation treemaker_aov_where;  // where "treemaker" is listed (only that integrator has it)
-  std::string pixel_type = "half";
-  // Whether the AOVs need the compositing ids (object_id, material_id, crypto_*).
-  bool wants_ids() const {
-    for (const std::string& a : aovs) {
-      if (a == "object_id" || a == "material_id" || a == "crypto_object" || a == "crypto_material") return true;
-    }
-    return false;
-  }
   // The keys' positions, for errors found later (by the OCIO config); the file's when unset.
-  SourceLocation colorspace_where, display_where, view_where;
+  OutputKeys where;
 };
 
 // An animation (docs/farm.md): frame N is rendered at clock N / fps seconds. Trees of models that

@@ -36,7 +36,7 @@ class SceneReader : TomlReader {
     files_.clear();
     const SourceLocation file{path(), 0, 0};
     s.camera.look_at_where = s.camera.up_where = file;
-    s.output.colorspace_where = s.output.display_where = s.output.view_where = file;
+    s.output.where = {file, file, file};
     for (auto&& [key, node] : root) {
       const std::string k(key.str());
       if (k == "render") render(table(node, k), s.render);
@@ -331,24 +331,24 @@ class SceneReader : TomlReader {
   }
 
   void output(const toml::table& t, OutputDesc& o) const {
-    o.colorspace_where = o.display_where = o.view_where = at(t.source());
+    o.where = {at(t.source()), at(t.source()), at(t.source())};
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
       if (k == "exr") { o.exr = file(n, "output.exr"); extension(n, o.exr, ".exr", "output.exr"); }
       else if (k == "png") { o.png = file(n, "output.png"); extension(n, o.png, ".png", "output.png"); }
-      else if (k == "colorspace") { o.colorspace = text(n, "output.colorspace"); o.colorspace_where = at(n.source()); }
-      else if (k == "display") { o.display = text(n, "output.display"); o.display_where = at(n.source()); }
-      else if (k == "view") { o.view = text(n, "output.view"); o.view_where = at(n.source()); }
+      else if (k == "colorspace") { o.colorspace = text(n, "output.colorspace"); o.where.colorspace = at(n.source()); }
+      else if (k == "display") { o.display = text(n, "output.display"); o.where.display = at(n.source()); }
+      else if (k == "view") { o.view = text(n, "output.view"); o.where.view = at(n.source()); }
       else if (k == "checkpoint_seconds") o.checkpoint_seconds = number(n, "output.checkpoint_seconds", 0.0, 1e7);
-      else if (k == "pixel_type") o.pixel_type = choice(n, "output.pixel_type", {"half", "float"});
+      else if (k == "pixel_type") o.pixel_type = static_cast<PixelType>(choice_index(n, "output.pixel_type", kPixelTypeNames));
       else if (k == "transparent_sky") o.transparent_sky = boolean(n, "output.transparent_sky");
       else if (k == "aovs") {
         const toml::array* a = n.as_array();
         if (!a) fail(n, "output.aovs must be an array of strings");
         for (const toml::node& e : *a) {
-          o.aovs.push_back(choice(e, "output.aovs", {"albedo", "normal", "depth", "variance", "samples", "object_id",
-                                                     "material_id", "crypto_object", "crypto_material", "treemaker"}));
-          if (o.aovs.back() == "treemaker") o.treemaker_aov_where = at(e.source());
+          const Aov aov = static_cast<Aov>(choice_index(e, "output.aovs", kAovNames));
+          o.aovs.add(aov);
+          if (aov == Aov::Treemaker) o.treemaker_aov_where = at(e.source());
         }
       } else unknown(key, "output");
     }

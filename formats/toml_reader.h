@@ -2,6 +2,7 @@
 // share. Every failure is an InputError at the value's file, line and column.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
@@ -124,11 +125,20 @@ class TomlReader {
   // One of `options`; the message lists them.
   std::string choice(const toml::node& n, std::string_view name,
                      std::initializer_list<const char*> options) const {
+    return options.begin()[choice_index(n, name, options.begin(), options.size())];
+  }
+  // The index of the one of `options` (a type's table of names) that `n` names.
+  template <std::size_t N>
+  std::size_t choice_index(const toml::node& n, std::string_view name, const std::array<const char*, N>& options) const {
+    return choice_index(n, name, options.data(), N);
+  }
+  std::size_t choice_index(const toml::node& n, std::string_view name, const char* const* options,
+                           std::size_t count) const {
     const std::string v = text(n, name);
     std::string list;
-    for (const char* o : options) {
-      if (v == o) return v;
-      list += std::string(list.empty() ? "" : ", ") + "\"" + o + "\"";
+    for (std::size_t i = 0; i < count; ++i) {
+      if (v == options[i]) return i;
+      list += std::string(list.empty() ? "" : ", ") + "\"" + options[i] + "\"";
     }
     fail(n, std::string(name) + " must be one of " + list + ", not \"" + v + "\"");
   }

@@ -267,15 +267,15 @@ ColorPipeline::ColorPipeline(std::string config_path)
 
 ColorPipeline::~ColorPipeline() = default;
 
-void ColorPipeline::check(const OutputDesc& o) const {
+void ColorPipeline::check(const OutputSpec& o, const OutputKeys& where) const {
   const OCIO::Config& c = *impl_->config;
   if (!c.getColorSpace(o.colorspace.c_str())) {
     std::vector<std::string> names;
     for (int i = 0; i < c.getNumColorSpaces(); ++i) names.emplace_back(c.getColorSpaceNameByIndex(i));
-    throw InputError(o.colorspace_where, "output.colorspace \"" + o.colorspace + "\" is not in the OCIO config " +
+    throw InputError(where.colorspace, "output.colorspace \"" + o.colorspace + "\" is not in the OCIO config " +
                              config_path_ + "; it has " + list_of(names));
   }
-  check_display_view(o.display, o.view, o.display_where, o.view_where);
+  check_display_view(o.display, o.view, where.display, where.view);
   (void)to_output(o.colorspace);  // a space OCIO cannot convert to fails here, not after the render
 }
 

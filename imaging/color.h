@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "formats/scene_desc.h"
+#include "imaging/output_spec.h"
 
 namespace arbor::trace {
 
@@ -26,7 +26,7 @@ class ColorPipeline {
 
   // InputError at the scene key when the output's colour space, display or view is not in the
   // config, listing what the config has.
-  void check(const OutputDesc& output) const;
+  void check(const OutputSpec& output, const OutputKeys& where = {}) const;
   // scene_linear → `colorspace`, per pixel.
   ColorTransform to_output(const std::string& colorspace) const;
   // InputError unless `display` is a display of the config and `view` one of its views, listing

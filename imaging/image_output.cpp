@@ -67,11 +67,11 @@ namespace {
 // The planes of an EXR, added in channel order: the colour, alpha and the asked-for AOVs.
 class Planes {
  public:
-  Planes(const Image& img, const OutputDesc& o)
+  Planes(const Image& img, const OutputSpec& o)
       : img_(img), o_(o), n_(static_cast<std::size_t>(img.width) * img.height),
-        colour_(o.pixel_type == "float" ? Imf::FLOAT : Imf::HALF) {}
+        colour_(o.pixel_type == PixelType::Float ? Imf::FLOAT : Imf::HALF) {}
 
-  bool wants(const char* aov) const { return std::find(o_.aovs.begin(), o_.aovs.end(), aov) != o_.aovs.end(); }
+  bool wants(Aov aov) const { return o_.aovs.has(aov); }
   Imf::PixelType colour() const { return colour_; }
   std::vector<Plane>& planes() { return planes_; }
 
@@ -80,31 +80,31 @@ class Planes {
     triple("R", "G", "B", colour_, img_.beauty);
     // Alpha: the share of camera rays that hit something (RGB is premultiplied by it).
     plane("A", colour_) = img_.alpha.size() == n_ ? img_.alpha : std::vector<float>(n_, 1.0f);
-    if (wants("albedo")) triple("albedo.R", "albedo.G", "albedo.B", colour_, img_.albedo);
-    if (wants("normal")) triple("N.X", "N.Y", "N.Z", colour_, img_.normal);
+    if (wants(Aov::Albedo)) triple("albedo.R", "albedo.G", "albedo.B", colour_, img_.albedo);
+    if (wants(Aov::Normal)) triple("N.X", "N.Y", "N.Z", colour_, img_.normal);
     // Depth and variance keep full precision: reference tests divide by the variance.
-    if (wants("depth")) plane("Z", Imf::FLOAT) = img_.depth;
-    if (wants("variance")) triple("variance.R", "variance.G", "variance.B", Imf::FLOAT, img_.variance);
+    if (wants(Aov::Depth)) plane("Z", Imf::FLOAT) = img_.depth;
+    if (wants(Aov::Variance)) triple("variance.R", "variance.G", "variance.B", Imf::FLOAT, img_.variance);
     // Single-channel AOVs are PASS.X (Blender's multilayer reader drops a channel named without a
     // one-letter component, as it drops "object_id"; Nuke reads PASS as the layer).
-    if (wants("samples")) plane("samples.X", Imf::FLOAT) = img_.samples;
+    if (wants(Aov::Samples)) plane("samples.X", Imf::FLOAT) = img_.samples;
   }
 
   // object_id / material_id: the id that covers most of the pixel, as a float (exact to 2^24),
   // for a quick mask; Cryptomatte for anti-aliased mattes.
   void add_ids() {
-    const bool ids = wants("object_id") || wants("material_id") || wants("crypto_object") || wants("crypto_material");
+    const bool ids = wants(Aov::ObjectId) || wants(Aov::MaterialId) || wants(Aov::CryptoObject) || wants(Aov::CryptoMaterial);
     if (ids && img_.id_slots == 0) throw std::logic_error("write_exr: id AOVs asked of an image without ids");
-    if (wants("object_id")) top_id("object_id.X", img_.object_ids, img_.object_cover);
-    if (wants("material_id")) top_id("material_id.X", img_.material_ids, img_.material_cover);
-    if (wants("crypto_object")) crypto("crypto_object", img_.object_ids, img_.object_cover, img_.object_names);
-    if (wants("crypto_material")) crypto("crypto_material", img_.material_ids, img_.material_cover, img_.material_names);
+    if (wants(Aov::ObjectId)) top_id("object_id.X", img_.object_ids, img_.object_cover);
+    if (wants(Aov::MaterialId)) top_id("material_id.X", img_.material_ids, img_.material_cover);
+    if (wants(Aov::CryptoObject)) crypto("crypto_object", img_.object_ids, img_.object_cover, img_.object_names);
+    if (wants(Aov::CryptoMaterial)) crypto("crypto_material", img_.material_ids, img_.material_cover, img_.material_names);
   }
 
   // The treemaker integrator's factors and contributions; they stay float: compare
   // --fit-treemaker solves with them.
   void add_treemaker() {
-    if (!wants("treemaker")) return;
+    if (!wants(Aov::Treemaker)) return;
     if (img_.extra_names.empty()) {
       // render_command refuses this scene (at its key) before rendering; reaching here is a bug.
       throw std::logic_error("write_exr: \"treemaker\" AOVs asked of an image without them");
@@ -165,7 +165,7 @@ class Planes {
   }
 
   const Image& img_;
-  const OutputDesc& o_;
+  const OutputSpec& o_;
   std::size_t n_;
   Imf::PixelType colour_;
   std::vector<Plane> planes_;
@@ -177,7 +177,7 @@ void text_attribute(Imf::Header& header, const std::string& key, const std::stri
 void int_attribute(Imf::Header& header, const char* key, int value) { header.insert(key, Imf::IntAttribute(value)); }
 
 // The render's own attributes (arbor:…): how it was made, how far it got.
-void add_render_attributes(Imf::Header& header, const Image& img, const OutputDesc& o, const ExrMetadata& meta,
+void add_render_attributes(Imf::Header& header, const Image& img, const OutputSpec& o, const ExrMetadata& meta,
                            bool variance) {
   auto text = [&](const char* key, const std::string& value) { text_attribute(header, key, value); };
   auto integer = [&](const char* key, int value) { int_attribute(header, key, value); };
@@ -221,7 +221,7 @@ void add_render_attributes(Imf::Header& header, const Image& img, const OutputDe
 // "oiio:ColorSpace" from the header; colorInteropID is the Color Interop Forum's id; the
 // chromaticities are the EXR standard's own statement. An ACES container (SMPTE ST 2065-4) says
 // so.
-void add_colour_attributes(Imf::Header& header, const OutputDesc& o, const ExrMetadata& meta, bool aces_container) {
+void add_colour_attributes(Imf::Header& header, const OutputSpec& o, const ExrMetadata& meta, bool aces_container) {
   text_attribute(header, "oiio:ColorSpace", o.colorspace);
   text_attribute(header, "arbor:colorspace", o.colorspace);
   if (!meta.interop_id.empty()) text_attribute(header, "colorInteropID", meta.interop_id);
@@ -244,8 +244,8 @@ void add_id_attributes(Imf::Header& header, const Image& img, const Planes& plan
     for (std::size_t i = 0; i < names.size(); ++i) ids_json.integer(names[i], static_cast<long long>(i + 1));
     text_attribute(header, key, ids_json.str());
   };
-  if (planes.wants("object_id")) id_names("arbor:object_ids", img.object_names);
-  if (planes.wants("material_id")) id_names("arbor:material_ids", img.material_names);
+  if (planes.wants(Aov::ObjectId)) id_names("arbor:object_ids", img.object_names);
+  if (planes.wants(Aov::MaterialId)) id_names("arbor:material_ids", img.material_names);
   auto crypto_header = [&](const std::string& layer, const std::vector<std::string>& names) {
     const std::string k = "cryptomatte/" + cryptomatte_key(layer) + "/";
     text_attribute(header, k + "name", layer);
@@ -253,8 +253,8 @@ void add_id_attributes(Imf::Header& header, const Image& img, const Planes& plan
     text_attribute(header, k + "conversion", "uint32_to_float32");
     text_attribute(header, k + "manifest", cryptomatte_manifest(names));
   };
-  if (planes.wants("crypto_object")) crypto_header("crypto_object", img.object_names);
-  if (planes.wants("crypto_material")) crypto_header("crypto_material", img.material_names);
+  if (planes.wants(Aov::CryptoObject)) crypto_header("crypto_object", img.object_names);
+  if (planes.wants(Aov::CryptoMaterial)) crypto_header("crypto_material", img.material_names);
 }
 
 // The file encoded whole in memory.
@@ -281,7 +281,7 @@ void encode(const Image& img, const Imf::Header& header, std::vector<Plane>& pla
 
 }  // namespace
 
-void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta, const std::string& path) {
+void write_exr(const Image& img, const OutputSpec& o, const ExrMetadata& meta, const std::string& path) {
   Planes planes(img, o);
   planes.add_pixels();
   planes.add_ids();
@@ -300,7 +300,7 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta, c
   text_attribute(header, "arbor:version", ARBOR_VERSION_STRING);
   text_attribute(header, "arbor:commit", ARBOR_COMMIT);
   text_attribute(header, "arbor:scene", meta.scene);
-  if (meta.render_attributes) add_render_attributes(header, img, o, meta, planes.wants("variance"));
+  if (meta.render_attributes) add_render_attributes(header, img, o, meta, planes.wants(Aov::Variance));
   add_id_attributes(header, img, planes);
 
   MemoryStream memory;
@@ -314,7 +314,7 @@ void write_exr(const Image& img, const OutputDesc& o, const ExrMetadata& meta, c
   out.commit();
 }
 
-void write_png(const Image& img, const OutputDesc& o, const ColorPipeline& color,
+void write_png(const Image& img, const OutputSpec& o, const ColorPipeline& color,
                const std::string& path) {
   OIIO::ImageBuf src(OIIO::ImageSpec(img.width, img.height, 3, OIIO::TypeDesc::FLOAT));
   for (int y = 0; y < img.height; ++y) {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "formats/scene_desc.h"
+#include "imaging/output_spec.h"
 #include "imaging/color.h"
 #include "imaging/image.h"
 
@@ -44,11 +44,11 @@ struct ExrMetadata {
 // "treemaker" the image's extra channels (float). A crop is written as its data window within
 // the whole image's display window. "treemaker" must only be asked of an image that has them
 // (the treemaker integrator's; std::logic_error otherwise).
-void write_exr(const Image& image, const OutputDesc& output, const ExrMetadata& meta,
+void write_exr(const Image& image, const OutputSpec& output, const ExrMetadata& meta,
                const std::string& path);
 
 // Writes an 8-bit PNG of the beauty through the output's display and view, atomically.
-void write_png(const Image& image, const OutputDesc& output, const ColorPipeline& color,
+void write_png(const Image& image, const OutputSpec& output, const ColorPipeline& color,
                const std::string& path);
 
 }  // namespace arbor::trace

@@ -30,12 +30,14 @@ double gigabytes(std::uint64_t bytes) { return static_cast<double>(bytes) / doub
 MemoryEstimate estimate_render_memory(const SceneDesc& s, std::uint64_t record_passes) {
   MemoryEstimate e;
   std::uint64_t channels = 4, extras = 0;
-  for (const std::string& a : s.output.aovs) {
-    channels += a == "depth" || a == "samples" || a == "object_id" || a == "material_id" ? 1
-                : a == "treemaker"                                 ? kTreemakerChannels
-                : a == "crypto_object" || a == "crypto_material"   ? 12
-                                                                   : 3;
-    if (a == "treemaker") extras = kTreemakerChannels;
+  for (std::size_t i = 0; i < kAovCount; ++i) {
+    const Aov a = static_cast<Aov>(i);
+    if (!s.output.aovs.has(a)) continue;
+    channels += a == Aov::Depth || a == Aov::Samples || a == Aov::ObjectId || a == Aov::MaterialId ? 1
+                : a == Aov::Treemaker                                                      ? kTreemakerChannels
+                : a == Aov::CryptoObject || a == Aov::CryptoMaterial                      ? 12
+                                                                                           : 3;
+    if (a == Aov::Treemaker) extras = kTreemakerChannels;
   }
   // The id slots count like extras: in the film's sums and in every pass record.
   if (s.output.wants_ids()) extras += kIdBytes / 8;

@@ -281,6 +281,7 @@ void SceneBuilder::add_mesh(const MeshDesc& d) {
   const glm::mat3 to_world_normal = glm::transpose(glm::inverse(glm::mat3(m)));
   mesh.normals.reserve(obj.normals.size());
   for (const glm::vec3& n : obj.normals) mesh.normals.push_back(glm::normalize(to_world_normal * n));
+  static_assert(MeshObject::kNoNormal == ObjMesh::kNoNormal, "a mesh keeps the OBJ reader's \"no normal\"");
   mesh.normal_indices = obj.normal_indices;
   mesh.material.reserve(obj.part.size());
   for (const std::uint32_t p : obj.part) mesh.material.push_back(material_of_part[p]);

@@ -57,8 +57,9 @@ struct MeshObject {
   std::vector<glm::vec3> positions;
   std::vector<std::uint32_t> indices;   // three per triangle
   // The OBJ's vertex normals, placed in the world (unit length), and three indices into them
-  // per triangle (ObjMesh::kNoNormal: that corner has none, the triangle is flat); both empty
-  // when the file has no `vn`.
+  // per triangle (kNoNormal: that corner has none, the triangle is flat); both empty when the
+  // file has no `vn`.
+  static constexpr std::uint32_t kNoNormal = 0xffffffffu;
   std::vector<glm::vec3> normals;
   std::vector<std::uint32_t> normal_indices;
   std::vector<std::uint16_t> material;  // per triangle, into materials

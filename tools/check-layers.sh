@@ -15,13 +15,13 @@ declare -A may=(
   [common]=""
   [materials]="common"
   [generator]="common"
-  [formats]="common generator"
-  [imaging]="common formats"
-  [scene]="common materials generator formats"
-  [tracer]="common materials generator formats imaging scene"
+  [imaging]="common"
+  [formats]="common generator imaging"
+  [scene]="common materials generator imaging formats"
+  [tracer]="common materials generator imaging scene"
   [app]="common materials generator formats imaging scene tracer"
 )
-layers=(common materials generator formats imaging scene tracer app)
+layers=(common materials generator imaging formats scene tracer app)
 status=0
 fail() { echo "check-layers: $*"; status=1; }
 

@@ -4,14 +4,14 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "formats/scene_desc.h"
+#include "scene/render_input.h"
 #include "tracer/ray.h"
 
 namespace arbor::trace {
 
 class Camera {
  public:
-  Camera(const CameraDesc& desc, int width, int height);
+  Camera(const CameraSpec& spec, int width, int height);
   // A ray through film position (x, y) in pixels (0,0 top-left corner), `lens` in [0,1)².
   Ray generate(glm::vec2 film, glm::vec2 lens) const;
   const glm::vec3& forward() const { return forward_; }

@@ -132,16 +132,14 @@ void write_film_state(const std::string& path, const FilmHeader& h, const Film& 
        << (film.keeps_ids() ? 1 : 0) << "\n"
        << "seconds " << number_text(h.seconds) << "\n"
        << "counts " << h.nonfinite << " " << h.rays << "\n"
-       << "integrator " << h.integrator << "\n"
+       << "integrator " << name_of(h.integrator) << "\n"
        << "seed " << h.seed << "\n"
-       << "colorspace " << h.colorspace << "\n"
-       << "display " << h.display << "\n"
-       << "view " << h.view << "\n"
-       << "pixel_type " << h.pixel_type << "\n"
-       << "transparent_sky " << (h.transparent_sky ? 1 : 0) << "\n"
-       << "aovs ";
-  for (const std::string& a : h.aovs) head << a << " ";
-  head << "\n"
+       << "colorspace " << h.output.colorspace << "\n"
+       << "display " << h.output.display << "\n"
+       << "view " << h.output.view << "\n"
+       << "pixel_type " << name_of(h.output.pixel_type) << "\n"
+       << "transparent_sky " << (h.output.transparent_sky ? 1 : 0) << "\n"
+       << "aovs " << h.output.aovs.text() << "\n"
        << "treemaker_weights " << h.treemaker_weights << "\n"
        << "object_names " << joined(h.object_names) << "\n"
        << "material_names " << joined(h.material_names) << "\n"
@@ -189,18 +187,26 @@ FilmFile read_film_state(const std::string& path) {
   h.fingerprint = keys["fingerprint"];
   h.settings = keys["settings"];
   h.scene = keys["scene"];
-  h.integrator = keys["integrator"];
-  h.colorspace = keys["colorspace"];
-  h.display = keys["display"];
-  h.view = keys["view"];
-  h.pixel_type = keys["pixel_type"];
-  h.transparent_sky = keys["transparent_sky"] == "1";
+  const std::optional<Integrator> integrator = integrator_named(keys["integrator"]);
+  if (!integrator) throw bad("its integrator \"" + keys["integrator"] + "\" is not path or treemaker");
+  h.integrator = *integrator;
+  h.output.colorspace = keys["colorspace"];
+  h.output.display = keys["display"];
+  h.output.view = keys["view"];
+  const std::optional<PixelType> pixel_type = pixel_type_named(keys["pixel_type"]);
+  if (!pixel_type) throw bad("its pixel type \"" + keys["pixel_type"] + "\" is not half or float");
+  h.output.pixel_type = *pixel_type;
+  h.output.transparent_sky = keys["transparent_sky"] == "1";
   h.treemaker_weights = keys["treemaker_weights"];
   h.object_names = split_tabs(keys["object_names"]);
   h.material_names = split_tabs(keys["material_names"]);
   {
     std::istringstream aovs(keys["aovs"]);
-    for (std::string a; aovs >> a;) h.aovs.push_back(a);
+    for (std::string a; aovs >> a;) {
+      const std::optional<Aov> aov = aov_named(a);
+      if (!aov) throw bad("its AOV \"" + a + "\" is not one arbor writes");
+      h.output.aovs.add(*aov);
+    }
   }
   Window w;
   int begin = 0, next = 0, records = 0, independent = 0, ids = 0;

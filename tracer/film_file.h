@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "imaging/output_spec.h"
+#include "scene/render_input.h"
 #include "tracer/film.h"
 
 namespace arbor::trace {
@@ -25,11 +27,9 @@ struct FilmHeader {
   double seconds = 0;       // render time spent so far
   std::uint64_t nonfinite = 0, rays = 0;
   // What the outputs are written with (a merge writes them again without the scene).
-  std::string integrator;
+  Integrator integrator = Integrator::Path;
   std::uint64_t seed = 0;
-  std::string colorspace, display, view, pixel_type;
-  std::vector<std::string> aovs;
-  bool transparent_sky = false;
+  OutputSpec output;
   std::string treemaker_weights;
   // The compositing ids' names (Scene::object_names, material_names).
   std::vector<std::string> object_names, material_names;

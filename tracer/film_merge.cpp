@@ -22,7 +22,8 @@ void require_same_render(const FilmPart& a, const FilmPart& b) {
   if (hb.full_width != ha.full_width || hb.full_height != ha.full_height || hb.plan.spp != ha.plan.spp ||
       hb.plan.pass_spp != ha.plan.pass_spp || hb.plan.independent != ha.plan.independent || b.file.film->extras() != a.file.film->extras() ||
       b.file.film->keeps_ids() != a.file.film->keeps_ids() || hb.object_names != ha.object_names ||
-      hb.aovs != ha.aovs || hb.colorspace != ha.colorspace || hb.pixel_type != ha.pixel_type) {
+      hb.output.aovs != ha.output.aovs || hb.output.colorspace != ha.output.colorspace ||
+      hb.output.pixel_type != ha.output.pixel_type) {
     throw InputError({b.exr, 0, 0}, "has other image settings (size, samples, AOVs or colour space) than " + a.exr);
   }
 }

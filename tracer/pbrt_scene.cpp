@@ -14,9 +14,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
-#include "common/progress.h"
 #include "common/strings.h"
-#include "formats/scene_desc.h"
 #include "generator/export/export_pbrt.h"
 #include "generator/export/text_output.h"
 #include "imaging/color.h"
@@ -148,11 +146,11 @@ void write_sky_exr(const Sky& sky, const Colors& colors, const PbrtColorSpace& s
           colors.light(sky.radiance(d));
     }
   }
-  OutputDesc output;
+  OutputSpec output;
   // Linear radiance in pbrt's colour space `space` (its chromaticities say which): OIIO's name for
   // linear, not pbrt's "srgb", which OIIO reads as the sRGB curve (oiiotool darkened it 5x).
   output.colorspace = "Linear";
-  output.pixel_type = "float";
+  output.pixel_type = PixelType::Float;
   ExrMetadata meta;
   meta.scene = "arbor sky for pbrt-v4 (equal-area octahedral map), linear in pbrt's colour space " +
                std::string(space.name) + (fill_below ? "; below the horizon, the horizon's radiance" : "");
@@ -218,9 +216,9 @@ void write_ground_exr(const mat::Material& ground, const Colors& colors, const P
           colors.reflectance(ground.albedo + (ground.ground.patch_albedo - ground.albedo) * w, "the ground's patches");
     }
   }
-  OutputDesc output;
+  OutputSpec output;
   output.colorspace = "Linear";
-  output.pixel_type = "half";
+  output.pixel_type = PixelType::Half;
   ExrMetadata meta;
   meta.scene = "arbor ground albedo for pbrt-v4 (its patches), linear in pbrt's colour space " + std::string(space.name);
   meta.chromaticities = space.chromaticities;
@@ -229,9 +227,9 @@ void write_ground_exr(const mat::Material& ground, const Colors& colors, const P
 }
 
 // The opening comment, colour space, camera, film, sampler and integrator, up to WorldBegin.
-std::string camera_text(const SceneDesc& scene, const PbrtColorSpace& space, bool converted, const std::string& out) {
-  const RenderSettings& r = scene.render;
-  std::string text = "# pbrt-v4 scene written by arbor from " + scene.path + "\n";
+std::string camera_text(const RenderInput& input, const PbrtColorSpace& space, bool converted, const std::string& out) {
+  const RenderSpec& r = input.render;
+  std::string text = "# pbrt-v4 scene written by arbor from " + input.scene + "\n";
   text += "# Units are metres, z is up; colours are in pbrt's \"" + std::string(space.name) +
           "\" space (arbor's scene_linear" + (converted ? ", converted" : "") + ").\n"
           "# Not in pbrt-v4, so not here: the sun's disk (a distant light is a point), the leaves'\n"
@@ -241,7 +239,7 @@ std::string camera_text(const SceneDesc& scene, const PbrtColorSpace& space, boo
           "# sampling (pbrt samples its own way).\n";
   text += "ColorSpace \"" + std::string(space.name) + "\"\n";
   // pbrt's camera space is left-handed: mirroring x keeps arbor's right-handed image unmirrored.
-  const CameraDesc& cam = scene.camera;
+  const CameraSpec& cam = input.camera;
   text += "Scale -1 1 1\nLookAt " + number(cam.position[0]) + " " + number(cam.position[1]) + " " +
           number(cam.position[2]) + "  " + number(cam.look_at[0]) + " " + number(cam.look_at[1]) + " " +
           number(cam.look_at[2]) + "  " + number(cam.up[0]) + " " + number(cam.up[1]) + " " + number(cam.up[2]) + "\n";
@@ -267,8 +265,8 @@ std::string camera_text(const SceneDesc& scene, const PbrtColorSpace& space, boo
 }
 
 // The sun and the sky; the camera's exposure scales them (pbrt's film has no exposure of its own).
-std::string lights_text(const SceneDesc& scene, const Sky& sky, const Colors& colors, const std::string& sky_path) {
-  const float exposure = std::exp2(static_cast<float>(scene.camera.exposure));
+std::string lights_text(const RenderInput& input, const Sky& sky, const Colors& colors, const std::string& sky_path) {
+  const float exposure = std::exp2(static_cast<float>(input.camera.exposure));
   std::string text;
   if (sky.has_sun() && sky.sun_irradiance() > 0.0f) {
     const glm::vec3 e = colors.light(sky.sun_irradiance_color());
@@ -277,7 +275,7 @@ std::string lights_text(const SceneDesc& scene, const Sky& sky, const Colors& co
             " \"float scale\" " + number(exposure) + "\n";
   }
   if (!sky.empty()) {
-    text += "# the sky (" + scene.sky.model + "), sampled into an equal-area square\nLightSource \"infinite\" \"string filename\" \"" +
+    text += "# the sky (" + std::string(name_of(input.sky.model)) + "), sampled into an equal-area square\nLightSource \"infinite\" \"string filename\" \"" +
             file_name(sky_path) + "\" \"float scale\" " + number(exposure) + "\n";
   }
   return text;
@@ -390,8 +388,8 @@ PbrtColorSpace pbrt_color_space_of(const ColorPipeline& color) {
   return pbrt_color_space_for(linear);
 }
 
-PbrtExport write_pbrt_scene(const SceneDesc& scene, const ColorPipeline& color, const std::string& out,
-                            int sky_resolution) {
+PbrtExport write_pbrt_scene(const Scene& scene, const RenderInput& input, const ColorPipeline& color,
+                            const std::string& out, int sky_resolution) {
   const std::vector<float> linear = color.chromaticities("scene_linear");
   PbrtExport result;
   const PbrtColorSpace space = pbrt_color_space_of(color);
@@ -400,46 +398,43 @@ PbrtExport write_pbrt_scene(const SceneDesc& scene, const ColorPipeline& color, 
   colors.clamped = &result.clamped;
   if (space.chromaticities != linear) colors.to_pbrt = rgb_to_rgb(linear, space.chromaticities);
 
-  Progress build_progress("build", 1);
-  const std::unique_ptr<const Scene> built = build_scene(scene, color.config_path(), &build_progress);
-  build_progress.finish();
-  const Sky sky(scene.sky, scene.sun, color.xyz_to_scene_linear());
+  const Sky sky(input.sky, input.sun, color.xyz_to_scene_linear());
   const std::string sky_path = sky_path_for(out), ground_path = ground_path_for(out);
 
   AtomicFile file(out);
-  std::string text = camera_text(scene, space, static_cast<bool>(colors.to_pbrt), out);
-  text += lights_text(scene, sky, colors, sky_path);
+  std::string text = camera_text(input, space, static_cast<bool>(colors.to_pbrt), out);
+  text += lights_text(input, sky, colors, sky_path);
   // Materials first, then the trees, the meshes, the ground.
   Materials materials(colors);
-  const TreeObjects trees = tree_objects(*built, materials);
+  const TreeObjects trees = tree_objects(scene, materials);
   std::vector<std::vector<std::string>> mesh_materials;
-  for (const MeshObject& m : built->meshes) {
+  for (const MeshObject& m : scene.meshes) {
     std::vector<std::string> names;
     for (std::size_t k = 0; k < m.materials.size(); ++k) {
-      names.push_back(materials.name_of(m.materials[k], built->material_names.at(m.material_ids[k] - 1)));
+      names.push_back(materials.name_of(m.materials[k], scene.material_names.at(m.material_ids[k] - 1)));
     }
     mesh_materials.push_back(names);
   }
-  const std::string ground = built->has_ground ? materials.name_of(built->ground, "ground") : "";
+  const std::string ground = scene.has_ground ? materials.name_of(scene.ground, "ground") : "";
   text += "\n" + materials.text() + "\n";
-  write_trees(*built, trees, text, file);
-  write_meshes(*built, mesh_materials, text, file);
-  const bool ground_patches = built->has_ground && built->ground.kind == mat::Material::Kind::Ground &&
-                              built->ground.ground.cover > 0.0f;
+  write_trees(scene, trees, text, file);
+  write_meshes(scene, mesh_materials, text, file);
+  const bool ground_patches = scene.has_ground && scene.ground.kind == mat::Material::Kind::Ground &&
+                              scene.ground.ground.cover > 0.0f;
   // Centred on the camera, on a whole metre (the same export twice gives the same files).
-  const glm::vec2 ground_centre(std::round(static_cast<float>(scene.camera.position[0])),
-                                std::round(static_cast<float>(scene.camera.position[1])));
-  if (built->has_ground) text += ground_text(ground, ground_patches, ground_centre, ground_path);
+  const glm::vec2 ground_centre(std::round(static_cast<float>(input.camera.position[0])),
+                                std::round(static_cast<float>(input.camera.position[1])));
+  if (scene.has_ground) text += ground_text(ground, ground_patches, ground_centre, ground_path);
 
   // The sky goes first: a failed write of the scene leaves at most a new sky beside the old
   // scene, never a scene naming a sky that is not there.
   result.written.push_back(out);
   if (!sky.empty()) {
-    write_sky_exr(sky, colors, space, sky_resolution, built->has_ground, sky_path);
+    write_sky_exr(sky, colors, space, sky_resolution, scene.has_ground, sky_path);
     result.written.push_back(sky_path);
   }
   if (ground_patches) {
-    write_ground_exr(built->ground, colors, space, ground_centre, ground_path);
+    write_ground_exr(scene.ground, colors, space, ground_centre, ground_path);
     result.written.push_back(ground_path);
   }
   file.write(text);

@@ -8,8 +8,9 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "formats/scene_desc.h"
 #include "imaging/color.h"
+#include "scene/render_input.h"
+#include "scene/scene.h"
 
 namespace arbor::trace {
 
@@ -20,12 +21,13 @@ struct PbrtExport {
   std::string space;                 // pbrt's colour space the colours are in
 };
 
-// Builds the scene and writes it to `out` (.pbrt) as a complete pbrt-v4 scene, its sky beside it
+// Writes the built scene, seen and lit as `input` says, to `out` (.pbrt) as a complete pbrt-v4
+// scene, its sky beside it
 // (sky_path_for) as an equal-area square `sky_resolution` texels a side, and the ground's
 // patches near the camera (ground_path_for) when it has them; each file atomically, the images
 // first. InputError when the OCIO config's scene_linear has no known primaries.
-PbrtExport write_pbrt_scene(const SceneDesc& scene, const ColorPipeline& color, const std::string& out,
-                            int sky_resolution);
+PbrtExport write_pbrt_scene(const Scene& scene, const RenderInput& input, const ColorPipeline& color,
+                            const std::string& out, int sky_resolution);
 
 // The sky image beside OUT.pbrt: OUT.sky.exr for OUT.pbrt.
 std::string sky_path_for(const std::string& pbrt_path);

@@ -30,15 +30,15 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 // in their output form, to `extra`. `full_width` numbers the pixels of the whole image, which
 // key their samples: a crop renders each pixel exactly as the whole image does.
 template <class Trace>
-RenderOutcome render_passes(const SceneDesc& scene, const RenderJob& job, Film& film, const Trace& trace,
+RenderOutcome render_passes(const RenderInput& input, const RenderJob& job, Film& film, const Trace& trace,
                             const ColorTransform& to_output, Progress* progress, RenderStats& stats) {
-  const RenderSettings& rs = scene.render;
+  const RenderSpec& rs = input.render;
   const Window win = film.window();
   const int ww = win.width(), wh = win.height();
   const std::size_t extras = film.extras();
-  const Camera camera(scene.camera, rs.width, rs.height);
-  const float exposure = std::exp2(static_cast<float>(scene.camera.exposure));
-  const bool transparent = scene.output.transparent_sky;
+  const Camera camera(input.camera, rs.width, rs.height);
+  const float exposure = std::exp2(static_cast<float>(input.camera.exposure));
+  const bool transparent = input.output.transparent_sky;
   const int tiles_x = (ww + kTile - 1) / kTile, tiles_y = (wh + kTile - 1) / kTile;
   const int tiles = tiles_x * tiles_y;
   const int first = film.next_pass();
@@ -117,12 +117,12 @@ RenderOutcome render_passes(const SceneDesc& scene, const RenderJob& job, Film& 
     // Between passes: a signal, the time limit (the next pass, if it takes as long as this one,
     // would not fit), a checkpoint.
     if (job.stop && job.stop->load() != 0) {
-      outcome.stopped = "interrupted";
+      outcome.stopped = StopReason::Interrupted;
       break;
     }
     const double elapsed = seconds_since(start);
     if (job.time_limit > 0 && elapsed + seconds_since(pass_start) * double(job.plan.size(pass + 1)) / spp > job.time_limit) {
-      outcome.stopped = "time limit";
+      outcome.stopped = StopReason::TimeLimit;
       break;
     }
     if (job.checkpoint && job.checkpoint_seconds > 0 && seconds_since(last_checkpoint) >= job.checkpoint_seconds) {
@@ -140,57 +140,66 @@ RenderOutcome render_passes(const SceneDesc& scene, const RenderJob& job, Film& 
 
 }  // namespace
 
-std::vector<std::string> integrator_aov_names(const SceneDesc& scene) {
-  const auto& aovs = scene.output.aovs;
+std::vector<std::string> integrator_aov_names(const RenderInput& input) {
   // The treemaker AOVs cost 23 values a pixel: kept only when the output asks for them.
-  if (scene.render.integrator == "treemaker" && std::find(aovs.begin(), aovs.end(), "treemaker") != aovs.end()) {
+  if (input.render.integrator == Integrator::Treemaker && input.output.aovs.has(Aov::Treemaker)) {
     return treemaker_channel_names();
   }
   return {};
 }
 
-RenderOutcome render_path(const SceneDesc& scene, const World& world, const Sky& sky,
+RenderOutcome render_path(const RenderInput& input, const World& world, const Sky& sky,
                           const ColorTransform& to_output, const RenderJob& job, Film& film,
                           Progress* progress, RenderStats& stats) {
-  const PathIntegrator integrator(world, sky, scene.render.max_depth);
+  const PathIntegrator integrator(world, sky, input.render.max_depth);
   auto trace = [&](const Ray& ray, const PixelSampler& sampler, std::uint32_t index, float*) {
     return integrator.trace(ray, sampler, index);
   };
-  return render_passes(scene, job, film, trace, to_output, progress, stats);
+  return render_passes(input, job, film, trace, to_output, progress, stats);
 }
 
-RenderOutcome render_treemaker(const SceneDesc& scene, const World& world, const Sky& sky,
+RenderOutcome render_treemaker(const RenderInput& input, const World& world, const Sky& sky,
                                const ColorTransform& to_output, const RenderJob& job, Film& film,
                                Progress* progress, RenderStats& stats) {
   const TreemakerIntegrator integrator(world, sky);
-  const float exposure = std::exp2(static_cast<float>(scene.camera.exposure));
+  const float exposure = std::exp2(static_cast<float>(input.camera.exposure));
   const bool keep = film.extras() > 0;
   auto trace = [&](const Ray& ray, const PixelSampler&, std::uint32_t, float* extra) {
     const TreemakerSample t = integrator.trace(ray);
     if (keep) t.write_aovs(exposure, to_output, extra);
     return t.shade;
   };
-  return render_passes(scene, job, film, trace, to_output, progress, stats);
+  return render_passes(input, job, film, trace, to_output, progress, stats);
 }
 
-PassPlan pass_plan_for(const RenderSettings& r) {
-  return {r.integrator == "treemaker" ? r.treemaker_spp : r.spp, r.pass_spp, r.independent_passes};
+const char* name_of(StopReason reason) {
+  switch (reason) {
+    case StopReason::None: return "";
+    case StopReason::Interrupted: return "interrupted";
+    case StopReason::TimeLimit: return "time limit";
+    case StopReason::InProgress: return "in progress";
+  }
+  return "";
 }
 
-Image render_image(const SceneDesc& scene, const World& world, const Sky& sky,
+PassPlan pass_plan_for(const RenderSpec& r) {
+  return {r.samples(), r.pass_spp, r.independent_passes};
+}
+
+Image render_image(const RenderInput& input, const World& world, const Sky& sky,
                    const ColorTransform& to_output, RenderStats& stats) {
-  const RenderSettings& r = scene.render;
-  const bool treemaker = r.integrator == "treemaker";
+  const RenderSpec& r = input.render;
+  const bool treemaker = r.integrator == Integrator::Treemaker;
   RenderJob job;
   job.plan = pass_plan_for(r);
   job.pass_end = job.plan.passes();
   job.adaptive = {r.noise_threshold, r.min_spp};
-  const std::vector<std::string> names = integrator_aov_names(scene);
-  Film film({0, 0, r.width, r.height}, names.size(), 0, false, scene.output.wants_ids());
+  const std::vector<std::string> names = integrator_aov_names(input);
+  Film film({0, 0, r.width, r.height}, names.size(), 0, false, input.output.wants_ids());
   if (treemaker) {
-    render_treemaker(scene, world, sky, to_output, job, film, nullptr, stats);
+    render_treemaker(input, world, sky, to_output, job, film, nullptr, stats);
   } else {
-    render_path(scene, world, sky, to_output, job, film, nullptr, stats);
+    render_path(input, world, sky, to_output, job, film, nullptr, stats);
   }
   Image img = film.image(names.size());
   img.extra_names = names;

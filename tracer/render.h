@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "formats/scene_desc.h"
 #include "imaging/color.h"
 #include "imaging/image.h"
+#include "scene/render_input.h"
 #include "tracer/film.h"
 #include "tracer/integrators/path.h"
 
@@ -32,31 +32,37 @@ struct RenderJob {
 };
 
 // The passes of the scene's render: the sample count of its integrator in passes of pass_spp.
-PassPlan pass_plan_for(const RenderSettings& render);
+PassPlan pass_plan_for(const RenderSpec& render);
 
-// Why the loop ended before pass_end: "" (it did not), "interrupted" or "time limit".
+// Why a render's outputs hold fewer passes than it asked for: it did not stop early, a signal
+// stopped it, its time limit did, or it is a checkpoint of a render still running.
+enum class StopReason { None, Interrupted, TimeLimit, InProgress };
+// "", "interrupted", "time limit", "in progress": the EXR's arbor:stopped and the messages.
+const char* name_of(StopReason reason);
+
+// Why the loop ended before pass_end (StopReason::None: it did not).
 struct RenderOutcome {
-  std::string stopped;
+  StopReason stopped = StopReason::None;
 };
 
 // The integrator AOV names of the scene's render ("treemaker" asked of the treemaker
 // integrator), which size the film's extras.
-std::vector<std::string> integrator_aov_names(const SceneDesc& scene);
+std::vector<std::string> integrator_aov_names(const RenderInput& input);
 
 // Renders with the path integrator. Deterministic: each pixel's samples depend only on (pixel,
 // pass, sample index, seed), and each pixel is accumulated in sample and pass order by one task.
-RenderOutcome render_path(const SceneDesc& scene, const World& world, const Sky& sky,
+RenderOutcome render_path(const RenderInput& input, const World& world, const Sky& sky,
                           const ColorTransform& to_output, const RenderJob& job, Film& film,
                           Progress* progress, RenderStats& stats);
 
 // Renders with the treemaker integrator (its samples only anti-alias: its shade has no noise);
 // fills the film's extras with the "treemaker" AOVs when integrator_aov_names asks for them.
-RenderOutcome render_treemaker(const SceneDesc& scene, const World& world, const Sky& sky,
+RenderOutcome render_treemaker(const RenderInput& input, const World& world, const Sky& sky,
                                const ColorTransform& to_output, const RenderJob& job, Film& film,
                                Progress* progress, RenderStats& stats);
 
 // A whole image at the scene's settings in one go, for tests and benchmarks.
-Image render_image(const SceneDesc& scene, const World& world, const Sky& sky,
+Image render_image(const RenderInput& input, const World& world, const Sky& sky,
                    const ColorTransform& to_output, RenderStats& stats);
 
 }  // namespace arbor::trace

@@ -28,13 +28,7 @@ Image film_image(const FilmHeader& h, const Film& film) {
 }
 
 void write_render(const FilmHeader& h, const Film& film, const RenderWrite& what) {
-  OutputDesc out;
-  out.colorspace = h.colorspace;
-  out.display = h.display;
-  out.view = h.view;
-  out.pixel_type = h.pixel_type;
-  out.aovs = h.aovs;
-  out.transparent_sky = h.transparent_sky;
+  const OutputSpec& out = h.output;
   const Image img = film_image(h, film);
   if (!what.exr.empty()) {
     const std::string state = state_path(what.exr);
@@ -50,7 +44,7 @@ void write_render(const FilmHeader& h, const Film& film, const RenderWrite& what
     ExrMetadata meta;
     meta.scene = h.scene;
     meta.seed = h.seed;
-    meta.integrator = h.integrator;
+    meta.integrator = name_of(h.integrator);
     meta.treemaker_weights = h.treemaker_weights;
     meta.stats.seconds = h.seconds;
     meta.stats.nonfinite = h.nonfinite;
@@ -62,16 +56,16 @@ void write_render(const FilmHeader& h, const Film& film, const RenderWrite& what
     meta.pass_end = film.next_pass();
     meta.passes = film.next_pass() - film.pass_begin();
     meta.spp = h.plan.samples(film.pass_begin(), film.next_pass());
-    meta.incomplete = what.stopped == "interrupted" || what.stopped == "in progress";
-    meta.stopped = what.stopped;
+    meta.incomplete = what.stopped == StopReason::Interrupted || what.stopped == StopReason::InProgress;
+    meta.stopped = name_of(what.stopped);
     meta.fingerprint = h.fingerprint;
     meta.noise_threshold = h.noise_threshold;
     meta.min_spp = h.min_spp;
     double total = 0;
     for (float s : img.samples) total += s;
     meta.mean_spp = img.samples.empty() ? 0.0 : total / double(img.samples.size());
-    meta.interop_id = what.color->interop_id(h.colorspace);
-    meta.chromaticities = what.color->chromaticities(h.colorspace);
+    meta.interop_id = what.color->interop_id(h.output.colorspace);
+    meta.chromaticities = what.color->chromaticities(h.output.colorspace);
     write_exr(img, out, meta, what.exr);
   }
   if (!what.png.empty()) write_png(img, out, *what.color, what.png);

@@ -9,13 +9,14 @@
 #include "imaging/image.h"
 #include "tracer/film.h"
 #include "tracer/film_file.h"
+#include "tracer/render.h"
 
 namespace arbor::trace {
 
 struct RenderWrite {
   std::string exr, png;            // empty: not written
   const ColorPipeline* color = nullptr;  // for the PNG
-  std::string stopped;  // "", "interrupted", "time limit" or "in progress" (a checkpoint)
+  StopReason stopped = StopReason::None;
 };
 
 // True when the film holds every pass of the whole image: nothing to resume or merge.

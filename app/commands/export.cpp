@@ -3,14 +3,18 @@
 #include "app/commands/export.h"
 
 #include <cstdio>
+#include <memory>
 #include <vector>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/progress.h"
 #include "common/strings.h"
 #include "formats/scene_desc.h"
 #include "imaging/color.h"
 #include "scene/frame.h"
+#include "scene/render_input.h"
+#include "scene/scene.h"
 #include "tracer/pbrt_scene.h"
 
 namespace arbor::app {
@@ -55,7 +59,10 @@ int export_command(const ExportRequest& a) {
   pbrt_color_space_of(color);  // refused before anything is made
   prepare_output_folder(a.out);
 
-  const PbrtExport result = write_pbrt_scene(scene, color, a.out, a.sky_resolution);
+  Progress build_progress("build", 1);
+  const std::unique_ptr<const Scene> built = build_scene(scene, color.config_path(), &build_progress);
+  build_progress.finish();
+  const PbrtExport result = write_pbrt_scene(*built, render_input(scene), color, a.out, a.sky_resolution);
   for (const std::string& c : result.clamped) {
     std::fprintf(stderr, "arbor: warning: %s is outside [0, 1] in pbrt's %s space; clamped\n", c.c_str(),
                  result.space.c_str());

@@ -83,7 +83,7 @@ int merge_command(const MergeRequest& req) {
   const std::size_t count = parts.size();
   const FilmFile merged = merge_film_parts(std::move(parts));
   const ColorPipeline color(req.ocio_config);
-  write_render(merged.header, *merged.film, {req.exr, req.png, &color, ""});
+  write_render(merged.header, *merged.film, {req.exr, req.png, &color, StopReason::None});
   const Window& box = merged.film->window();
   std::fprintf(stderr, "arbor: merged %zu parts: %dx%d at (%d, %d), %s of %d%s\n", count, box.width(), box.height(),
                box.x0, box.y0, passes_text(merged.film->pass_begin(), merged.film->next_pass()).c_str(),

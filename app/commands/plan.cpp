@@ -126,7 +126,7 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
   apply_overrides(scene, a.overrides);
   const RenderSettings& r = scene.render;
   const int width = r.width, height = r.height;
-  const PassPlan passes = pass_plan_for(r);
+  const PassPlan passes = pass_plan_for(render_input(scene).render);
   const int spp = passes.spp;
   if (columns < 1 || rows < 1 || columns > width || rows > height) {
     throw InputError({}, "--tiles " + a.tiles + ": the " + std::to_string(width) + "x" + std::to_string(height) +

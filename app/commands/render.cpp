@@ -29,6 +29,7 @@
 #include "imaging/color.h"
 #include "scene/frame.h"
 #include "scene/render_budget.h"
+#include "scene/render_input.h"
 #include "scene/scene.h"
 #include "tracer/embree/embree_device.h"
 #include "tracer/embree/world.h"
@@ -145,13 +146,6 @@ SceneDesc prepared_scene(const RenderRequest& a) {
   if (!a.png.empty()) scene.output.png = a.png;
   apply_frame(scene, a.frame);
   if (a.checkpoint_seconds) scene.output.checkpoint_seconds = *a.checkpoint_seconds;
-  const bool treemaker = scene.render.integrator == "treemaker";
-  if (!treemaker &&
-      std::find(scene.output.aovs.begin(), scene.output.aovs.end(), "treemaker") != scene.output.aovs.end()) {
-    throw InputError(scene.output.treemaker_aov_where,
-                     "output.aovs lists \"treemaker\", which only the treemaker integrator writes "
-                     "(render it with --integrator treemaker)");
-  }
   const std::string& exr = scene.output.exr;
   if (exr.empty() && scene.output.png.empty()) {
     throw InputError({a.scene, 0, 0}, "nothing to write: give -o OUT.exr, --png OUT.png or an [output] table");
@@ -222,8 +216,8 @@ void check_outputs(const SceneDesc& scene) {
   }
 }
 
-FilmHeader film_header(const SceneDesc& scene, const RenderRequest& a, const ColorPipeline& color,
-                       const PassPlan& plan, const RunRange& run) {
+FilmHeader film_header(const SceneDesc& scene, const RenderInput& input, const RenderRequest& a,
+                       const ColorPipeline& color, const PassPlan& plan, const RunRange& run) {
   const RenderSettings& r = scene.render;
   FilmHeader header;
   header.fingerprint = render_fingerprint(scene, a, color.config_path(), header.settings);
@@ -234,23 +228,18 @@ FilmHeader film_header(const SceneDesc& scene, const RenderRequest& a, const Col
   header.pass_end = run.pass_end;
   header.noise_threshold = r.noise_threshold;
   header.min_spp = r.min_spp;
-  header.integrator = r.integrator;
+  header.integrator = input.render.integrator;
   header.seed = r.seed;
-  header.colorspace = scene.output.colorspace;
-  header.display = scene.output.display;
-  header.view = scene.output.view;
-  header.pixel_type = scene.output.pixel_type;
-  header.aovs = scene.output.aovs;
-  header.transparent_sky = scene.output.transparent_sky;
+  header.output = scene.output;
   return header;
 }
 
 // The film this run continues (--resume: the state beside the EXR, its totals copied into
 // `header`) or a new one; nullptr when a resume finds nothing left to do.
-std::unique_ptr<Film> open_film(const SceneDesc& scene, const RenderRequest& a, const RunRange& run,
-                                FilmHeader& header) {
+std::unique_ptr<Film> open_film(const SceneDesc& scene, const RenderInput& input, const RenderRequest& a,
+                                const RunRange& run, FilmHeader& header) {
   if (!a.resume) {
-    return std::make_unique<Film>(run.window, integrator_aov_names(scene).size(), run.pass_begin, run.pass_begin > 0,
+    return std::make_unique<Film>(run.window, integrator_aov_names(input).size(), run.pass_begin, run.pass_begin > 0,
                                   scene.output.wants_ids());
   }
   const std::string& exr = scene.output.exr;
@@ -297,10 +286,11 @@ struct RunResult {
 
 // Builds the scene and renders the film's remaining passes, writing checkpoints and, at the end,
 // the outputs (unless no pass finished).
-RunResult build_and_render(const SceneDesc& scene, const RenderRequest& a, const ColorPipeline& color,
-                           const PassPlan& plan, const RunRange& run, FilmHeader& header, Film& film) {
+RunResult build_and_render(const SceneDesc& scene, const RenderInput& input, const RenderRequest& a,
+                           const ColorPipeline& color, const PassPlan& plan, const RunRange& run, FilmHeader& header,
+                           Film& film) {
   const RenderSettings& r = scene.render;
-  const bool treemaker = r.integrator == "treemaker";
+  const bool treemaker = input.render.integrator == Integrator::Treemaker;
   const std::uint64_t unit_passes = run.pass_begin > 0 ? static_cast<std::uint64_t>(run.pass_end - run.pass_begin) : 0;
   const EmbreeDevice device(r.threads > 0 ? "threads=" + std::to_string(r.threads) : "");
   Progress build_progress("build", 1);
@@ -311,13 +301,13 @@ RunResult build_and_render(const SceneDesc& scene, const RenderRequest& a, const
   if (treemaker) header.treemaker_weights = treemaker_weights_text(*built);
   header.object_names = built->object_names;
   header.material_names = built->material_names;
-  const Sky sky(scene.sky, scene.sun, color.xyz_to_scene_linear());
+  const Sky sky(input.sky, input.sun, color.xyz_to_scene_linear());
 
   RunResult result;
   result.instances = built->stats.instances;
   result.prototypes = built->stats.prototypes;
   result.build_seconds = built->stats.build_seconds + world.build_seconds();
-  RenderWrite write{scene.output.exr, scene.output.png, &color, ""};
+  RenderWrite write{scene.output.exr, scene.output.png, &color, StopReason::None};
   RenderJob job;
   job.plan = plan;
   job.pass_end = run.pass_end;
@@ -330,15 +320,15 @@ RunResult build_and_render(const SceneDesc& scene, const RenderRequest& a, const
     FilmHeader h = header;
     h.seconds = seconds_before + result.stats.seconds;
     RenderWrite w = write;
-    w.stopped = "in progress";
+    w.stopped = StopReason::InProgress;
     write_render(h, f, w);
   };
   result.first_pass = film.next_pass();
   Progress progress("render", 1);
   stop_gracefully_on_signal(true);
   const ColorTransform to_output = color.to_output(scene.output.colorspace);
-  result.outcome = treemaker ? render_treemaker(scene, world, sky, to_output, job, film, &progress, result.stats)
-                             : render_path(scene, world, sky, to_output, job, film, &progress, result.stats);
+  result.outcome = treemaker ? render_treemaker(input, world, sky, to_output, job, film, &progress, result.stats)
+                             : render_path(input, world, sky, to_output, job, film, &progress, result.stats);
   progress.finish();
   header.seconds = seconds_before + result.stats.seconds;
   header.nonfinite += result.stats.nonfinite;
@@ -375,9 +365,9 @@ void report(const SceneDesc& scene, const PassPlan& plan, const RunRange& run, c
                window.width(), window.height(), spp_text, run.pass_begin, film.next_pass() - 1, plan.passes(),
                stats.seconds, double(stats.samples) / seconds, double(stats.rays) / seconds, result.instances,
                result.prototypes, result.build_seconds);
-  if (!result.outcome.stopped.empty()) {
+  if (result.outcome.stopped != StopReason::None) {
     std::fprintf(stderr, "arbor: stopped early (%s) after %d of %d passes; continue with --resume\n",
-                 result.outcome.stopped.c_str(), film.next_pass() - run.pass_begin, run.pass_end - run.pass_begin);
+                 name_of(result.outcome.stopped), film.next_pass() - run.pass_begin, run.pass_end - run.pass_begin);
   }
   if (stats.nonfinite > 0) {
     std::fprintf(stderr, "arbor: warning: %llu samples were NaN or infinite and were left out\n",
@@ -429,21 +419,27 @@ CLI::App* add_render_command(CLI::App& app, RenderRequest& render) {
 
 int render_command(const RenderRequest& a) {
   const SceneDesc scene = prepared_scene(a);
-  const PassPlan plan = pass_plan_for(scene.render);
+  const RenderInput input = render_input(scene);
+  if (input.render.integrator != Integrator::Treemaker && input.output.aovs.has(Aov::Treemaker)) {
+    throw InputError(scene.output.treemaker_aov_where,
+                     "output.aovs lists \"treemaker\", which only the treemaker integrator writes "
+                     "(render it with --integrator treemaker)");
+  }
+  const PassPlan plan = pass_plan_for(input.render);
   const RunRange run = run_range(scene, a, plan);
   check_outputs(scene);
   const ColorPipeline color(a.ocio_config);
-  color.check(scene.output);
+  color.check(scene.output, scene.output.where);
   // Last of the checks (nothing is left behind when an earlier one fails): make missing folders.
   for (const std::string& out : {scene.output.exr, scene.output.png}) {
     if (!out.empty()) prepare_output_folder(out);
   }
-  FilmHeader header = film_header(scene, a, color, plan, run);
+  FilmHeader header = film_header(scene, input, a, color, plan, run);
   check_render_memory(scene, a.force, usable_memory_bytes(),
                       run.pass_begin > 0 ? static_cast<std::uint64_t>(run.pass_end - run.pass_begin) : 0);
-  const std::unique_ptr<Film> film = open_film(scene, a, run, header);
+  const std::unique_ptr<Film> film = open_film(scene, input, a, run, header);
   if (!film) return 0;
-  const RunResult result = build_and_render(scene, a, color, plan, run, header, *film);
+  const RunResult result = build_and_render(scene, input, a, color, plan, run, header, *film);
   report(scene, plan, run, *film, result);
   const int signal = stop_signal().load();
   return signal != 0 ? 128 + signal : 0;

@@ -104,7 +104,7 @@ pixel_type = "float"
   EXPECT_DOUBLE_EQ(s.forests[0].area[2], 5.0);
   EXPECT_EQ(s.meshes[0].materials.at("leafy").kind, "leaf");
   EXPECT_EQ(s.output.exr, "dir/out/a.exr");
-  EXPECT_EQ(s.output.aovs.size(), 2u);
+  EXPECT_EQ(s.output.aovs.text(), "albedo variance");
 }
 
 TEST(SceneFile, FocusDistanceDefaultsToTheLookAtPoint) {
@@ -135,7 +135,7 @@ aovs = ["treemaker", "albedo"]
   EXPECT_DOUBLE_EQ(*s.trees[0].treemaker.angle, 0.0);
   EXPECT_FALSE(s.trees[0].treemaker.lambert.has_value());  // unset weights keep the template's
   EXPECT_DOUBLE_EQ(*s.forests[0].treemaker.lambert, 1.5);
-  EXPECT_EQ(s.output.aovs[0], "treemaker");
+  EXPECT_TRUE(s.output.aovs.has(Aov::Treemaker));
   expect_error("[[tree]]\nspecies = \"a.toml\"\n[tree.treemaker]\nshadow = 1\n", 4, 1,
                "unknown key 'shadow' in [tree.treemaker]");
   expect_error("[[tree]]\nspecies = \"a.toml\"\n[tree.treemaker]\nheight = -0.1\n", 4, 10,

@@ -30,7 +30,7 @@ void expect_rgb(const float got[3], double r, double g, double b, double toleran
 void expect_colour_error(const std::string& text, int line, int column, const std::string& fragment) {
   const SceneDesc s = parse_scene(text, "dir/s.toml");
   const ColorPipeline color(kConfig);
-  testing::expect_input_error([&] { color.check(s.output); }, "dir/s.toml", line, column, fragment);
+  testing::expect_input_error([&] { color.check(s.output, s.output.where); }, "dir/s.toml", line, column, fragment);
 }
 
 }  // namespace
@@ -88,7 +88,7 @@ TEST(Color, PngsGoThroughTheSrgbDisplayCurve) {
   image.width = 5;
   image.height = 1;
   for (float v : {0.0f, 0.0031308f, 0.18f, 1.0f, 4.0f}) image.beauty.push_back(glm::vec3(v));
-  OutputDesc out;
+  OutputSpec out;
   out.colorspace = "Linear Rec.709 (sRGB)";
   out.view = "Un-tone-mapped";
   const ColorPipeline color(kConfig);

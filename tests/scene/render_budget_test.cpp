@@ -19,11 +19,13 @@ TEST(RenderBudget, EstimateGrowsWithPixelsChannelsAndTrees) {
   const MemoryEstimate plain = estimate_render_memory(s);
   // At least what was measured (77 bytes a pixel with the beauty alone).
   EXPECT_GE(plain.image_bytes, 77u * 1000000u);
-  s.output.aovs = {"albedo", "normal", "depth", "variance"};
+  s.output.aovs = {};
+  for (Aov a : {Aov::Albedo, Aov::Normal, Aov::Depth, Aov::Variance}) s.output.aovs.add(a);
   const MemoryEstimate aovs = estimate_render_memory(s);
   EXPECT_GE(aovs.image_bytes, 106u * 1000000u);
   EXPECT_GT(aovs.image_bytes, plain.image_bytes);
-  s.output.aovs = {"treemaker"};
+  s.output.aovs = {};
+  s.output.aovs.add(Aov::Treemaker);
   EXPECT_GE(estimate_render_memory(s).image_bytes, 257u * 1000000u);
   ForestDesc f;
   f.count = 100000;
@@ -38,7 +40,8 @@ TEST(RenderBudget, TheLargestImageIsRefusedUnlessForced) {
   SceneDesc s;
   s.path = "big.toml";
   s.render.width = s.render.height = 16384;
-  s.output.aovs = {"albedo", "normal", "depth", "variance"};
+  s.output.aovs = {};
+  for (Aov a : {Aov::Albedo, Aov::Normal, Aov::Depth, Aov::Variance}) s.output.aovs.add(a);
   // 268 million pixels at over 100 bytes each: more than any machine of CI's kind has.
   ASSERT_GT(estimate_render_memory(s).total(), usable_memory_bytes());
   try {

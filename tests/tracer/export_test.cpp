@@ -27,6 +27,13 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// `arbor export`'s library part: the scene built, then written as pbrt-v4 sees it.
+void export_scene(const std::string& scene_path, const std::string& out, int sky_resolution) {
+  const SceneDesc desc = load_scene(scene_path);
+  write_pbrt_scene(*build_scene(desc, kOcioConfig), render_input(desc), ColorPipeline(kOcioConfig), out,
+                   sky_resolution);
+}
+
 std::string slurp(const std::string& path) {
   std::ifstream in(path);
   std::stringstream s;
@@ -213,7 +220,7 @@ TEST(PbrtExport, WritesTheWholeSceneAndASkyWithItsIrradiance) {
     std::ofstream(scene_path) << text;
   }
   const std::string pbrt_out = dir + "scene.pbrt";
-  write_pbrt_scene(load_scene(scene_path), ColorPipeline(kOcioConfig), pbrt_out, 128);
+  export_scene(scene_path, pbrt_out, 128);
   const std::vector<Statement> pbrt = parse_pbrt(slurp(pbrt_out));
   ASSERT_FALSE(pbrt.empty());
 
@@ -242,7 +249,7 @@ TEST(PbrtExport, WritesTheWholeSceneAndASkyWithItsIrradiance) {
   // The sun: towards it, its irradiance, the exposure's 2× as the scale.
   const ColorPipeline color(kOcioConfig);
   SceneDesc desc = load_scene(scene_path);
-  const Sky sky(desc.sky, desc.sun, color.xyz_to_scene_linear());
+  const Sky sky(sky_spec(desc.sky), sun_spec(desc.sun), color.xyz_to_scene_linear());
   const Statement* sun = find(pbrt, "LightSource", "distant");
   ASSERT_NE(sun, nullptr);
   const std::vector<double> from = numbers(*sun, "point3 from"), l = numbers(*sun, "rgb L");
@@ -314,7 +321,7 @@ TEST(PbrtExport, GroundPatchesNearTheCameraAreAnImage) {
                                "[ground]\nalbedo = [0.2, 0.15, 0.1]\npatch_albedo = [0.05, 0.1, 0.03]\n"
                                "patch_cover = 0.5\npatch_scale = 4.0\n";
   const std::string pbrt_out = dir + "scene.pbrt";
-  write_pbrt_scene(load_scene(scene_path), ColorPipeline(kOcioConfig), pbrt_out, 16);
+  export_scene(scene_path, pbrt_out, 16);
   const std::vector<Statement> pbrt = parse_pbrt(slurp(pbrt_out));
   const Statement* texture = find(pbrt, "Texture", "ground patches");
   ASSERT_NE(texture, nullptr);

@@ -34,7 +34,7 @@ Sky nishita_sky(double elevation, const SkyDesc& base = {}, int width = 256) {
   SunDesc sun;
   sun.elevation = elevation;
   sun.azimuth = 0.0;
-  return Sky(sky, sun, xyz_to_scene_linear(), width);
+  return Sky(sky_spec(sky), sun_spec(sun), xyz_to_scene_linear(), width);
 }
 
 }  // namespace

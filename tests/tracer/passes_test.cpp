@@ -49,9 +49,9 @@ SceneDesc tree_scene(int spp, int pass_spp, std::uint64_t seed, bool independent
 Image render(const SceneDesc& s) {
   const EmbreeDevice device("threads=" + std::to_string(s.render.threads));
   const TestWorld test_world(s, device);
-  const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 128);
+  const Sky sky(sky_spec(s.sky), sun_spec(s.sun), xyz_to_scene_linear(), 128);
   RenderStats stats;
-  return render_image(s, test_world.world, sky, kIdentity, stats);
+  return render_image(render_input(s), test_world.world, sky, kIdentity, stats);
 }
 
 // Σ (a - b)² and Σ (var_a + var_b) over every pixel and channel of renders with seeds k and k + 1,

@@ -84,8 +84,8 @@ Image render(const SceneDesc& scene, RenderStats& stats) {
   const EmbreeDevice device(scene.render.threads > 0 ? "threads=" + std::to_string(scene.render.threads) : "");
   const TestWorld test_world(scene, device);
   const World& world = test_world.world;
-  const Sky sky(scene.sky, scene.sun, xyz_to_scene_linear(), 128);
-  return render_image(scene, world, sky, kIdentity, stats);
+  const Sky sky(sky_spec(scene.sky), sun_spec(scene.sun), xyz_to_scene_linear(), 128);
+  return render_image(render_input(scene), world, sky, kIdentity, stats);
 }
 
 }  // namespace
@@ -437,7 +437,7 @@ TEST(Camera, ThinLensKeepsTheFocusPlaneSharp) {
   d.look_at = {0.0, 10.0, 0.0};
   d.aperture_radius = 0.05;
   d.focus_distance = 7.0;
-  const Camera cam(d, 64, 48);
+  const Camera cam(camera_spec(d), 64, 48);
   for (glm::vec2 film : {glm::vec2(32, 24), glm::vec2(5, 40), glm::vec2(60, 3)}) {
     const Ray centre = cam.generate(film, {0.5f, 0.5f});
     // Where rays through different lens points meet the plane y = 7 (the focus plane).
@@ -469,7 +469,7 @@ TEST(Sky, SamplingIsConsistentWithItsPdfAndRadiance) {
     desc.path = path;
     desc.rotation = 30.0;
     SunDesc sun;
-    const Sky sky(desc, sun, xyz_to_scene_linear(), 128);
+    const Sky sky(sky_spec(desc), sun_spec(sun), xyz_to_scene_linear(), 128);
     // (1) pdf() agrees with sample(); (2) E[L / pdf] equals the integral of L over the sphere.
     glm::dvec3 estimate(0.0);
     const int n = 200000;

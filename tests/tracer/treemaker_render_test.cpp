@@ -88,7 +88,7 @@ TEST(Treemaker, SkyIrradianceOfAConstantSkyIsPiL) {
   sky.color = {0.5, 1.0, 2.0};
   SunDesc sun;
   sun.enabled = false;
-  const Sky s(sky, sun, xyz_to_scene_linear(), 256);
+  const Sky s(sky_spec(sky), sun_spec(sun), xyz_to_scene_linear(), 256);
   EXPECT_NEAR(s.irradiance_up().x, kPi * 0.5, 2e-3 * kPi);
   EXPECT_NEAR(s.irradiance_up().y, kPi * 1.0, 2e-3 * kPi);
   EXPECT_NEAR(s.irradiance_up().z, kPi * 2.0, 2e-3 * kPi);
@@ -168,9 +168,9 @@ TEST(Treemaker, ShadeOfAVerticalTrunkIsWorkedOutFromTheView) {
   for (int part = 0; part < 2; ++part) {
     if (part == 1) s.trees[0].treemaker = {0.0, 0.0, 1.0, 0.0, 0.0};  // h/h0 alone
     const TestWorld test_world(s, device);
-    const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 64);
+    const Sky sky(sky_spec(s.sky), sun_spec(s.sun), xyz_to_scene_linear(), 64);
     RenderStats stats;
-    const Image img = render_image(s, test_world.world, sky, kIdentity, stats);
+    const Image img = render_image(render_input(s), test_world.world, sky, kIdentity, stats);
     int trunk = 0;
     for (int y = 0; y < s.render.height; ++y) {
       // The height the row's centre sees on the trunk's front (19.7 m away), and what one pixel
@@ -204,7 +204,8 @@ TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
   s.render.height = 64;
   s.render.treemaker_spp = 1;
   s.render.integrator = "treemaker";
-  s.output.aovs = {"treemaker"};
+  s.output.aovs = {};
+  s.output.aovs.add(Aov::Treemaker);
   s.camera.position = {0.0, 0.0, 60.0};  // straight down onto the tree and its shadow
   s.camera.look_at = {0.0, 0.0, 0.0};
   s.camera.up = {0.0, 1.0, 0.0};
@@ -223,13 +224,13 @@ TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
   const EmbreeDevice device("");
   const TestWorld test_world(s, device);
   const World& world = test_world.world;
-  const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 256);
+  const Sky sky(sky_spec(s.sky), sun_spec(s.sun), xyz_to_scene_linear(), 256);
   const TreemakerIntegrator integrator(world, sky);
   const float e_sky = sky.irradiance_up().x;
   EXPECT_NEAR(integrator.max_intensity().x, (2.0f + e_sky) / kPi, 1e-5);
 
   RenderStats stats;
-  const Image img = render_image(s, world, sky, kIdentity, stats);
+  const Image img = render_image(render_input(s), world, sky, kIdentity, stats);
   const float lit = static_cast<float>(0.5 * (2.0 * std::sin(kPi / 4) + e_sky) / kPi);
   const float shadow = static_cast<float>(0.5 * e_sky / kPi);
   const std::size_t channels = img.extra_names.size();
@@ -272,7 +273,8 @@ TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
   s.render.height = 32;
   s.render.treemaker_spp = 3;
   s.render.integrator = "treemaker";
-  s.output.aovs = {"treemaker"};
+  s.output.aovs = {};
+  s.output.aovs.add(Aov::Treemaker);
   s.camera.position = {9.0, -12.0, 4.0};
   s.camera.look_at = {0.0, 0.0, 6.0};
   TreeDesc t = tree_of(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
@@ -283,9 +285,9 @@ TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
     const EmbreeDevice device("threads=" + std::to_string(threads));
     const TestWorld test_world(s, device);
   const World& world = test_world.world;
-    const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 128);
+    const Sky sky(sky_spec(s.sky), sun_spec(s.sun), xyz_to_scene_linear(), 128);
     RenderStats stats;
-    images[threads - 1] = render_image(s, world, sky, kIdentity, stats);
+    images[threads - 1] = render_image(render_input(s), world, sky, kIdentity, stats);
   }
   ASSERT_EQ(images[0].extra.size(), images[1].extra.size());
   ASSERT_EQ(images[0].extra.size(), 48u * 32u * 23u);
@@ -294,13 +296,13 @@ TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
   EXPECT_EQ(std::memcmp(images[0].extra.data(), images[1].extra.data(),
                         images[0].extra.size() * sizeof(float)), 0);
   // Without the AOV nothing extra is kept, and the beauty is the same.
-  s.output.aovs.clear();
+  s.output.aovs = {};
   const EmbreeDevice device("threads=2");
   const TestWorld test_world(s, device);
   const World& world = test_world.world;
-  const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 128);
+  const Sky sky(sky_spec(s.sky), sun_spec(s.sun), xyz_to_scene_linear(), 128);
   RenderStats stats;
-  const Image plain = render_image(s, world, sky, kIdentity, stats);
+  const Image plain = render_image(render_input(s), world, sky, kIdentity, stats);
   EXPECT_TRUE(plain.extra.empty());
   EXPECT_TRUE(plain.extra_names.empty());
   EXPECT_EQ(std::memcmp(plain.beauty.data(), images[1].beauty.data(), plain.beauty.size() * sizeof(glm::vec3)), 0);

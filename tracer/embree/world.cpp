@@ -8,7 +8,6 @@
 
 #include <glm/geometric.hpp>
 
-#include "formats/obj_mesh.h"
 #include "tracer/embree/embree_internal.h"
 #include "tracer/embree/embree_scene.h"
 
@@ -86,7 +85,7 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
     // the side the ray sees.
     if (!mesh.normal_indices.empty()) {
       const std::uint32_t* ni = &mesh.normal_indices[3 * static_cast<std::size_t>(rh.hit.primID)];
-      if (ni[0] != ObjMesh::kNoNormal && ni[1] != ObjMesh::kNoNormal && ni[2] != ObjMesh::kNoNormal) {
+      if (ni[0] != MeshObject::kNoNormal && ni[1] != MeshObject::kNoNormal && ni[2] != MeshObject::kNoNormal) {
         const float u = rh.hit.u, v = rh.hit.v;
         glm::vec3 n = (1.0f - u - v) * mesh.normals[ni[0]] + u * mesh.normals[ni[1]] + v * mesh.normals[ni[2]];
         const float len = glm::length(n);

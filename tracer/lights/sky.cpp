@@ -56,7 +56,7 @@ glm::dvec3 preetham_xyz(double T, double theta, double gamma, double theta_s, do
   return glm::dvec3(X, Y, Z) * scale;
 }
 
-Sky::Sky(const SkyDesc& sky, const SunDesc& sun, const ColorTransform& xyz_to_linear, int width) {
+Sky::Sky(const SkySpec& sky, const SunSpec& sun, const ColorTransform& xyz_to_linear, int width) {
   const double elevation = sun.elevation * kPi / 180.0, azimuth = sun.azimuth * kPi / 180.0;
   sun_direction_d_ = glm::dvec3(std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth),
                                 std::sin(elevation));
@@ -72,9 +72,9 @@ Sky::Sky(const SkyDesc& sky, const SunDesc& sun, const ColorTransform& xyz_to_li
     sun_irradiance_color_ = glm::vec3(sun_irradiance_);
     sun_present_ = true;
   }
-  if (sky.model == "none") return;
+  if (sky.model == SkyModel::None) return;
   rotation_ = static_cast<float>(sky.rotation * kPi / 180.0);
-  if (sky.model == "envmap") {
+  if (sky.model == SkyModel::Envmap) {
     check_input_file(sky.path, "environment map");
     OIIO::ImageBuf image(sky.path);
     if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
@@ -96,7 +96,7 @@ Sky::Sky(const SkyDesc& sky, const SunDesc& sun, const ColorTransform& xyz_to_li
         map_[static_cast<size_t>(j) * width_ + i] = glm::max(c, glm::vec3(0.0f)) * static_cast<float>(sky.scale);
       }
     }
-  } else if (sky.model == "nishita") {
+  } else if (sky.model == SkyModel::Nishita) {
     nishita(sky, sun, xyz_to_linear, width);
   } else {
     width_ = width;
@@ -107,7 +107,7 @@ Sky::Sky(const SkyDesc& sky, const SunDesc& sun, const ColorTransform& xyz_to_li
       for (int i = 0; i < width_; ++i) {
         const glm::vec3 d = from_map({(i + 0.5f) / width_, (j + 0.5f) / height_});
         glm::vec3 c(0.0f);
-        if (sky.model == "constant") {
+        if (sky.model == SkyModel::Constant) {
           c = glm::vec3(sky.color[0], sky.color[1], sky.color[2]);
         } else if (d.z > 0.0f) {
           const double gamma = std::acos(std::clamp(double(glm::dot(d, sun_direction_)), -1.0, 1.0));
@@ -147,7 +147,7 @@ Sky::Sky(const SkyDesc& sky, const SunDesc& sun, const ColorTransform& xyz_to_li
   present_ = !distribution_.empty();
 }
 
-void Sky::nishita(const SkyDesc& sky, const SunDesc& sun, const ColorTransform& xyz_to_linear, int width) {
+void Sky::nishita(const SkySpec& sky, const SunSpec& sun, const ColorTransform& xyz_to_linear, int width) {
   width_ = width;
   height_ = width / 2;
   map_.assign(static_cast<size_t>(width_) * height_, glm::vec3(0.0f));

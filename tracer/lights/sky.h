@@ -9,9 +9,9 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "formats/scene_desc.h"
 #include "tracer/lights/distribution.h"
 #include "imaging/color.h"
+#include "scene/render_input.h"
 
 namespace arbor::trace {
 
@@ -25,7 +25,7 @@ class Sky {
  public:
   // Builds the map at `width` × width/2; throws InputError for an unreadable environment map.
   // `xyz_to_scene_linear` converts the Preetham model's XYZ (ColorPipeline::xyz_to_scene_linear).
-  Sky(const SkyDesc& sky, const SunDesc& sun, const ColorTransform& xyz_to_scene_linear,
+  Sky(const SkySpec& sky, const SunSpec& sun, const ColorTransform& xyz_to_scene_linear,
       int width = 512);
 
   glm::vec3 radiance(const glm::vec3& direction) const;  // sky only, not the sun
@@ -52,7 +52,7 @@ class Sky {
   bool in_sun(const glm::vec3& direction) const;
 
  private:
-  void nishita(const SkyDesc& sky, const SunDesc& sun, const ColorTransform& xyz_to_linear, int width);
+  void nishita(const SkySpec& sky, const SunSpec& sun, const ColorTransform& xyz_to_linear, int width);
   glm::vec2 to_map(const glm::vec3& d) const;
   glm::vec3 from_map(glm::vec2 p) const;
   glm::vec3 map_at(glm::vec2 p) const;  // the map's cell at map coordinates p

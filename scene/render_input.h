@@ -1,0 +1,87 @@
+// Everything the tracer needs besides the built geometry, as typed values: the render settings,
+// the camera, the sun and the sky, and the output specification. scene/ builds it from the scene
+// description (formats/scene_desc.h), whose choices are names; here they are enums, so the tracer
+// never compares a string and an unknown choice cannot reach it.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <glm/vec3.hpp>
+
+#include "formats/scene_desc.h"
+#include "imaging/output_spec.h"
+
+namespace arbor::trace {
+
+enum class Integrator { Path, Treemaker };
+inline constexpr std::array<const char*, 2> kIntegratorNames = {"path", "treemaker"};
+const char* name_of(Integrator integrator);
+std::optional<Integrator> integrator_named(std::string_view name);
+
+enum class SkyModel { Preetham, Nishita, Constant, Envmap, None };
+inline constexpr std::array<const char*, 5> kSkyModelNames = {"preetham", "nishita", "constant", "envmap", "none"};
+const char* name_of(SkyModel model);
+
+struct RenderSpec {
+  int width = 0, height = 0;
+  int spp = 0;                    // of the path integrator
+  std::uint64_t seed = 0;
+  Integrator integrator = Integrator::Path;
+  int max_depth = 0;
+  int treemaker_spp = 0;          // of the treemaker integrator (anti-aliasing)
+  int pass_spp = 0;
+  bool independent_passes = false;
+  double noise_threshold = 0.0;   // adaptive sampling; 0: off
+  int min_spp = 0;
+  int threads = 0;                // 0: all cores
+  // The sample count of the integrator in use.
+  int samples() const { return integrator == Integrator::Treemaker ? treemaker_spp : spp; }
+};
+
+struct CameraSpec {
+  glm::dvec3 position{0.0}, look_at{0.0}, up{0.0, 0.0, 1.0};
+  double fov = 45.0;              // vertical, degrees
+  double aperture_radius = 0.0;   // metres
+  double focus_distance = 0.0;    // metres; 0: distance to look_at
+  double exposure = 0.0;          // stops
+};
+
+struct SunSpec {
+  bool enabled = true;
+  double elevation = 0.0, azimuth = 0.0;  // degrees; azimuth counter-clockwise from +x
+  double irradiance = 0.0;                // scene-linear, on a plane facing the sun
+  double angular_diameter = 0.0;          // degrees
+};
+
+struct SkySpec {
+  SkyModel model = SkyModel::None;
+  double turbidity = 0.0;                                                    // preetham
+  double air_density = 1.0, dust_density = 1.0, ozone_density = 1.0, altitude = 0.0;  // nishita
+  glm::dvec3 color{1.0};                                                     // constant
+  std::string path;                                                          // envmap
+  double rotation = 0.0, scale = 1.0;                                        // envmap
+};
+
+struct RenderInput {
+  std::string scene;  // the scene file, for messages and metadata
+  RenderSpec render;
+  CameraSpec camera;
+  SunSpec sun;
+  SkySpec sky;
+  OutputSpec output;
+};
+
+// The typed values of the scene description's parts.
+CameraSpec camera_spec(const CameraDesc& camera);
+SunSpec sun_spec(const SunDesc& sun);
+SkySpec sky_spec(const SkyDesc& sky);
+
+// The typed input of the scene description `desc` (its choices already checked by the reader);
+// InputError when its camera cannot form an image.
+RenderInput render_input(const SceneDesc& desc);
+
+}  // namespace arbor::trace
