@@ -138,7 +138,11 @@ void write_sky_exr(const Sky& sky, const Colors& colors, const PbrtColorSpace& s
     for (int x = 0; x < n; ++x) {
       glm::vec3 d = glm::normalize(equal_area_square_to_sphere(
           glm::vec2((static_cast<float>(x) + 0.5f) / static_cast<float>(n), (static_cast<float>(y) + 0.5f) / static_cast<float>(n))));
-      if (fill_below && d.z < 0.0f) {
+      // The texels centred on the horizon itself (z = 0 exactly: the square's diamond runs through
+      // texel centres) belong to the sky above it; arbor's map puts z = 0 in its first row below,
+      // which is black, and pbrt's bilinear lookup spread that black over the last half degree of
+      // sky (0.02-0.2x in pbrt at 512 texels).
+      if ((fill_below && d.z < 0.0f) || d.z == 0.0f) {
         const float across = std::hypot(d.x, d.y);
         d = across > 1e-6f ? glm::normalize(glm::vec3(d.x / across, d.y / across, 1e-4f)) : glm::vec3(1.0f, 0.0f, 1e-4f);
       }

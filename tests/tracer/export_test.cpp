@@ -283,9 +283,10 @@ TEST(PbrtExport, WritesTheWholeSceneAndASkyWithItsIrradiance) {
       const glm::vec3 d = equal_area_square_to_sphere({(x + 0.5f) / spec.width, (y + 0.5f) / spec.height});
       const float* p = &px[(static_cast<std::size_t>(y) * spec.width + x) * spec.nchannels];
       if (d.z > 0.0f) e += glm::dvec3(p[0], p[1], p[2]) * static_cast<double>(d.z);
-      // Below the horizon (the ground hides it) the horizon's radiance, never black: pbrt's
-      // bilinear lookup of the lowest sky rows blends these in.
-      if (d.z < 0.0f) {
+      // Below the horizon (the ground hides it) and on it (z = 0: texels the square's diamond runs
+      // through) the horizon's radiance, never black: pbrt's bilinear lookup of the lowest sky
+      // rows blends these in.
+      if (d.z <= 0.0f) {
         const float across = std::hypot(d.x, d.y);
         const glm::vec3 h = glm::normalize(glm::vec3(d.x / across, d.y / across, 1e-4f));
         const glm::vec3 horizon = glm::max(sky.radiance(h), glm::vec3(0.0f));  // pbrt's srgb is scene_linear here
