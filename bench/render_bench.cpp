@@ -87,7 +87,7 @@ void render_frames(benchmark::State& state, int spp, bool treemaker) {
   scene.render.width = 160;
   scene.render.height = 120;
   scene.render.spp = spp;
-  if (treemaker) scene.render.integrator = "treemaker";
+  if (treemaker) scene.render.integrator = trace::Integrator::Treemaker;
   const trace::EmbreeDevice device("threads=1");
   const BuiltWorld built(scene, device);
   const trace::World& world = built.world;

@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "common/error.h"
@@ -17,11 +18,21 @@ namespace arbor::trace {
 
 using Vec3d = std::array<double, 3>;
 
+enum class Integrator { Path, Treemaker };
+inline constexpr std::array<const char*, 2> kIntegratorNames = {"path", "treemaker"};
+const char* name_of(Integrator integrator);
+std::optional<Integrator> integrator_named(std::string_view name);
+
+enum class SkyModel { Preetham, Nishita, Constant, Envmap, None };
+inline constexpr std::array<const char*, 5> kSkyModelNames = {"preetham", "nishita", "constant", "envmap", "none"};
+const char* name_of(SkyModel model);
+
+
 struct RenderSettings {
   int width = 960, height = 640;
   int spp = 64;
   std::uint64_t seed = 1;
-  std::string integrator = "path";  // "path" | "treemaker"
+  Integrator integrator = Integrator::Path;
   int max_depth = 12;
   int treemaker_spp = 4;            // samples per pixel of the treemaker integrator (anti-aliasing)
   int pass_spp = 16;                // samples a pixel takes per pass (a power of two keeps Sobol' balanced)
@@ -54,7 +65,7 @@ struct SunDesc {
 };
 
 struct SkyDesc {
-  std::string model = "preetham";  // "preetham" | "nishita" | "constant" | "envmap" | "none"
+  SkyModel model = SkyModel::Preetham;
   double turbidity = 3.0;
   // nishita: multipliers of the standard atmosphere's profiles, the observer's altitude (m)
   double air_density = 1.0, dust_density = 1.0, ozone_density = 1.0, altitude = 0.0;

@@ -95,7 +95,7 @@ class SceneReader : TomlReader {
       else if (k == "height") r.height = static_cast<int>(integer(n, "render.height", 1, 16384));
       else if (k == "spp") r.spp = static_cast<int>(integer(n, "render.spp", 1, 1 << 20));
       else if (k == "seed") r.seed = static_cast<std::uint64_t>(integer(n, "render.seed", 0, INT64_MAX));
-      else if (k == "integrator") r.integrator = choice(n, "render.integrator", {"path", "treemaker"});
+      else if (k == "integrator") r.integrator = static_cast<Integrator>(choice_index(n, "render.integrator", kIntegratorNames));
       else if (k == "max_depth") r.max_depth = static_cast<int>(integer(n, "render.max_depth", 1, 1024));
       else if (k == "treemaker_spp") r.treemaker_spp = static_cast<int>(integer(n, "render.treemaker_spp", 1, 1 << 20));
       else if (k == "pass_spp") r.pass_spp = static_cast<int>(integer(n, "render.pass_spp", 1, 1 << 20));
@@ -156,7 +156,7 @@ class SceneReader : TomlReader {
   void sky(const toml::table& t, SkyDesc& s) const {
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
-      if (k == "model") s.model = choice(n, "sky.model", {"preetham", "nishita", "constant", "envmap", "none"});
+      if (k == "model") s.model = static_cast<SkyModel>(choice_index(n, "sky.model", kSkyModelNames));
       else if (k == "turbidity") s.turbidity = number(n, "sky.turbidity", 1.7, 10.0);
       else if (k == "air_density") s.air_density = number(n, "sky.air_density", 0.0, 10.0);
       else if (k == "dust_density") s.dust_density = number(n, "sky.dust_density", 0.0, 100.0);
@@ -168,7 +168,7 @@ class SceneReader : TomlReader {
       else if (k == "scale") s.scale = number(n, "sky.scale", 0.0, 1e6);
       else unknown(key, "sky");
     }
-    if (s.model == "envmap" && s.path.empty()) {
+    if (s.model == SkyModel::Envmap && s.path.empty()) {
       throw InputError(at(t.source()), "sky.model = \"envmap\" needs sky.path (an image OIIO reads)");
     }
   }
@@ -372,6 +372,16 @@ void check_camera(const CameraDesc& d) {
   }
 }
 
+const char* name_of(Integrator integrator) { return kIntegratorNames[static_cast<std::size_t>(integrator)]; }
+const char* name_of(SkyModel model) { return kSkyModelNames[static_cast<std::size_t>(model)]; }
+
+std::optional<Integrator> integrator_named(std::string_view name) {
+  for (std::size_t i = 0; i < kIntegratorNames.size(); ++i) {
+    if (name == kIntegratorNames[i]) return static_cast<Integrator>(i);
+  }
+  return std::nullopt;
+}
+
 SceneDesc parse_scene(const std::string& text, const std::string& path) {
   return SceneReader(path).read(text);
 }
@@ -417,7 +427,7 @@ std::vector<std::string> scene_inputs(const SceneDesc& s) {
     looks(f.bark, f.leaf);
   }
   for (const MeshDesc& m : s.meshes) add(m.path);
-  if (s.sky.model == "envmap") add(s.sky.path);
+  if (s.sky.model == SkyModel::Envmap) add(s.sky.path);
   return in;
 }
 

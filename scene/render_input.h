@@ -1,7 +1,7 @@
 // Everything the tracer needs besides the built geometry, as typed values: the render settings,
 // the camera, the sun and the sky, and the output specification. scene/ builds it from the scene
-// description (formats/scene_desc.h), whose choices are names; here they are enums, so the tracer
-// never compares a string and an unknown choice cannot reach it.
+// description (formats/scene_desc.h, whose choices are already enums, Integrator and SkyModel),
+// so the tracer never reads the description, compares a string, or meets an unknown choice.
 #pragma once
 
 #include <array>
@@ -16,15 +16,6 @@
 #include "imaging/output_spec.h"
 
 namespace arbor::trace {
-
-enum class Integrator { Path, Treemaker };
-inline constexpr std::array<const char*, 2> kIntegratorNames = {"path", "treemaker"};
-const char* name_of(Integrator integrator);
-std::optional<Integrator> integrator_named(std::string_view name);
-
-enum class SkyModel { Preetham, Nishita, Constant, Envmap, None };
-inline constexpr std::array<const char*, 5> kSkyModelNames = {"preetham", "nishita", "constant", "envmap", "none"};
-const char* name_of(SkyModel model);
 
 struct RenderSpec {
   int width = 0, height = 0;

@@ -62,8 +62,8 @@ void add_override_options(CLI::App* command, RenderOverrides& o, unsigned which,
 void apply_overrides(trace::SceneDesc& scene, const RenderOverrides& o) {
   using namespace arbor::trace;
   RenderSettings& r = scene.render;
-  if (!o.integrator.empty()) r.integrator = o.integrator;
-  if (o.spp > 0) (r.integrator == "treemaker" ? r.treemaker_spp : r.spp) = o.spp;
+  if (!o.integrator.empty()) r.integrator = integrator_named(o.integrator).value();  // CLI11 checked the name
+  if (o.spp > 0) (r.integrator == Integrator::Treemaker ? r.treemaker_spp : r.spp) = o.spp;
   if (o.width > 0) r.width = o.width;
   if (o.height > 0) r.height = o.height;
   if (o.seed) r.seed = *o.seed;

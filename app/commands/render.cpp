@@ -74,7 +74,7 @@ std::string render_fingerprint(const SceneDesc& scene, const RenderRequest& a, c
   s.precision(17);
   s << "size " << r.width << "x" << r.height << "; spp " << r.spp << "; pass_spp " << r.pass_spp
     << "; independent_passes " << (r.independent_passes ? "true" : "false") << "; seed " << r.seed
-    << "; integrator " << r.integrator << "; max_depth " << r.max_depth << "; treemaker_spp " << r.treemaker_spp
+    << "; integrator " << name_of(r.integrator) << "; max_depth " << r.max_depth << "; treemaker_spp " << r.treemaker_spp
     << "; noise_threshold " << r.noise_threshold << "; min_spp " << r.min_spp << "; transparent_sky "
     << (scene.output.transparent_sky ? "true" : "false") << "; ids " << (scene.output.wants_ids() ? "kept" : "none")
     << "; --time " << (a.overrides.time ? std::to_string(*a.overrides.time) : std::string("none"));

@@ -128,7 +128,7 @@ lambert = 1.5
 [output]
 aovs = ["treemaker", "albedo"]
 )", "dir/s.toml");
-  EXPECT_EQ(s.render.integrator, "treemaker");
+  EXPECT_EQ(s.render.integrator, Integrator::Treemaker);
   EXPECT_EQ(s.render.treemaker_spp, 2);
   EXPECT_EQ(s.render.spp, 64);  // the path integrator's count is separate
   EXPECT_DOUBLE_EQ(*s.trees[0].treemaker.ambient, 0.2);

@@ -30,7 +30,7 @@ glm::dvec3 rec709(const glm::dvec3& xyz) {
 
 Sky nishita_sky(double elevation, const SkyDesc& base = {}, int width = 256) {
   SkyDesc sky = base;
-  sky.model = "nishita";
+  sky.model = SkyModel::Nishita;
   SunDesc sun;
   sun.elevation = elevation;
   sun.azimuth = 0.0;

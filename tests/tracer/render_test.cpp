@@ -48,7 +48,7 @@ SceneDesc ground_view(int width, int height, int spp) {
   s.camera.look_at = {0.0, 0.0, 0.0};
   s.camera.up = {0.0, 1.0, 0.0};
   s.camera.fov = 20.0;
-  s.sky.model = "none";
+  s.sky.model = SkyModel::None;
   return s;
 }
 
@@ -57,7 +57,7 @@ SceneDesc ground_view(int width, int height, int spp) {
 void white_furnace(SceneDesc& s) {
   s.render.max_depth = 512;
   s.sun.enabled = false;
-  s.sky.model = "constant";
+  s.sky.model = SkyModel::Constant;
   s.sky.color = {1.0, 1.0, 1.0};
   s.ground.enabled = false;
 }
@@ -255,7 +255,7 @@ TEST(Render, ConstantSkySeenDirectlyIsItsRadiance) {
   s.camera.look_at = {0.0, 0.0, 50.0};
   s.sun.enabled = false;
   s.ground.enabled = false;
-  s.sky.model = "constant";
+  s.sky.model = SkyModel::Constant;
   s.sky.color = {0.25, 0.5, 2.0};
   RenderStats stats;
   for (const glm::vec3& v : render(s, stats).beauty) {
@@ -394,7 +394,7 @@ TEST(Render, BarkBumpMapImagesShadeTheBarkAndMissingOnesAreErrors) {
   s.camera.position = {0.0, -3.0, 2.0};
   s.camera.look_at = {0.0, 0.0, 2.0};
   s.camera.fov = 12.0;
-  s.sky.model = "none";
+  s.sky.model = SkyModel::None;
   s.sun.elevation = 10.0;
   s.sun.azimuth = -90.0;
   TreeDesc t = aspen();
@@ -463,7 +463,7 @@ TEST(Sky, SamplingIsConsistentWithItsPdfAndRadiance) {
     }
   }
   ASSERT_TRUE(env.write(path));
-  for (const char* model : {"envmap", "preetham"}) {
+  for (const SkyModel model : {SkyModel::Envmap, SkyModel::Preetham}) {
     SkyDesc desc;
     desc.model = model;
     desc.path = path;
@@ -477,7 +477,7 @@ TEST(Sky, SamplingIsConsistentWithItsPdfAndRadiance) {
       const glm::vec2 u((i + 0.5f) / n, std::fmod(i * 0.6180339887f, 1.0f));
       const LightSample s = sky.sample(u);
       if (s.pdf <= 0.0f) continue;
-      ASSERT_NEAR(sky.pdf(s.direction), s.pdf, 2e-3f * s.pdf) << model;
+      ASSERT_NEAR(sky.pdf(s.direction), s.pdf, 2e-3f * s.pdf) << name_of(model);
       estimate += glm::dvec3(s.radiance) / double(s.pdf);
     }
     estimate /= n;
@@ -490,7 +490,7 @@ TEST(Sky, SamplingIsConsistentWithItsPdfAndRadiance) {
         quadrature += glm::dvec3(sky.radiance(d)) * std::sin(theta) * (kPi / (m / 2)) * (2 * kPi / m);
       }
     }
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(estimate[c], quadrature[c], 0.01 * quadrature[c]) << model;
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(estimate[c], quadrature[c], 0.01 * quadrature[c]) << name_of(model);
   }
 }
 

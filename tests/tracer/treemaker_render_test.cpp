@@ -84,7 +84,7 @@ TEST(Treemaker, FactorsMatchHandWorkedValues) {
 
 TEST(Treemaker, SkyIrradianceOfAConstantSkyIsPiL) {
   SkyDesc sky;
-  sky.model = "constant";
+  sky.model = SkyModel::Constant;
   sky.color = {0.5, 1.0, 2.0};
   SunDesc sun;
   sun.enabled = false;
@@ -149,14 +149,14 @@ TEST(Treemaker, ShadeOfAVerticalTrunkIsWorkedOutFromTheView) {
   s.render.width = 16;
   s.render.height = 64;
   s.render.treemaker_spp = 1;
-  s.render.integrator = "treemaker";
+  s.render.integrator = Integrator::Treemaker;
   s.camera.position = {0.0, -20.0, 5.0};
   s.camera.look_at = {0.0, 0.0, 5.0};
   s.camera.fov = 40.0;
   s.sun.elevation = 30.0;
   s.sun.azimuth = 0.0;
   s.sun.irradiance = 2.0;
-  s.sky.model = "none";
+  s.sky.model = SkyModel::None;
   s.ground.enabled = false;
   TreeDesc t = tree_of(write_file("tm_pole.skel", "point 1 0 0 0 0.3\npoint 2 0 0 10 0.3\nconnect 1 2\n"));
   t.bark.albedo = Rgb{0.5, 0.5, 0.5};
@@ -203,7 +203,7 @@ TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
   s.render.width = 64;
   s.render.height = 64;
   s.render.treemaker_spp = 1;
-  s.render.integrator = "treemaker";
+  s.render.integrator = Integrator::Treemaker;
   s.output.aovs = {};
   s.output.aovs.add(Aov::Treemaker);
   s.camera.position = {0.0, 0.0, 60.0};  // straight down onto the tree and its shadow
@@ -213,7 +213,7 @@ TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
   s.sun.elevation = 45.0;
   s.sun.azimuth = 0.0;  // from +x: shadows fall towards −x
   s.sun.irradiance = 2.0;
-  s.sky.model = "constant";
+  s.sky.model = SkyModel::Constant;
   s.sky.color = {0.25, 0.25, 0.25};
   s.ground.albedo = {0.5, 0.5, 0.5};
   TreeDesc t = tree_of(known_skeleton());
@@ -272,7 +272,7 @@ TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
   s.render.width = 48;
   s.render.height = 32;
   s.render.treemaker_spp = 3;
-  s.render.integrator = "treemaker";
+  s.render.integrator = Integrator::Treemaker;
   s.output.aovs = {};
   s.output.aovs.add(Aov::Treemaker);
   s.camera.position = {9.0, -12.0, 4.0};

@@ -1,5 +1,5 @@
-// The lights of a scene: the sky (Preetham, Nishita, constant, environment map or none) as one
-// importance-sampled lat-long radiance map, and the sun as a disk of given angular diameter and
+// The lights of a scene: the sky (Preetham, Nishita, constant, environment map or none; each
+// model's map made in its own file, sky_model.h) as one importance-sampled lat-long radiance map, and the sun as a disk of given angular diameter and
 // irradiance (with Nishita's sky, attenuated and coloured by the same atmosphere).
 #pragma once
 
@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include "tracer/lights/distribution.h"
+#include "tracer/lights/sky_model.h"
 #include "imaging/color.h"
 #include "scene/render_input.h"
 
@@ -52,7 +53,6 @@ class Sky {
   bool in_sun(const glm::vec3& direction) const;
 
  private:
-  void nishita(const SkySpec& sky, const SunSpec& sun, const ColorTransform& xyz_to_linear, int width);
   glm::vec2 to_map(const glm::vec3& d) const;
   glm::vec3 from_map(glm::vec2 p) const;
   glm::vec3 map_at(glm::vec2 p) const;  // the map's cell at map coordinates p
@@ -70,11 +70,5 @@ class Sky {
   double sun_one_minus_cos_ = 0.0;      // 1 - cos α, the cone's solid angle / 2π
   glm::dvec3 sun_direction_d_{0.0, 0.0, 1.0};
 };
-
-// Preetham, Shirley & Smits 1999 sky radiance as CIE XYZ (relative to a sun of irradiance
-// `sun_irradiance`) for a view direction at zenith angle theta and angle gamma from the sun,
-// with the sun at zenith angle theta_sun.
-glm::dvec3 preetham_xyz(double turbidity, double theta, double gamma, double theta_sun,
-                        double sun_irradiance);
 
 }  // namespace arbor::trace

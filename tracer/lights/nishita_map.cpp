@@ -1,0 +1,55 @@
+// Nishita's single-scattering sky (nishita.h) as a map, white-balanced to the sun outside the
+// atmosphere, and the sun's irradiance at the ground through the same atmosphere.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <glm/common.hpp>
+#include <glm/vector_relational.hpp>
+
+#include "tracer/lights/nishita.h"
+#include "tracer/lights/sky_model.h"
+
+namespace arbor::trace {
+
+SkyMap nishita_sky_map(const SkyContext& c) {
+  SkyMap map;
+  map.width = c.width;
+  map.height = c.width / 2;
+  map.texels.assign(static_cast<size_t>(map.width) * map.height, glm::vec3(0.0f));
+  Atmosphere atmosphere;
+  atmosphere.air_density = c.sky.air_density;
+  atmosphere.dust_density = c.sky.dust_density;
+  atmosphere.ozone_density = c.sky.ozone_density;
+  atmosphere.altitude = c.sky.altitude;
+  // [sun] irradiance is the sun's outside the atmosphere (as CIE Y); what reaches the ground is
+  // what the atmosphere lets through, coloured by it. As with Preetham's sky, the sky is lit by
+  // that sun even when [sun] enabled = false (which removes only its disk).
+  const NishitaSky model(atmosphere, c.sun_direction, c.sun.irradiance);
+  auto convert = [&](const glm::dvec3& xyz) {
+    float rgb[3] = {static_cast<float>(xyz.x), static_cast<float>(xyz.y), static_cast<float>(xyz.z)};
+    c.xyz_to_linear(rgb);
+    return glm::dvec3(rgb[0], rgb[1], rgb[2]);
+  };
+  // White balance: the sun outside the atmosphere is white in the rendering space (as the other
+  // models' sun is), so the colours are the atmosphere's alone — a channel scale in that space.
+  const glm::dvec3 space = convert(model.extraterrestrial_xyz());
+  const double space_y = model.extraterrestrial_xyz().y;
+  const glm::dvec3 balance = glm::all(glm::greaterThan(space, glm::dvec3(0.0))) ? space_y / space : glm::dvec3(1.0);
+  auto to_linear = [&](const glm::dvec3& xyz) {
+    return glm::max(glm::vec3(convert(xyz) * balance), glm::vec3(0.0f));
+  };
+  // Rows are independent: in parallel, each texel the same whatever the thread.
+  tbb::parallel_for(tbb::blocked_range<int>(0, map.height / 2 + 1), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j < rows.end(); ++j) {
+      for (int i = 0; i < map.width; ++i) {
+        const glm::vec3 d = lat_long_direction({(i + 0.5f) / map.width, (j + 0.5f) / map.height}, c.rotation);
+        if (d.z <= 0.0f) continue;
+        map.texels[static_cast<size_t>(j) * map.width + i] = to_linear(model.radiance_xyz(glm::dvec3(d)));
+      }
+    }
+  });
+  map.sun_irradiance = to_linear(model.sun_irradiance_xyz());
+  return map;
+}
+
+}  // namespace arbor::trace

@@ -1,0 +1,34 @@
+// The factory of sky maps, keyed by the model.
+#include "tracer/lights/sky_model.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "common/math.h"
+
+namespace arbor::trace {
+
+// One per model, each in its own file.
+SkyMap preetham_sky_map(const SkyContext& context);
+SkyMap constant_sky_map(const SkyContext& context);
+SkyMap envmap_sky_map(const SkyContext& context);
+SkyMap nishita_sky_map(const SkyContext& context);
+
+SkyMap make_sky_map(const SkyContext& context) {
+  switch (context.sky.model) {
+    case SkyModel::Preetham: return preetham_sky_map(context);
+    case SkyModel::Constant: return constant_sky_map(context);
+    case SkyModel::Envmap: return envmap_sky_map(context);
+    case SkyModel::Nishita: return nishita_sky_map(context);
+    case SkyModel::None: break;
+  }
+  throw std::logic_error("make_sky_map: no map for this sky model");
+}
+
+glm::vec3 lat_long_direction(glm::vec2 p, float rotation) {
+  constexpr float kPif = static_cast<float>(kPi);
+  const float phi = p.x * 2.0f * kPif + rotation, theta = p.y * kPif;
+  return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+}
+
+}  // namespace arbor::trace
