@@ -41,10 +41,12 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 // mean" for a mistyped command.
 void report_usage_error(const CLI::App& app, const CLI::ParseError& e, const std::string& first) {
   std::vector<std::string> names;
-  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    names.push_back(sub->get_name());
   const bool known = std::find(names.begin(), names.end(), first) != names.end();
   if (first.empty() || first[0] == '-' || known) {
-    std::fprintf(stderr, "arbor: error: %s (arbor %s--help)\n", e.what(), known ? (first + " ").c_str() : "");
+    std::fprintf(stderr, "arbor: error: %s (arbor %s--help)\n", e.what(),
+                 known ? (first + " ").c_str() : "");
     return;
   }
   std::string list, near;
@@ -52,8 +54,9 @@ void report_usage_error(const CLI::App& app, const CLI::ParseError& e, const std
     list += (list.empty() ? "" : ", ") + n;
     if (near.empty() && edit_distance(first, n) <= 2) near = n;
   }
-  std::fprintf(stderr, "arbor: error: unknown command '%s'%s; the commands are %s (arbor --help)\n", first.c_str(),
-               near.empty() ? "" : (" (did you mean '" + near + "'?)").c_str(), list.c_str());
+  std::fprintf(stderr, "arbor: error: unknown command '%s'%s; the commands are %s (arbor --help)\n",
+               first.c_str(), near.empty() ? "" : (" (did you mean '" + near + "'?)").c_str(),
+               list.c_str());
 }
 
 }  // namespace
@@ -62,7 +65,8 @@ int main(int argc, char** argv) {
   using namespace arbor::app;
   CLI::App app{"arbor " ARBOR_VERSION_STRING
                ": grows trees from procedural models and renders them (physically based)"};
-  app.set_version_flag("--version", std::string("arbor ") + ARBOR_VERSION_STRING + " (commit " + ARBOR_COMMIT + ")");
+  app.set_version_flag(
+      "--version", std::string("arbor ") + ARBOR_VERSION_STRING + " (commit " + ARBOR_COMMIT + ")");
   app.require_subcommand(1);
   GrowRequest grow;
   RenderRequest render;

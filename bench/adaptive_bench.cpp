@@ -44,7 +44,8 @@ trace::Image render(const trace::SceneDesc& s) {
   const trace::ColorPipeline color(kOcioConfig);
   const trace::Sky sky(sky_spec(s.sky), sun_spec(s.sun), color.xyz_to_scene_linear());
   trace::RenderStats stats;
-  return trace::render_image(render_input(s), world, sky, color.to_output(s.output.colorspace), stats);
+  return trace::render_image(render_input(s), world, sky, color.to_output(s.output.colorspace),
+                             stats);
 }
 
 const trace::Image& reference() {
@@ -98,7 +99,12 @@ void adaptive(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(uniform)->ArgName("spp")->Arg(32)->Arg(64)->Arg(128)->Arg(256)->Iterations(1)->Unit(benchmark::kMillisecond);
-BENCHMARK(adaptive)->ArgNames({"threshold", "spp"})->ArgsProduct({{150, 100, 70, 50}, {256}})->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(uniform)->ArgName("spp")->Arg(32)->Arg(64)->Arg(128)->Arg(256)->Iterations(1)->Unit(
+    benchmark::kMillisecond);
+BENCHMARK(adaptive)
+    ->ArgNames({"threshold", "spp"})
+    ->ArgsProduct({{150, 100, 70, 50}, {256}})
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

@@ -107,7 +107,8 @@ void scene(benchmark::State& state, trace::SceneDesc (*make)()) {
   const auto build_start = std::chrono::steady_clock::now();
   const std::unique_ptr<const trace::Scene> built = trace::build_scene(s, kOcioConfig);
   const trace::World world(*built, device);
-  const double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
+  const double build_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
   const trace::ColorPipeline color(kOcioConfig);
   const trace::Sky sky(sky_spec(s.sky), sun_spec(s.sun), color.xyz_to_scene_linear());
   const trace::ColorTransform to_output = color.to_output(s.output.colorspace);
@@ -151,9 +152,15 @@ void scene(benchmark::State& state, trace::SceneDesc (*make)()) {
 
 }  // namespace
 
-BENCHMARK_CAPTURE(scene, default_curves, default_scene)->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK_CAPTURE(scene, default_glossy, default_glossy)->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK_CAPTURE(scene, default_triangles, default_triangles)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK_CAPTURE(scene, default_curves, default_scene)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(scene, default_glossy, default_glossy)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(scene, default_triangles, default_triangles)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2);
 BENCHMARK_CAPTURE(scene, willow, willow)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(scene, forest_10000, forest)->Unit(benchmark::kMillisecond)->Iterations(1);
 

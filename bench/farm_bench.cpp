@@ -32,8 +32,9 @@ double run(const std::string& command) {
 }
 
 std::vector<std::string> plan(const std::string& tiles, int groups) {
-  const std::string command = kArbor + " plan " + kScene + " --spp 64 --tiles " + tiles + " --pass-groups " +
-                              std::to_string(groups) + " -o " + kDir + "split.exr";
+  const std::string command = kArbor + " plan " + kScene + " --spp 64 --tiles " + tiles +
+                              " --pass-groups " + std::to_string(groups) + " -o " + kDir +
+                              "split.exr";
   std::vector<std::string> lines;
   if (std::FILE* f = popen(command.c_str(), "r")) {
     char buf[8192];
@@ -54,7 +55,8 @@ std::vector<std::string> plan(const std::string& tiles, int groups) {
 void whole(benchmark::State& state) {
   std::system(("rm -rf " + kDir + " && mkdir -p " + kDir).c_str());
   for (auto _ : state) {
-    state.SetIterationTime(run(kArbor + " render " + kScene + kSettings + " -o " + kDir + "whole.exr"));
+    state.SetIterationTime(
+        run(kArbor + " render " + kScene + kSettings + " -o " + kDir + "whole.exr"));
   }
 }
 

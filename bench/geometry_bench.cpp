@@ -61,8 +61,8 @@ void limb_bytes(benchmark::State& state, const char* file) {
   const double curve_bytes = static_cast<double>(
       g.curves.points.size() * sizeof(glm::vec4) + g.curves.tangents.size() * sizeof(glm::vec4) +
       g.curves.segments.size() * sizeof(arbor::gen::CurveSegment));
-  const double grid_bytes = static_cast<double>(
-      g.grids.vertices.size() * (2 * sizeof(glm::vec3) + sizeof(glm::vec2)));
+  const double grid_bytes =
+      static_cast<double>(g.grids.vertices.size() * (2 * sizeof(glm::vec3) + sizeof(glm::vec2)));
   state.counters["curve_MB"] = curve_bytes / 1e6;
   state.counters["limb_mesh_MB"] = static_cast<double>(mesh_bytes) / 1e6;
   state.counters["curve_to_mesh_ratio"] = curve_bytes / static_cast<double>(mesh_bytes);
@@ -71,7 +71,7 @@ void limb_bytes(benchmark::State& state, const char* file) {
 
 }  // namespace
 
-#define ARBOR_SPECIES_BENCH(fn)                                                          \
+#define ARBOR_SPECIES_BENCH(fn)                                                              \
   BENCHMARK_CAPTURE(fn, quaking_aspen, "quaking_aspen.toml")->Unit(benchmark::kMillisecond); \
   BENCHMARK_CAPTURE(fn, black_tupelo, "black_tupelo.toml")->Unit(benchmark::kMillisecond);   \
   BENCHMARK_CAPTURE(fn, ca_black_oak, "ca_black_oak.toml")->Unit(benchmark::kMillisecond);   \

@@ -1,6 +1,6 @@
 // Benchmark: `grow` of the four appendix species of Weber & Penn 1995 and of the shipped
-// L-systems, fractal trees, TREE-MAKER templates and skeleton file (seed 1, quality 1, one thread), reporting stems and leaves grown and the peak
-// resident memory of the process.
+// L-systems, fractal trees, TREE-MAKER templates and skeleton file (seed 1, quality 1, one thread),
+// reporting stems and leaves grown and the peak resident memory of the process.
 #include <sys/resource.h>
 
 #include <string>
@@ -37,17 +37,23 @@ void grow_species(benchmark::State& state, const char* file) {
 BENCHMARK_CAPTURE(grow_species, quaking_aspen, "quaking_aspen.toml")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(grow_species, black_tupelo, "black_tupelo.toml")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(grow_species, ca_black_oak, "ca_black_oak.toml")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(grow_species, weeping_willow, "weeping_willow.toml")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(grow_species, lsystem_2d_branching, "lsystem_2d_branching.lsys")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, weeping_willow, "weeping_willow.toml")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, lsystem_2d_branching, "lsystem_2d_branching.lsys")
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(grow_species, lsystem_weed, "lsystem_weed.lsys")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(grow_species, lsystem_bush, "lsystem_bush.lsys")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(grow_species, lsystem_realistic_tree, "lsystem_realistic_tree.lsys")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(grow_species, lsystem_almost_real, "lsystem_almost_real.lsys")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, lsystem_realistic_tree, "lsystem_realistic_tree.lsys")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, lsystem_almost_real, "lsystem_almost_real.lsys")
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(grow_species, fractal_basic, "fractal_basic.toml")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(grow_species, fractal_broadleaf, "fractal_broadleaf.toml")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, fractal_broadleaf, "fractal_broadleaf.toml")
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(grow_species, young_tree_skel, "young_tree.skel")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(grow_species, dogwood_tmpl, "dogwood.tmpl")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(grow_species, young_pine_tmpl, "young_pine.tmpl")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(grow_species, weeping_cherry_tmpl, "weeping_cherry.tmpl")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(grow_species, weeping_cherry_tmpl, "weeping_cherry.tmpl")
+    ->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

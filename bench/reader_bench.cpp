@@ -18,7 +18,8 @@ std::string many_children(int children) {
   std::string text = "radius 0.01\npoint 0 0 0 0\npoint 1 0 0 10\nconnect 0 1\n";
   for (int k = 0; k < children; ++k) {
     const std::string id = std::to_string(k + 2);
-    text += "point " + id + " " + std::to_string(1 + k % 7) + " " + std::to_string(k / 7) + " 5 0.001\nconnect 1 " + id + "\n";
+    text += "point " + id + " " + std::to_string(1 + k % 7) + " " + std::to_string(k / 7) +
+            " 5 0.001\nconnect 1 " + id + "\n";
   }
   return text;
 }
@@ -28,8 +29,8 @@ std::string deeply_nested(int depth) {
   for (int k = 0; k < depth; ++k) {
     const std::string at = std::to_string(k == 0 ? 0 : 2 * k - 1), a = std::to_string(2 * k + 1),
                       b = std::to_string(2 * k + 2), z = std::to_string(k + 1);
-    text += "point " + a + " 0 0 " + z + "\npoint " + b + " 1 0 " + z + "\nconnect " + at + " " + a +
-            "\nconnect " + at + " " + b + "\n";
+    text += "point " + a + " 0 0 " + z + "\npoint " + b + " 1 0 " + z + "\nconnect " + at + " " +
+            a + "\nconnect " + at + " " + b + "\n";
   }
   return text;
 }
@@ -52,8 +53,11 @@ void BM_TreemakerEstimateOfTheLargestTemplate(benchmark::State& state) {
     text += "branch { level= " + std::to_string(level) +
             " number= 1 to 2 (p=1 angle= 30 to 40 dir= 0 to 360 factor= 1 to 1) }\n";
   }
-  text += "particle { pos=0,0,0 mag= 10 to 12 dir= 0,0,1:5 growth= 0.2 color= green brightness= 0.5 to 0.6 }\n"
-          "leaf { p= 1 coord= limb out= 10 up= 10 color= green brightness= 0.5 to 0.6 tri= 0,0,0 1,0,1 -1,0,1 }\n";
+  text +=
+      "particle { pos=0,0,0 mag= 10 to 12 dir= 0,0,1:5 growth= 0.2 color= green brightness= 0.5 to "
+      "0.6 }\n"
+      "leaf { p= 1 coord= limb out= 10 up= 10 color= green brightness= 0.5 to 0.6 tri= 0,0,0 1,0,1 "
+      "-1,0,1 }\n";
   const arbor::gen::TreeMakerTemplate t = arbor::gen::parse_treemaker_template(text, "b.tmpl");
   for (auto _ : state) benchmark::DoNotOptimize(arbor::gen::treemaker_estimate(t));
 }

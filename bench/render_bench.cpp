@@ -77,7 +77,8 @@ void raw_embree_rays(benchmark::State& state) {
     }
     traced += rays.size();
   }
-  state.counters["rays_per_s"] = benchmark::Counter(static_cast<double>(traced), benchmark::Counter::kIsRate);
+  state.counters["rays_per_s"] =
+      benchmark::Counter(static_cast<double>(traced), benchmark::Counter::kIsRate);
 }
 
 // Renders the default scene's view at 160×120 with `spp` path samples (the treemaker integrator
@@ -91,18 +92,22 @@ void render_frames(benchmark::State& state, int spp, bool treemaker) {
   const trace::EmbreeDevice device("threads=1");
   const BuiltWorld built(scene, device);
   const trace::World& world = built.world;
-  const trace::Sky sky(sky_spec(scene.sky), sun_spec(scene.sun), trace::ColorPipeline(kOcioConfig).xyz_to_scene_linear());
+  const trace::Sky sky(sky_spec(scene.sky), sun_spec(scene.sun),
+                       trace::ColorPipeline(kOcioConfig).xyz_to_scene_linear());
   std::uint64_t rays = 0, samples = 0;
   for (auto _ : state) {
     trace::RenderStats stats;
-    const trace::Image img = trace::render_image(render_input(scene), world, sky, [](float*) {}, stats);
+    const trace::Image img = trace::render_image(
+        render_input(scene), world, sky, [](float*) {}, stats);
     benchmark::DoNotOptimize(img.beauty.data());
     rays += stats.rays;
     samples += stats.samples;
   }
   state.counters["spp"] = treemaker ? scene.render.treemaker_spp : scene.render.spp;
-  state.counters["rays_per_s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
-  state.counters["samples_per_s"] = benchmark::Counter(static_cast<double>(samples), benchmark::Counter::kIsRate);
+  state.counters["rays_per_s"] =
+      benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
+  state.counters["samples_per_s"] =
+      benchmark::Counter(static_cast<double>(samples), benchmark::Counter::kIsRate);
 }
 
 void path_tracer(benchmark::State& state) { render_frames(state, 16, false); }

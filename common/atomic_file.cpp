@@ -80,7 +80,8 @@ std::string host_tag() {
   char buf[256] = {};
   if (::gethostname(buf, sizeof buf - 1) != 0 || buf[0] == '\0') return "host";
   std::string tag;
-  for (const char* c = buf; *c && *c != '.'; ++c) tag += std::isalnum(static_cast<unsigned char>(*c)) || *c == '-' ? *c : '-';
+  for (const char* c = buf; *c && *c != '.'; ++c)
+    tag += std::isalnum(static_cast<unsigned char>(*c)) || *c == '-' ? *c : '-';
   return tag.empty() ? "host" : tag;
 }
 
@@ -95,7 +96,8 @@ TempName temp_name(const std::string& target, const std::string& host) {
   const auto slash = target.find_last_of('/');
   const std::string name = slash == std::string::npos ? target : target.substr(slash + 1);
   const auto dot = name.find_last_of('.');
-  return {slash == std::string::npos ? "" : target.substr(0, slash + 1), "." + name + ".tmp-" + host + "-",
+  return {slash == std::string::npos ? "" : target.substr(0, slash + 1),
+          "." + name + ".tmp-" + host + "-",
           dot == std::string::npos || dot == 0 ? "" : name.substr(dot)};
 }
 
@@ -109,14 +111,19 @@ std::string temporary_for(const std::string& target) {
 void remove_stale_temporaries(const std::string& target) {
   const TempName t = temp_name(target, host_tag());
   std::error_code ec;
-  for (std::filesystem::directory_iterator it(folder_of(target), ec), end; !ec && it != end; it.increment(ec)) {
+  for (std::filesystem::directory_iterator it(folder_of(target), ec), end; !ec && it != end;
+       it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    if (name.size() <= t.prefix.size() + t.ext.size() || name.compare(0, t.prefix.size(), t.prefix) != 0 ||
+    if (name.size() <= t.prefix.size() + t.ext.size() ||
+        name.compare(0, t.prefix.size(), t.prefix) != 0 ||
         name.compare(name.size() - t.ext.size(), t.ext.size(), t.ext) != 0) {
       continue;
     }
-    const std::string digits = name.substr(t.prefix.size(), name.size() - t.prefix.size() - t.ext.size());
-    if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    const std::string digits =
+        name.substr(t.prefix.size(), name.size() - t.prefix.size() - t.ext.size());
+    if (digits.empty() || digits.size() > 9 ||
+        digits.find_first_not_of("0123456789") != std::string::npos)
+      continue;
     const long pid = std::stol(digits);
     if (pid == static_cast<long>(::getpid())) continue;
     if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) ::unlink(it->path().c_str());
@@ -155,8 +162,9 @@ std::string resolve_output_path(const std::string& path) {
   throw RuntimeFailure("cannot write " + path + ": too many levels of symbolic links");
 }
 
-
-void remove_dead_temporaries(const std::string& path) { remove_stale_temporaries(resolve_output_path(path)); }
+void remove_dead_temporaries(const std::string& path) {
+  remove_stale_temporaries(resolve_output_path(path));
+}
 
 bool same_file(const std::string& a, const std::string& b) {
   if (a.empty() || b.empty()) return false;
@@ -171,7 +179,8 @@ void check_output_target(const std::string& path) {
   const std::string target = resolve_output_path(path);
   struct stat st;
   if (::stat(target.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return;
-  throw InputError({}, "cannot write " + path + ": " + (target == path ? "it" : target) + " is " + file_kind(st.st_mode) +
+  throw InputError({}, "cannot write " + path + ": " + (target == path ? "it" : target) + " is " +
+                           file_kind(st.st_mode) +
                            "; an output must be a regular file or not exist yet");
 }
 
@@ -184,7 +193,8 @@ void prepare_output_folder(const std::string& path) {
     std::error_code error;
     std::filesystem::create_directories(dir, error);
     if (error) {
-      throw RuntimeFailure("cannot write " + path + ": cannot create its folder " + dir + ": " + error.message());
+      throw RuntimeFailure("cannot write " + path + ": cannot create its folder " + dir + ": " +
+                           error.message());
     }
   } else if (!S_ISDIR(st.st_mode)) {
     throw RuntimeFailure("cannot write " + path + ": " + dir + " is not a folder");
@@ -237,7 +247,8 @@ AtomicFile::~AtomicFile() {
 }
 
 void AtomicFile::write(const void* data, size_t size) {
-  if (error_ == 0 && size > 0 && std::fwrite(data, 1, size, file_) != size) error_ = errno ? errno : EIO;
+  if (error_ == 0 && size > 0 && std::fwrite(data, 1, size, file_) != size)
+    error_ = errno ? errno : EIO;
 }
 
 void AtomicFile::commit() {
@@ -258,12 +269,15 @@ void AtomicFile::commit() {
 }
 
 void refuse_overwriting(const std::string& what, const std::string& out,
-                        const std::vector<std::string>& inputs, const std::vector<std::string>& outputs) {
+                        const std::vector<std::string>& inputs,
+                        const std::vector<std::string>& outputs) {
   for (const std::string& in : inputs) {
-    if (same_file(out, in)) throw InputError({}, what + " " + out + " would overwrite the input " + in);
+    if (same_file(out, in))
+      throw InputError({}, what + " " + out + " would overwrite the input " + in);
   }
   for (const std::string& other : outputs) {
-    if (same_file(out, other)) throw InputError({}, what + " " + out + " is also written as " + other);
+    if (same_file(out, other))
+      throw InputError({}, what + " " + out + " is also written as " + other);
   }
 }
 

@@ -29,8 +29,8 @@ class AtomicFile {
   std::string path_;    // as the user named it (for messages)
   std::string target_;  // where it lands: the final target of a symlink chain
   std::string temp_;
-  int slot_ = -1;       // in the table of temporaries removed on a signal
-  int error_ = 0;       // the first write's errno
+  int slot_ = -1;  // in the table of temporaries removed on a signal
+  int error_ = 0;  // the first write's errno
   std::FILE* file_ = nullptr;
 };
 

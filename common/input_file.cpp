@@ -31,7 +31,8 @@ using FileId = std::pair<dev_t, ino_t>;
 
 // Opens `path` for reading without blocking (a FIFO with no writer would block open()), and
 // refuses anything but a regular file. Returns the descriptor, its size and its identity.
-int open_regular(const std::string& path, const std::string& what, std::uint64_t& size, FileId& id) {
+int open_regular(const std::string& path, const std::string& what, std::uint64_t& size,
+                 FileId& id) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) {
     const int err = errno;
@@ -39,7 +40,9 @@ int open_regular(const std::string& path, const std::string& what, std::uint64_t
     if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
       refuse(path, what, "is " + file_kind(st.st_mode) + ", not a file");
     }
-    refuse(path, what, err == ENOENT ? std::string("does not exist") : std::string("cannot be opened for reading: ") + std::strerror(err));
+    refuse(path, what,
+           err == ENOENT ? std::string("does not exist")
+                         : std::string("cannot be opened for reading: ") + std::strerror(err));
   }
   struct stat st;
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
@@ -104,10 +107,12 @@ std::uint64_t fnv1a_bytes(const void* data, std::size_t size, std::uint64_t hash
 std::string input_file_problem(const std::string& path) {
   struct stat st;
   if (::stat(path.c_str(), &st) != 0) {
-    return errno == ENOENT ? "does not exist" : std::string("cannot be opened for reading: ") + std::strerror(errno);
+    return errno == ENOENT ? "does not exist"
+                           : std::string("cannot be opened for reading: ") + std::strerror(errno);
   }
   if (!S_ISREG(st.st_mode)) return "is " + file_kind(st.st_mode) + ", not a file";
-  if (::access(path.c_str(), R_OK) != 0) return std::string("cannot be opened for reading: ") + std::strerror(errno);
+  if (::access(path.c_str(), R_OK) != 0)
+    return std::string("cannot be opened for reading: ") + std::strerror(errno);
   return "";
 }
 
@@ -116,7 +121,8 @@ void check_input_file(const std::string& path, const std::string& what) {
   if (!problem.empty()) refuse(path, what, problem);
 }
 
-std::string read_text_input(const std::string& path, const std::string& what, std::uint64_t max_bytes) {
+std::string read_text_input(const std::string& path, const std::string& what,
+                            std::uint64_t max_bytes) {
   FileId id;
   if (identity(path, id)) {
     std::lock_guard<std::mutex> lock(g_digests.mutex);
@@ -131,8 +137,9 @@ std::string read_text_input(const std::string& path, const std::string& what, st
   const int fd = open_regular(path, what, size, id);
   if (size > max_bytes) {
     ::close(fd);
-    refuse(path, what, "is " + std::to_string(size) + " bytes; " + what + " files are limited to " +
-                           std::to_string(max_bytes >> 20) + " MiB");
+    refuse(path, what,
+           "is " + std::to_string(size) + " bytes; " + what + " files are limited to " +
+               std::to_string(max_bytes >> 20) + " MiB");
   }
   std::string text = read_all(fd, path, what, size);
   std::lock_guard<std::mutex> lock(g_digests.mutex);

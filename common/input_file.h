@@ -40,6 +40,7 @@ std::string read_text_input(const std::string& path, const std::string& what,
 std::uint64_t input_digest(const std::string& path, const std::string& what);
 
 // 64-bit FNV-1a of `size` bytes continued from `hash`.
-std::uint64_t fnv1a_bytes(const void* data, std::size_t size, std::uint64_t hash = 0xcbf29ce484222325ull);
+std::uint64_t fnv1a_bytes(const void* data, std::size_t size,
+                          std::uint64_t hash = 0xcbf29ce484222325ull);
 
 }  // namespace arbor

@@ -34,9 +34,11 @@ JsonObject& JsonObject::number(const std::string& key, double value, int digits)
   return raw(key, number_text(value, digits));
 }
 
-JsonObject& JsonObject::numbers(const std::string& key, const std::vector<double>& values, int digits) {
+JsonObject& JsonObject::numbers(const std::string& key, const std::vector<double>& values,
+                                int digits) {
   std::string list = "[";
-  for (std::size_t i = 0; i < values.size(); ++i) list += (i ? ", " : "") + number_text(values[i], digits);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    list += (i ? ", " : "") + number_text(values[i], digits);
   return raw(key, list + "]");
 }
 
@@ -58,7 +60,8 @@ JsonObject& JsonObject::boolean(const std::string& key, bool value) {
 
 JsonObject& JsonObject::integers(const std::string& key, const std::vector<long long>& values) {
   std::string list = "[";
-  for (std::size_t i = 0; i < values.size(); ++i) list += (i ? ", " : "") + std::to_string(values[i]);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    list += (i ? ", " : "") + std::to_string(values[i]);
   return raw(key, list + "]");
 }
 

@@ -6,8 +6,8 @@
 
 namespace arbor {
 
-std::vector<int> parse_integers(const std::string& text, char sep, std::size_t count, const char* option,
-                                const char* form) {
+std::vector<int> parse_integers(const std::string& text, char sep, std::size_t count,
+                                const char* option, const char* form) {
   std::vector<int> v;
   const char* p = text.data();
   const char* end = text.data() + text.size();

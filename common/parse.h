@@ -9,7 +9,7 @@ namespace arbor {
 
 // Whole numbers separated by `sep` ("0:8", "0,0,240,360", "4x2"), `count` of them, each in
 // [0, 2^31); InputError naming `option` and the expected `form` otherwise.
-std::vector<int> parse_integers(const std::string& text, char sep, std::size_t count, const char* option,
-                                const char* form);
+std::vector<int> parse_integers(const std::string& text, char sep, std::size_t count,
+                                const char* option, const char* form);
 
 }  // namespace arbor

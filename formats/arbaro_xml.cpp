@@ -20,7 +20,7 @@ namespace {
 // Parameters Arbaro added to the paper's set; arbor does not implement them.
 bool is_arbaro_extension(std::string_view name) {
   static const char* const names[] = {"Species", "LeafStemLen", "LeafDistrib", "LeafQuality",
-                                      "Smooth", "Seed", "RandomSeed"};
+                                      "Smooth",  "Seed",        "RandomSeed"};
   for (const char* n : names) {
     if (name == n) return true;
   }
@@ -39,7 +39,8 @@ class LineIndex {
     if (offset < 0) return {0, 0};
     const auto it = std::upper_bound(starts_.begin(), starts_.end(), static_cast<size_t>(offset));
     const size_t line = static_cast<size_t>(it - starts_.begin());
-    return {static_cast<int>(line), static_cast<int>(static_cast<size_t>(offset) - starts_[line - 1] + 1)};
+    return {static_cast<int>(line),
+            static_cast<int>(static_cast<size_t>(offset) - starts_[line - 1] + 1)};
   }
 
  private:
@@ -67,7 +68,8 @@ Species parse_arbaro_xml(std::string_view text, const std::string& path) {
   // As a fragment, so that pugixml keeps text outside the root element (it drops it otherwise).
   const pugi::xml_parse_result parsed =
       doc.load_buffer(text.data(), text.size(), pugi::parse_default | pugi::parse_fragment);
-  if (!parsed) throw InputError(where(parsed.offset), std::string("malformed XML: ") + parsed.description());
+  if (!parsed)
+    throw InputError(where(parsed.offset), std::string("malformed XML: ") + parsed.description());
 
   // Text is not part of the format anywhere (pugixml keeps only text that is not white space):
   // text before or after the root, or between the elements, is refused where it starts.
@@ -77,7 +79,8 @@ Species parse_arbaro_xml(std::string_view text, const std::string& path) {
         // The node starts with the white space before the text: point at the text itself.
         auto at = static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, node.offset_debug()));
         while (at < text.size() && std::isspace(static_cast<unsigned char>(text[at]))) ++at;
-        throw InputError(where(static_cast<std::ptrdiff_t>(at)), std::string("unexpected text ") + where_text);
+        throw InputError(where(static_cast<std::ptrdiff_t>(at)),
+                         std::string("unexpected text ") + where_text);
       }
     }
   };
@@ -85,15 +88,17 @@ Species parse_arbaro_xml(std::string_view text, const std::string& path) {
   int roots = 0;
   for (const pugi::xml_node& node : doc.children()) {
     if (node.type() == pugi::node_element && ++roots > 1) {
-      throw InputError(where(node.offset_debug()), "a second root element <" + std::string(node.name()) +
+      throw InputError(where(node.offset_debug()), "a second root element <" +
+                                                       std::string(node.name()) +
                                                        ">: the file holds one <arbaro> element");
     }
   }
   const pugi::xml_node root = doc.document_element();
-  if (!root) throw InputError({path, 1, 1}, "no <arbaro> element: this is not an Arbaro parameter file");
+  if (!root)
+    throw InputError({path, 1, 1}, "no <arbaro> element: this is not an Arbaro parameter file");
   if (std::string_view(root.name()) != "arbaro") {
-    throw InputError(where(root.offset_debug()), "expected an <arbaro> root element, found <" +
-                                                      std::string(root.name()) + ">");
+    throw InputError(where(root.offset_debug()),
+                     "expected an <arbaro> root element, found <" + std::string(root.name()) + ">");
   }
   const pugi::xml_node species_node = root.child("species");
   if (!species_node) throw InputError(where(root.offset_debug()), "no <species> element");
@@ -117,9 +122,10 @@ Species parse_arbaro_xml(std::string_view text, const std::string& path) {
     const std::string value = value_attr.as_string();
 
     if (is_arbaro_extension(name)) {
-      sp.warnings.push_back(format_diagnostic(at, "warning", "Arbaro's parameter '" + name +
-                                                              "' is not part of the paper's "
-                                                              "model; ignored"));
+      sp.warnings.push_back(format_diagnostic(at, "warning",
+                                              "Arbaro's parameter '" + name +
+                                                  "' is not part of the paper's "
+                                                  "model; ignored"));
       continue;
     }
     const ParamInfo* info = nullptr;
@@ -149,7 +155,8 @@ Species parse_arbaro_xml(std::string_view text, const std::string& path) {
       throw InputError(at, "the value of '" + name + "' is not a number: '" + value + "'");
     }
     const std::string problem = set_param(sp.weber_penn(), *info, std::max(level, 0), v);
-    if (!problem.empty()) throw InputError(at, (level >= 0 ? std::string(1, name[0]) : "") + problem);
+    if (!problem.empty())
+      throw InputError(at, (level >= 0 ? std::string(1, name[0]) : "") + problem);
     positions[name] = at;
   }
   finish_species(sp, positions);

@@ -31,7 +31,8 @@ class Parser {
         seen[name] = where;
         directive(sys, name, where);
       } else {
-        throw InputError(here(), std::string("expected a rule (A-Z) or a setting, found '") + c + "'");
+        throw InputError(here(),
+                         std::string("expected a rule (A-Z) or a setting, found '") + c + "'");
       }
     }
     if (sys.rules.empty()) throw InputError({path_, 1, 1}, "the L-system has no rules");
@@ -61,7 +62,8 @@ class Parser {
   void expect(char c, const std::string& what) {
     skip_space();
     if (at_end()) throw InputError(here(), "the file ends where " + what + " was expected");
-    if (peek() != c) throw InputError(here(), "expected " + what + ", found '" + std::string(1, peek()) + "'");
+    if (peek() != c)
+      throw InputError(here(), "expected " + what + ", found '" + std::string(1, peek()) + "'");
     advance();
   }
   std::string word() {
@@ -87,7 +89,8 @@ class Parser {
     double v = 0.0;
     const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
     if (ec != std::errc() || end != digits.data() + digits.size() || !std::isfinite(v)) {
-      throw InputError(where, "the number " + (digits.size() > 24 ? digits.substr(0, 24) + "..." : digits) +
+      throw InputError(where, "the number " +
+                                  (digits.size() > 24 ? digits.substr(0, 24) + "..." : digits) +
                                   " is too large");
     }
     return v;
@@ -114,16 +117,40 @@ class Parser {
     auto whole = [&]() {
       if (v != std::floor(v)) throw InputError(value_at, name + " must be a whole number");
     };
-    if (name == "iterations") { range(0, 64); whole(); sys.iterations = static_cast<int>(v); }
-    else if (name == "step") { range(1e-4, 1000); sys.step = v; }
-    else if (name == "angle") { range(0, 360); sys.angle = v; }
-    else if (name == "radius") { range(1e-5, 100); sys.radius = v; }
-    else if (name == "randomness") { range(0, 0.99); sys.randomness = v; }
-    else if (name == "leaves") { range(0, 1000); whole(); sys.leaves = static_cast<int>(v); }
-    else if (name == "leaf_length") { range(1e-4, 10); sys.leaf_length = v; }
-    else if (name == "leaf_width") { range(1e-4, 10); sys.leaf_width = v; }
-    else if (name == "leaf_shape") { range(0, 5); whole(); sys.leaf_shape = static_cast<int>(v); }
-    else throw InputError(where, "unknown setting '" + name + "' (known: iterations, step, angle, radius, randomness, leaves, leaf_length, leaf_width, leaf_shape)");
+    if (name == "iterations") {
+      range(0, 64);
+      whole();
+      sys.iterations = static_cast<int>(v);
+    } else if (name == "step") {
+      range(1e-4, 1000);
+      sys.step = v;
+    } else if (name == "angle") {
+      range(0, 360);
+      sys.angle = v;
+    } else if (name == "radius") {
+      range(1e-5, 100);
+      sys.radius = v;
+    } else if (name == "randomness") {
+      range(0, 0.99);
+      sys.randomness = v;
+    } else if (name == "leaves") {
+      range(0, 1000);
+      whole();
+      sys.leaves = static_cast<int>(v);
+    } else if (name == "leaf_length") {
+      range(1e-4, 10);
+      sys.leaf_length = v;
+    } else if (name == "leaf_width") {
+      range(1e-4, 10);
+      sys.leaf_width = v;
+    } else if (name == "leaf_shape") {
+      range(0, 5);
+      whole();
+      sys.leaf_shape = static_cast<int>(v);
+    } else
+      throw InputError(where, "unknown setting '" + name +
+                                  "' (known: iterations, step, angle, radius, randomness, leaves, "
+                                  "leaf_length, leaf_width, leaf_shape)");
   }
 
   LRule rule() {
@@ -165,7 +192,13 @@ class Parser {
       a.where = here();
       advance();
       switch (c) {
-        case 'f': case '+': case '-': case '<': case '>': case 'v': case '^':
+        case 'f':
+        case '+':
+        case '-':
+        case '<':
+        case '>':
+        case 'v':
+        case '^':
           a.kind = static_cast<LAction::Kind>(c);
           skip_space();
           if (!at_end() && peek() == '(') {
@@ -173,12 +206,17 @@ class Parser {
             a.number = parenthesized();
           }
           break;
-        case 's': case 'h': case 'u': case 'l': case 'r':
+        case 's':
+        case 'h':
+        case 'u':
+        case 'l':
+        case 'r':
           a.kind = static_cast<LAction::Kind>(c);
           a.has_number = true;
           a.number = parenthesized();
           if (c == 'r' && (a.number <= 0.0 || a.number > 1.0)) {
-            throw InputError(a.where, "r(n) needs 0 < n ≤ 1: limbs do not thicken toward their tips");
+            throw InputError(a.where,
+                             "r(n) needs 0 < n ≤ 1: limbs do not thicken toward their tips");
           }
           if (c == 's' && a.number <= 0.0) throw InputError(a.where, "s(n) needs n > 0");
           break;
@@ -186,8 +224,8 @@ class Parser {
           // Parsing, interpreting and estimating recurse per bracket: a bound on the nesting
           // keeps the stack bounded (64 iterations of rules nested this deep still fit).
           if (++branch_depth_ > kMaxBranchDepth) {
-            throw InputError(a.where, "branches are nested more than " + std::to_string(kMaxBranchDepth) +
-                                          " deep in one rule");
+            throw InputError(a.where, "branches are nested more than " +
+                                          std::to_string(kMaxBranchDepth) + " deep in one rule");
           }
           a.kind = LAction::Branch;
           a.branch = actions(true);

@@ -34,7 +34,8 @@ class ObjReader {
 
  private:
   [[noreturn]] void fail(std::string_view at, const std::string& message) const {
-    const auto column = static_cast<int>(at.data() - text_.data() - static_cast<std::ptrdiff_t>(line_start_)) + 1;
+    const auto column =
+        static_cast<int>(at.data() - text_.data() - static_cast<std::ptrdiff_t>(line_start_)) + 1;
     throw InputError({path_, line_, column}, message);
   }
 
@@ -51,42 +52,50 @@ class ObjReader {
 
   static std::string_view trimmed(std::string_view s) {
     while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+      s.remove_suffix(1);
     return s;
   }
 
   double number(std::string_view t) const {
     double v = 0.0;
     const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-    if (t.empty() || ec != std::errc() || end != t.data() + t.size()) fail(t, "'" + std::string(t) + "' is not a number");
+    if (t.empty() || ec != std::errc() || end != t.data() + t.size())
+      fail(t, "'" + std::string(t) + "' is not a number");
     if (!std::isfinite(v)) fail(t, "'" + std::string(t) + "' is not a finite number");
     return v;
   }
 
   // `count` to `most` numbers, the rest of the line; returns how many there were.
-  int numbers(std::string_view rest, std::string_view keyword, int count, int most, double* out) const {
+  int numbers(std::string_view rest, std::string_view keyword, int count, int most,
+              double* out) const {
     int n = 0;
     for (std::string_view t = token(rest); !t.empty(); t = token(rest)) {
-      if (n == most) fail(t, "'" + std::string(keyword) + "' takes at most " + std::to_string(most) + " numbers");
+      if (n == most)
+        fail(t,
+             "'" + std::string(keyword) + "' takes at most " + std::to_string(most) + " numbers");
       out[n++] = number(t);
     }
-    if (n < count) fail(keyword, "'" + std::string(keyword) + "' needs " + std::to_string(count) + " numbers");
+    if (n < count)
+      fail(keyword, "'" + std::string(keyword) + "' needs " + std::to_string(count) + " numbers");
     return n;
   }
 
   // One index of a face corner: 1-based, or negative counting back from the last defined.
   // Returns it 0-based; a positive index past what is defined so far is checked at the end.
-  std::int64_t index(std::string_view t, std::string_view corner, std::size_t defined, const char* what) {
+  std::int64_t index(std::string_view t, std::string_view corner, std::size_t defined,
+                     const char* what) {
     std::int64_t v = 0;
     const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
     if (t.empty() || ec != std::errc() || end != t.data() + t.size() || v == 0 ||
         v > static_cast<std::int64_t>(UINT32_MAX) || v < -static_cast<std::int64_t>(UINT32_MAX)) {
-      fail(t, "'" + std::string(corner) + "': '" + std::string(t) + "' is not a " + what + " index (1, 2, … or -1, -2, …)");
+      fail(t, "'" + std::string(corner) + "': '" + std::string(t) + "' is not a " + what +
+                  " index (1, 2, … or -1, -2, …)");
     }
     if (v < 0) {
       if (static_cast<std::uint64_t>(-v) > defined) {
-        fail(t, "'" + std::string(corner) + "' refers to " + what + " " + std::to_string(v) + ", but only " +
-                    std::to_string(defined) + " are defined before it");
+        fail(t, "'" + std::string(corner) + "' refers to " + what + " " + std::to_string(v) +
+                    ", but only " + std::to_string(defined) + " are defined before it");
       }
       return static_cast<std::int64_t>(defined) + v;
     }
@@ -104,15 +113,18 @@ class ObjReader {
       std::string_view r = corner;
       for (;;) {
         const std::size_t slash = r.find('/');
-        if (n == 2 && slash != std::string_view::npos) fail(corner, "'" + std::string(corner) + "' has more than v/vt/vn");
+        if (n == 2 && slash != std::string_view::npos)
+          fail(corner, "'" + std::string(corner) + "' has more than v/vt/vn");
         parts[n++] = r.substr(0, slash);
         if (slash == std::string_view::npos) break;
         r.remove_prefix(slash + 1);
       }
-      corners_.push_back(static_cast<std::uint32_t>(index(parts[0], corner, mesh_.positions.size(), "vertex")));
+      corners_.push_back(
+          static_cast<std::uint32_t>(index(parts[0], corner, mesh_.positions.size(), "vertex")));
       if (n > 1 && !parts[1].empty()) index(parts[1], corner, texcoords_, "texture coordinate");
-      corner_normals_.push_back(n > 2 ? static_cast<std::uint32_t>(index(parts[2], corner, normals_, "normal"))
-                                      : ObjMesh::kNoNormal);
+      corner_normals_.push_back(
+          n > 2 ? static_cast<std::uint32_t>(index(parts[2], corner, normals_, "normal"))
+                : ObjMesh::kNoNormal);
     }
     if (corners_.size() < 3) fail(keyword, "a face needs at least three vertices");
     if (part_dirty_) {
@@ -152,7 +164,8 @@ class ObjReader {
     } else if (keyword == "vn") {
       numbers(rest, keyword, 3, 3, v);
       const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-      if (!(length > 1e-12) || !std::isfinite(length)) fail(keyword, "a vertex normal of zero length");
+      if (!(length > 1e-12) || !std::isfinite(length))
+        fail(keyword, "a vertex normal of zero length");
       mesh_.normals.emplace_back(v[0] / length, v[1] / length, v[2] / length);
       ++normals_;
     } else if (keyword == "f") {
@@ -163,7 +176,8 @@ class ObjReader {
     } else if (keyword == "usemtl") {
       current_.material = std::string(trimmed(rest));
       part_dirty_ = true;
-    } else if (keyword == "mtllib" || keyword == "s" || keyword == "l" || keyword == "p" || keyword == "vp") {
+    } else if (keyword == "mtllib" || keyword == "s" || keyword == "l" || keyword == "p" ||
+               keyword == "vp") {
       // Material libraries (materials come from the scene), smoothing groups, lines, points
       // and parameter-space vertices have nothing to render.
     } else {
@@ -174,12 +188,15 @@ class ObjReader {
   // Positive indices may name elements defined later in the file; they must exist by its end.
   void check_forward_references() const {
     for (const Forward& f : forward_) {
-      const std::size_t defined = f.what[0] == 'v' ? mesh_.positions.size()
-                                  : f.what[0] == 't' ? texcoords_ : normals_;
+      const std::size_t defined = f.what[0] == 'v'   ? mesh_.positions.size()
+                                  : f.what[0] == 't' ? texcoords_
+                                                     : normals_;
       if (static_cast<std::uint64_t>(f.index) >= defined) {
-        const auto column = static_cast<int>(f.at - text_.data()) - static_cast<int>(line_offset(f.line)) + 1;
+        const auto column =
+            static_cast<int>(f.at - text_.data()) - static_cast<int>(line_offset(f.line)) + 1;
         throw InputError({path_, f.line, column}, std::string("a face refers to ") + f.what + " " +
-                                                      std::to_string(f.index + 1) + ", but the file defines " +
+                                                      std::to_string(f.index + 1) +
+                                                      ", but the file defines " +
                                                       std::to_string(defined));
       }
     }
@@ -212,8 +229,12 @@ class ObjReader {
 
 }  // namespace
 
-ObjMesh parse_obj(std::string_view text, const std::string& path) { return ObjReader(text, path).read(); }
+ObjMesh parse_obj(std::string_view text, const std::string& path) {
+  return ObjReader(text, path).read();
+}
 
-ObjMesh load_obj(const std::string& path) { return parse_obj(read_text_input(path, "mesh", kMaxMeshBytes), path); }
+ObjMesh load_obj(const std::string& path) {
+  return parse_obj(read_text_input(path, "mesh", kMaxMeshBytes), path);
+}
 
 }  // namespace arbor::trace

@@ -23,9 +23,9 @@ struct ObjMesh {
   // without one (such a triangle is shaded flat).
   std::vector<std::uint32_t> normal_indices;
   static constexpr std::uint32_t kNoNormal = 0xffffffffu;
-  std::vector<std::uint32_t> part;     // per triangle, into parts
+  std::vector<std::uint32_t> part;  // per triangle, into parts
   std::vector<Part> parts;
-  std::vector<int> part_line;          // per part: the line of its first face
+  std::vector<int> part_line;  // per part: the line of its first face
 };
 
 // Reads OBJ text. Faces of n ≥ 3 vertices become n − 2 triangles, fanned from the first vertex

@@ -24,9 +24,9 @@ const char* name_of(Integrator integrator);
 std::optional<Integrator> integrator_named(std::string_view name);
 
 enum class SkyModel { Preetham, Nishita, Constant, Envmap, None };
-inline constexpr std::array<const char*, 5> kSkyModelNames = {"preetham", "nishita", "constant", "envmap", "none"};
+inline constexpr std::array<const char*, 5> kSkyModelNames = {"preetham", "nishita", "constant",
+                                                              "envmap", "none"};
 const char* name_of(SkyModel model);
-
 
 struct RenderSettings {
   int width = 960, height = 640;
@@ -34,22 +34,23 @@ struct RenderSettings {
   std::uint64_t seed = 1;
   Integrator integrator = Integrator::Path;
   int max_depth = 12;
-  int treemaker_spp = 4;            // samples per pixel of the treemaker integrator (anti-aliasing)
-  int pass_spp = 16;                // samples a pixel takes per pass (a power of two keeps Sobol' balanced)
-  bool independent_passes = false;  // each pass its own scramble (unbiased variance) instead of one sequence
-  double noise_threshold = 0.0;     // adaptive sampling: relative standard error to stop at; 0: off
-  int min_spp = 16;                 // adaptive sampling: samples before a pixel may stop (and 2 passes)
-  int threads = 0;                  // 0: all cores (command line only)
+  int treemaker_spp = 4;  // samples per pixel of the treemaker integrator (anti-aliasing)
+  int pass_spp = 16;      // samples a pixel takes per pass (a power of two keeps Sobol' balanced)
+  bool independent_passes =
+      false;  // each pass its own scramble (unbiased variance) instead of one sequence
+  double noise_threshold = 0.0;  // adaptive sampling: relative standard error to stop at; 0: off
+  int min_spp = 16;  // adaptive sampling: samples before a pixel may stop (and 2 passes)
+  int threads = 0;   // 0: all cores (command line only)
 };
 
 struct CameraDesc {
   Vec3d position{14.0, -20.0, 3.0};
   Vec3d look_at{0.0, 0.0, 6.0};
   Vec3d up{0.0, 0.0, 1.0};
-  double fov = 45.0;              // vertical, degrees
-  double aperture_radius = 0.0;   // metres
-  double focus_distance = 0.0;    // metres; 0: distance to look_at
-  double exposure = 0.0;          // stops
+  double fov = 45.0;                       // vertical, degrees
+  double aperture_radius = 0.0;            // metres
+  double focus_distance = 0.0;             // metres; 0: distance to look_at
+  double exposure = 0.0;                   // stops
   SourceLocation look_at_where, up_where;  // the keys' positions, for errors (else the file's)
 };
 
@@ -70,9 +71,9 @@ struct SkyDesc {
   // nishita: multipliers of the standard atmosphere's profiles, the observer's altitude (m)
   double air_density = 1.0, dust_density = 1.0, ozone_density = 1.0, altitude = 0.0;
   Rgb color{1.0, 1.0, 1.0};
-  std::string path;          // envmap
-  double rotation = 0.0;     // envmap, degrees about z
-  double scale = 1.0;        // envmap
+  std::string path;       // envmap
+  double rotation = 0.0;  // envmap, degrees about z
+  double scale = 1.0;     // envmap
 };
 
 struct GroundDesc {
@@ -138,7 +139,7 @@ struct MeshMaterialDesc {
   std::string kind = "diffuse";  // "bark" | "leaf" | "diffuse"
   Rgb albedo{0.5, 0.5, 0.5};     // bark, diffuse
   Rgb reflectance{0.06, 0.2, 0.04}, back_reflectance{0.1, 0.24, 0.07},
-      transmittance{0.05, 0.18, 0.03};  // leaf
+      transmittance{0.05, 0.18, 0.03};                 // leaf
   double cuticle_ior = 1.45, cuticle_roughness = 0.5;  // leaf: the species' defaults
 };
 
@@ -155,7 +156,7 @@ struct MeshDesc {
 struct OutputDesc : OutputSpec {
   std::string exr;  // resolved; empty: none
   std::string png;
-  double checkpoint_seconds = 0.0;  // rewrite the outputs this often as passes finish; 0: never
+  double checkpoint_seconds = 0.0;     // rewrite the outputs this often as passes finish; 0: never
   SourceLocation treemaker_aov_where;  // where "treemaker" is listed (only that integrator has it)
   // The keys' positions, for errors found later (by the OCIO config); the file's when unset.
   OutputKeys where;
@@ -178,7 +179,7 @@ struct AnimationDesc {
 struct FileRef {
   std::string path;  // resolved against the scene's folder
   SourceLocation where;
-  std::string key;   // "tree.species", "forest.bark.bump_map", …
+  std::string key;  // "tree.species", "forest.bark.bump_map", …
 };
 
 struct SceneDesc {

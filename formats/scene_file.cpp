@@ -39,17 +39,28 @@ class SceneReader : TomlReader {
     s.output.where = {file, file, file};
     for (auto&& [key, node] : root) {
       const std::string k(key.str());
-      if (k == "render") render(table(node, k), s.render);
-      else if (k == "camera") camera(table(node, k), s.camera);
-      else if (k == "sun") sun(table(node, k), s.sun);
-      else if (k == "sky") sky(table(node, k), s.sky);
-      else if (k == "ground") ground(table(node, k), s.ground);
-      else if (k == "tree") for_each_table(node, k, [&](const toml::table& t) { s.trees.push_back(tree(t)); });
-      else if (k == "forest") for_each_table(node, k, [&](const toml::table& t) { s.forests.push_back(forest(t)); });
-      else if (k == "mesh") for_each_table(node, k, [&](const toml::table& t) { s.meshes.push_back(mesh(t)); });
-      else if (k == "output") output(table(node, k), s.output);
-      else if (k == "animation") animation(table(node, k), s.animation);
-      else throw InputError(at(key.source()), "unknown table or key '" + k + "'");
+      if (k == "render")
+        render(table(node, k), s.render);
+      else if (k == "camera")
+        camera(table(node, k), s.camera);
+      else if (k == "sun")
+        sun(table(node, k), s.sun);
+      else if (k == "sky")
+        sky(table(node, k), s.sky);
+      else if (k == "ground")
+        ground(table(node, k), s.ground);
+      else if (k == "tree")
+        for_each_table(node, k, [&](const toml::table& t) { s.trees.push_back(tree(t)); });
+      else if (k == "forest")
+        for_each_table(node, k, [&](const toml::table& t) { s.forests.push_back(forest(t)); });
+      else if (k == "mesh")
+        for_each_table(node, k, [&](const toml::table& t) { s.meshes.push_back(mesh(t)); });
+      else if (k == "output")
+        output(table(node, k), s.output);
+      else if (k == "animation")
+        animation(table(node, k), s.animation);
+      else
+        throw InputError(at(key.source()), "unknown table or key '" + k + "'");
     }
     check_camera(s.camera);
     if (s.camera.focus_distance == 0.0) {
@@ -85,24 +96,38 @@ class SceneReader : TomlReader {
     return resolved;
   }
   [[noreturn]] void unknown(const toml::key& key, const std::string& table) const {
-    throw InputError(at(key.source()), "unknown key '" + std::string(key.str()) + "' in [" + table + "]");
+    throw InputError(at(key.source()),
+                     "unknown key '" + std::string(key.str()) + "' in [" + table + "]");
   }
 
   void render(const toml::table& t, RenderSettings& r) const {
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
-      if (k == "width") r.width = static_cast<int>(integer(n, "render.width", 1, 16384));
-      else if (k == "height") r.height = static_cast<int>(integer(n, "render.height", 1, 16384));
-      else if (k == "spp") r.spp = static_cast<int>(integer(n, "render.spp", 1, 1 << 20));
-      else if (k == "seed") r.seed = static_cast<std::uint64_t>(integer(n, "render.seed", 0, INT64_MAX));
-      else if (k == "integrator") r.integrator = static_cast<Integrator>(choice_index(n, "render.integrator", kIntegratorNames));
-      else if (k == "max_depth") r.max_depth = static_cast<int>(integer(n, "render.max_depth", 1, 1024));
-      else if (k == "treemaker_spp") r.treemaker_spp = static_cast<int>(integer(n, "render.treemaker_spp", 1, 1 << 20));
-      else if (k == "pass_spp") r.pass_spp = static_cast<int>(integer(n, "render.pass_spp", 1, 1 << 20));
-      else if (k == "independent_passes") r.independent_passes = boolean(n, "render.independent_passes");
-      else if (k == "noise_threshold") r.noise_threshold = number(n, "render.noise_threshold", 0.0, 1.0);
-      else if (k == "min_spp") r.min_spp = static_cast<int>(integer(n, "render.min_spp", 0, 1 << 20));
-      else unknown(key, "render");
+      if (k == "width")
+        r.width = static_cast<int>(integer(n, "render.width", 1, 16384));
+      else if (k == "height")
+        r.height = static_cast<int>(integer(n, "render.height", 1, 16384));
+      else if (k == "spp")
+        r.spp = static_cast<int>(integer(n, "render.spp", 1, 1 << 20));
+      else if (k == "seed")
+        r.seed = static_cast<std::uint64_t>(integer(n, "render.seed", 0, INT64_MAX));
+      else if (k == "integrator")
+        r.integrator =
+            static_cast<Integrator>(choice_index(n, "render.integrator", kIntegratorNames));
+      else if (k == "max_depth")
+        r.max_depth = static_cast<int>(integer(n, "render.max_depth", 1, 1024));
+      else if (k == "treemaker_spp")
+        r.treemaker_spp = static_cast<int>(integer(n, "render.treemaker_spp", 1, 1 << 20));
+      else if (k == "pass_spp")
+        r.pass_spp = static_cast<int>(integer(n, "render.pass_spp", 1, 1 << 20));
+      else if (k == "independent_passes")
+        r.independent_passes = boolean(n, "render.independent_passes");
+      else if (k == "noise_threshold")
+        r.noise_threshold = number(n, "render.noise_threshold", 0.0, 1.0);
+      else if (k == "min_spp")
+        r.min_spp = static_cast<int>(integer(n, "render.min_spp", 0, 1 << 20));
+      else
+        unknown(key, "render");
     }
   }
 
@@ -114,14 +139,24 @@ class SceneReader : TomlReader {
     }
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
-      if (k == "position") c.position = triple(n, "camera.position", -1e7, 1e7);
-      else if (k == "look_at") { c.look_at = triple(n, "camera.look_at", -1e7, 1e7); c.look_at_where = at(n.source()); }
-      else if (k == "up") { c.up = triple(n, "camera.up", -1e7, 1e7); c.up_where = at(n.source()); }
-      else if (k == "fov") c.fov = number(n, "camera.fov", 0.01, 179.0);
-      else if (k == "aperture_radius") c.aperture_radius = number(n, "camera.aperture_radius", 0.0, 100.0);
-      else if (k == "focus_distance") c.focus_distance = number(n, "camera.focus_distance", 1e-4, 1e7);
-      else if (k == "exposure") c.exposure = number(n, "camera.exposure", -64.0, 64.0);
-      else unknown(key, "camera");
+      if (k == "position")
+        c.position = triple(n, "camera.position", -1e7, 1e7);
+      else if (k == "look_at") {
+        c.look_at = triple(n, "camera.look_at", -1e7, 1e7);
+        c.look_at_where = at(n.source());
+      } else if (k == "up") {
+        c.up = triple(n, "camera.up", -1e7, 1e7);
+        c.up_where = at(n.source());
+      } else if (k == "fov")
+        c.fov = number(n, "camera.fov", 0.01, 179.0);
+      else if (k == "aperture_radius")
+        c.aperture_radius = number(n, "camera.aperture_radius", 0.0, 100.0);
+      else if (k == "focus_distance")
+        c.focus_distance = number(n, "camera.focus_distance", 1e-4, 1e7);
+      else if (k == "exposure")
+        c.exposure = number(n, "camera.exposure", -64.0, 64.0);
+      else
+        unknown(key, "camera");
     }
   }
 
@@ -133,81 +168,124 @@ class SceneReader : TomlReader {
       if (k == "frames") {
         a.frames = static_cast<int>(integer(n, "animation.frames", 1, 1000000));
         has_frames = true;
-      } else if (k == "fps") a.fps = number(n, "animation.fps", 1e-3, 1000.0);
-      else if (k == "years_per_second") a.years_per_second = number(n, "animation.years_per_second", 0.0, 1e4);
-      else if (k == "pin_seed") a.pin_seed = boolean(n, "animation.pin_seed");
-      else unknown(key, "animation");
+      } else if (k == "fps")
+        a.fps = number(n, "animation.fps", 1e-3, 1000.0);
+      else if (k == "years_per_second")
+        a.years_per_second = number(n, "animation.years_per_second", 0.0, 1e4);
+      else if (k == "pin_seed")
+        a.pin_seed = boolean(n, "animation.pin_seed");
+      else
+        unknown(key, "animation");
     }
-    if (!has_frames) throw InputError(a.where, "[animation] needs frames (how many frames the animation has)");
+    if (!has_frames)
+      throw InputError(a.where, "[animation] needs frames (how many frames the animation has)");
   }
 
   void sun(const toml::table& t, SunDesc& s) const {
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
-      if (k == "enabled") s.enabled = boolean(n, "sun.enabled");
-      else if (k == "elevation") s.elevation = number(n, "sun.elevation", -90.0, 90.0);
-      else if (k == "azimuth") s.azimuth = number(n, "sun.azimuth", -360.0, 360.0);
-      else if (k == "irradiance") s.irradiance = number(n, "sun.irradiance", 0.0, 1e6);
-      else if (k == "angular_diameter") s.angular_diameter = number(n, "sun.angular_diameter", 0.01, 30.0);
-      else unknown(key, "sun");
+      if (k == "enabled")
+        s.enabled = boolean(n, "sun.enabled");
+      else if (k == "elevation")
+        s.elevation = number(n, "sun.elevation", -90.0, 90.0);
+      else if (k == "azimuth")
+        s.azimuth = number(n, "sun.azimuth", -360.0, 360.0);
+      else if (k == "irradiance")
+        s.irradiance = number(n, "sun.irradiance", 0.0, 1e6);
+      else if (k == "angular_diameter")
+        s.angular_diameter = number(n, "sun.angular_diameter", 0.01, 30.0);
+      else
+        unknown(key, "sun");
     }
   }
 
   void sky(const toml::table& t, SkyDesc& s) const {
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
-      if (k == "model") s.model = static_cast<SkyModel>(choice_index(n, "sky.model", kSkyModelNames));
-      else if (k == "turbidity") s.turbidity = number(n, "sky.turbidity", 1.7, 10.0);
-      else if (k == "air_density") s.air_density = number(n, "sky.air_density", 0.0, 10.0);
-      else if (k == "dust_density") s.dust_density = number(n, "sky.dust_density", 0.0, 100.0);
-      else if (k == "ozone_density") s.ozone_density = number(n, "sky.ozone_density", 0.0, 10.0);
-      else if (k == "altitude") s.altitude = number(n, "sky.altitude", 0.0, 50000.0);
-      else if (k == "color") s.color = triple(n, "sky.color", 0.0, 1e6);
-      else if (k == "path") s.path = file(n, "sky.path");
-      else if (k == "rotation") s.rotation = number(n, "sky.rotation", -360.0, 360.0);
-      else if (k == "scale") s.scale = number(n, "sky.scale", 0.0, 1e6);
-      else unknown(key, "sky");
+      if (k == "model")
+        s.model = static_cast<SkyModel>(choice_index(n, "sky.model", kSkyModelNames));
+      else if (k == "turbidity")
+        s.turbidity = number(n, "sky.turbidity", 1.7, 10.0);
+      else if (k == "air_density")
+        s.air_density = number(n, "sky.air_density", 0.0, 10.0);
+      else if (k == "dust_density")
+        s.dust_density = number(n, "sky.dust_density", 0.0, 100.0);
+      else if (k == "ozone_density")
+        s.ozone_density = number(n, "sky.ozone_density", 0.0, 10.0);
+      else if (k == "altitude")
+        s.altitude = number(n, "sky.altitude", 0.0, 50000.0);
+      else if (k == "color")
+        s.color = triple(n, "sky.color", 0.0, 1e6);
+      else if (k == "path")
+        s.path = file(n, "sky.path");
+      else if (k == "rotation")
+        s.rotation = number(n, "sky.rotation", -360.0, 360.0);
+      else if (k == "scale")
+        s.scale = number(n, "sky.scale", 0.0, 1e6);
+      else
+        unknown(key, "sky");
     }
     if (s.model == SkyModel::Envmap && s.path.empty()) {
-      throw InputError(at(t.source()), "sky.model = \"envmap\" needs sky.path (an image OIIO reads)");
+      throw InputError(at(t.source()),
+                       "sky.model = \"envmap\" needs sky.path (an image OIIO reads)");
     }
   }
 
   void ground(const toml::table& t, GroundDesc& g) const {
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
-      if (k == "enabled") g.enabled = boolean(n, "ground.enabled");
-      else if (k == "albedo") g.albedo = triple(n, "ground.albedo", 0.0, 1.0);
-      else if (k == "patch_albedo") g.patch_albedo = triple(n, "ground.patch_albedo", 0.0, 1.0);
-      else if (k == "patch_cover") g.patch_cover = number(n, "ground.patch_cover", 0.0, 1.0);
-      else if (k == "patch_scale") g.patch_scale = number(n, "ground.patch_scale", 0.01, 1e4);
-      else unknown(key, "ground");
+      if (k == "enabled")
+        g.enabled = boolean(n, "ground.enabled");
+      else if (k == "albedo")
+        g.albedo = triple(n, "ground.albedo", 0.0, 1.0);
+      else if (k == "patch_albedo")
+        g.patch_albedo = triple(n, "ground.patch_albedo", 0.0, 1.0);
+      else if (k == "patch_cover")
+        g.patch_cover = number(n, "ground.patch_cover", 0.0, 1.0);
+      else if (k == "patch_scale")
+        g.patch_scale = number(n, "ground.patch_scale", 0.01, 1e4);
+      else
+        unknown(key, "ground");
     }
   }
 
   void bark(const toml::table& t, BarkOverride& b, const std::string& owner) const {
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
-      if (k == "albedo") b.albedo = triple(n, owner + ".bark.albedo", 0.0, 1.0);
-      else if (k == "bump_map") b.bump_map = file(n, owner + ".bark.bump_map");
-      else if (k == "bump_height") b.bump_height = number(n, owner + ".bark.bump_height", 0.0, 1.0);
-      else if (k == "bump_tile") b.bump_tile = number(n, owner + ".bark.bump_tile", 1e-3, 100.0);
-      else if (k == "roughness") b.roughness = number(n, owner + ".bark.roughness", 0.0, 90.0);
-      else if (k == "albedo_map") b.albedo_map = file(n, owner + ".bark.albedo_map");
-      else unknown(key, owner + ".bark");
+      if (k == "albedo")
+        b.albedo = triple(n, owner + ".bark.albedo", 0.0, 1.0);
+      else if (k == "bump_map")
+        b.bump_map = file(n, owner + ".bark.bump_map");
+      else if (k == "bump_height")
+        b.bump_height = number(n, owner + ".bark.bump_height", 0.0, 1.0);
+      else if (k == "bump_tile")
+        b.bump_tile = number(n, owner + ".bark.bump_tile", 1e-3, 100.0);
+      else if (k == "roughness")
+        b.roughness = number(n, owner + ".bark.roughness", 0.0, 90.0);
+      else if (k == "albedo_map")
+        b.albedo_map = file(n, owner + ".bark.albedo_map");
+      else
+        unknown(key, owner + ".bark");
     }
   }
 
   void leaf(const toml::table& t, LeafOverride& l, const std::string& owner) const {
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
-      if (k == "reflectance") l.reflectance = triple(n, owner + ".leaf.reflectance", 0.0, 1.0);
-      else if (k == "back_reflectance") l.back_reflectance = triple(n, owner + ".leaf.back_reflectance", 0.0, 1.0);
-      else if (k == "transmittance") l.transmittance = triple(n, owner + ".leaf.transmittance", 0.0, 1.0);
-      else if (k == "albedo_map") l.albedo_map = file(n, owner + ".leaf.albedo_map");
-      else if (k == "cuticle_ior") l.cuticle_ior = number(n, owner + ".leaf.cuticle_ior", 1.0, 3.0);
-      else if (k == "cuticle_roughness") l.cuticle_roughness = number(n, owner + ".leaf.cuticle_roughness", 0.0, 1.0);
-      else unknown(key, owner + ".leaf");
+      if (k == "reflectance")
+        l.reflectance = triple(n, owner + ".leaf.reflectance", 0.0, 1.0);
+      else if (k == "back_reflectance")
+        l.back_reflectance = triple(n, owner + ".leaf.back_reflectance", 0.0, 1.0);
+      else if (k == "transmittance")
+        l.transmittance = triple(n, owner + ".leaf.transmittance", 0.0, 1.0);
+      else if (k == "albedo_map")
+        l.albedo_map = file(n, owner + ".leaf.albedo_map");
+      else if (k == "cuticle_ior")
+        l.cuticle_ior = number(n, owner + ".leaf.cuticle_ior", 1.0, 3.0);
+      else if (k == "cuticle_roughness")
+        l.cuticle_roughness = number(n, owner + ".leaf.cuticle_roughness", 0.0, 1.0);
+      else
+        unknown(key, owner + ".leaf");
     }
   }
 
@@ -216,19 +294,29 @@ class SceneReader : TomlReader {
       const std::string k(key.str());
       const std::string name = owner + ".treemaker." + k;
       // The template language's own range for these weights (treemaker-format.md).
-      if (k == "ambient") w.ambient = number(n, name, 0.0, 10.0);
-      else if (k == "lambert") w.lambert = number(n, name, 0.0, 10.0);
-      else if (k == "height") w.height = number(n, name, 0.0, 10.0);
-      else if (k == "radius") w.radius = number(n, name, 0.0, 10.0);
-      else if (k == "angle") w.angle = number(n, name, 0.0, 10.0);
-      else unknown(key, owner + ".treemaker");
+      if (k == "ambient")
+        w.ambient = number(n, name, 0.0, 10.0);
+      else if (k == "lambert")
+        w.lambert = number(n, name, 0.0, 10.0);
+      else if (k == "height")
+        w.height = number(n, name, 0.0, 10.0);
+      else if (k == "radius")
+        w.radius = number(n, name, 0.0, 10.0);
+      else if (k == "angle")
+        w.angle = number(n, name, 0.0, 10.0);
+      else
+        unknown(key, owner + ".treemaker");
     }
   }
 
-  void placement(const toml::node& n, const std::string& k, Placement& p, const std::string& owner) const {
-    if (k == "position") p.position = triple(n, owner + ".position", -1e7, 1e7);
-    else if (k == "rotation") p.rotation = number(n, owner + ".rotation", -360.0, 360.0);
-    else if (k == "scale") p.scale = number(n, owner + ".scale", 1e-6, 1e6);
+  void placement(const toml::node& n, const std::string& k, Placement& p,
+                 const std::string& owner) const {
+    if (k == "position")
+      p.position = triple(n, owner + ".position", -1e7, 1e7);
+    else if (k == "rotation")
+      p.rotation = number(n, owner + ".rotation", -360.0, 360.0);
+    else if (k == "scale")
+      p.scale = number(n, owner + ".scale", 1e-6, 1e6);
   }
 
   TreeDesc tree(const toml::table& t) const {
@@ -236,14 +324,22 @@ class SceneReader : TomlReader {
     d.where = at(t.source());
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
-      if (k == "species") d.species = file(n, "tree.species");
-      else if (k == "seed") d.seed = static_cast<std::uint64_t>(integer(n, "tree.seed", 0, INT64_MAX));
-      else if (k == "position" || k == "rotation" || k == "scale") placement(n, k, d.placement, "tree");
-      else if (k == "time") d.time = number(n, "tree.time", -1e6, 1e6);
-      else if (k == "bark") bark(table(n, "tree.bark"), d.bark, "tree");
-      else if (k == "leaf") leaf(table(n, "tree.leaf"), d.leaf, "tree");
-      else if (k == "treemaker") treemaker(table(n, "tree.treemaker"), d.treemaker, "tree");
-      else unknown(key, "[tree]");
+      if (k == "species")
+        d.species = file(n, "tree.species");
+      else if (k == "seed")
+        d.seed = static_cast<std::uint64_t>(integer(n, "tree.seed", 0, INT64_MAX));
+      else if (k == "position" || k == "rotation" || k == "scale")
+        placement(n, k, d.placement, "tree");
+      else if (k == "time")
+        d.time = number(n, "tree.time", -1e6, 1e6);
+      else if (k == "bark")
+        bark(table(n, "tree.bark"), d.bark, "tree");
+      else if (k == "leaf")
+        leaf(table(n, "tree.leaf"), d.leaf, "tree");
+      else if (k == "treemaker")
+        treemaker(table(n, "tree.treemaker"), d.treemaker, "tree");
+      else
+        unknown(key, "[tree]");
     }
     if (d.species.empty()) throw InputError(d.where, "[[tree]] needs a species (a species file)");
     return d;
@@ -254,10 +350,14 @@ class SceneReader : TomlReader {
     d.where = at(t.source());
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
-      if (k == "species") d.species = file(n, "forest.species");
-      else if (k == "count") d.count = static_cast<int>(integer(n, "forest.count", 1, 10000000));
-      else if (k == "variants") d.variants = static_cast<int>(integer(n, "forest.variants", 1, 10000));
-      else if (k == "seed") d.seed = static_cast<std::uint64_t>(integer(n, "forest.seed", 0, INT64_MAX));
+      if (k == "species")
+        d.species = file(n, "forest.species");
+      else if (k == "count")
+        d.count = static_cast<int>(integer(n, "forest.count", 1, 10000000));
+      else if (k == "variants")
+        d.variants = static_cast<int>(integer(n, "forest.variants", 1, 10000));
+      else if (k == "seed")
+        d.seed = static_cast<std::uint64_t>(integer(n, "forest.seed", 0, INT64_MAX));
       else if (k == "area") {
         const toml::array* a = n.as_array();
         if (!a || a->size() != 2 || !a->get(0)->is_array() || !a->get(1)->is_array() ||
@@ -266,18 +366,25 @@ class SceneReader : TomlReader {
         }
         const toml::array& lo = *a->get(0)->as_array();
         const toml::array& hi = *a->get(1)->as_array();
-        d.area = {number(*lo.get(0), "forest.area", -1e7, 1e7), number(*lo.get(1), "forest.area", -1e7, 1e7),
-                  number(*hi.get(0), "forest.area", -1e7, 1e7), number(*hi.get(1), "forest.area", -1e7, 1e7)};
+        d.area = {number(*lo.get(0), "forest.area", -1e7, 1e7),
+                  number(*lo.get(1), "forest.area", -1e7, 1e7),
+                  number(*hi.get(0), "forest.area", -1e7, 1e7),
+                  number(*hi.get(1), "forest.area", -1e7, 1e7)};
         if (!(d.area[2] > d.area[0] && d.area[3] > d.area[1])) {
           fail(n, "forest.area must go from the smaller corner to the larger one");
         }
-      } else if (k == "bark") bark(table(n, "forest.bark"), d.bark, "forest");
-      else if (k == "leaf") leaf(table(n, "forest.leaf"), d.leaf, "forest");
-      else if (k == "treemaker") treemaker(table(n, "forest.treemaker"), d.treemaker, "forest");
-      else unknown(key, "[forest]");
+      } else if (k == "bark")
+        bark(table(n, "forest.bark"), d.bark, "forest");
+      else if (k == "leaf")
+        leaf(table(n, "forest.leaf"), d.leaf, "forest");
+      else if (k == "treemaker")
+        treemaker(table(n, "forest.treemaker"), d.treemaker, "forest");
+      else
+        unknown(key, "[forest]");
     }
     if (d.species.empty()) throw InputError(d.where, "[[forest]] needs a species (a species file)");
-    if (d.variants > d.count) throw InputError(d.where, "forest.variants must not exceed forest.count");
+    if (d.variants > d.count)
+      throw InputError(d.where, "forest.variants must not exceed forest.count");
     return d;
   }
 
@@ -286,14 +393,22 @@ class SceneReader : TomlReader {
     const std::string owner = "mesh.material." + name;
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
-      if (k == "kind") m.kind = choice(n, owner + ".kind", {"bark", "leaf", "diffuse"});
-      else if (k == "albedo") m.albedo = triple(n, owner + ".albedo", 0.0, 1.0);
-      else if (k == "reflectance") m.reflectance = triple(n, owner + ".reflectance", 0.0, 1.0);
-      else if (k == "back_reflectance") m.back_reflectance = triple(n, owner + ".back_reflectance", 0.0, 1.0);
-      else if (k == "transmittance") m.transmittance = triple(n, owner + ".transmittance", 0.0, 1.0);
-      else if (k == "cuticle_ior") m.cuticle_ior = number(n, owner + ".cuticle_ior", 1.0, 3.0);
-      else if (k == "cuticle_roughness") m.cuticle_roughness = number(n, owner + ".cuticle_roughness", 0.0, 1.0);
-      else unknown(key, owner);
+      if (k == "kind")
+        m.kind = choice(n, owner + ".kind", {"bark", "leaf", "diffuse"});
+      else if (k == "albedo")
+        m.albedo = triple(n, owner + ".albedo", 0.0, 1.0);
+      else if (k == "reflectance")
+        m.reflectance = triple(n, owner + ".reflectance", 0.0, 1.0);
+      else if (k == "back_reflectance")
+        m.back_reflectance = triple(n, owner + ".back_reflectance", 0.0, 1.0);
+      else if (k == "transmittance")
+        m.transmittance = triple(n, owner + ".transmittance", 0.0, 1.0);
+      else if (k == "cuticle_ior")
+        m.cuticle_ior = number(n, owner + ".cuticle_ior", 1.0, 3.0);
+      else if (k == "cuticle_roughness")
+        m.cuticle_roughness = number(n, owner + ".cuticle_roughness", 0.0, 1.0);
+      else
+        unknown(key, owner);
     }
     for (size_t i = 0; i < 3; ++i) {
       if (m.kind == "leaf" && (m.reflectance[i] + m.transmittance[i] > 1.0 ||
@@ -309,21 +424,26 @@ class SceneReader : TomlReader {
     d.where = at(t.source());
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
-      if (k == "path") d.path = file(n, "mesh.path");
-      else if (k == "up") d.up = choice(n, "mesh.up", {"z", "y"});
-      else if (k == "position" || k == "rotation" || k == "scale") placement(n, k, d.placement, "mesh");
+      if (k == "path")
+        d.path = file(n, "mesh.path");
+      else if (k == "up")
+        d.up = choice(n, "mesh.up", {"z", "y"});
+      else if (k == "position" || k == "rotation" || k == "scale")
+        placement(n, k, d.placement, "mesh");
       else if (k == "material") {
         for (auto&& [mkey, mnode] : table(n, "mesh.material")) {
           const std::string name(mkey.str());
           d.materials[name] = mesh_material(table(mnode, "mesh.material." + name), name);
         }
-      } else unknown(key, "[mesh]");
+      } else
+        unknown(key, "[mesh]");
     }
     if (d.path.empty()) throw InputError(d.where, "[[mesh]] needs a path (an OBJ file)");
     return d;
   }
 
-  void extension(const toml::node& n, const std::string& path, const char* ext, const char* name) const {
+  void extension(const toml::node& n, const std::string& path, const char* ext,
+                 const char* name) const {
     const std::size_t len = std::strlen(ext);
     if (path.size() < len || path.compare(path.size() - len, len, ext) != 0) {
       fail(n, std::string(name) + " must name a " + ext + " file, not \"" + path + "\"");
@@ -334,14 +454,28 @@ class SceneReader : TomlReader {
     o.where = {at(t.source()), at(t.source()), at(t.source())};
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
-      if (k == "exr") { o.exr = file(n, "output.exr"); extension(n, o.exr, ".exr", "output.exr"); }
-      else if (k == "png") { o.png = file(n, "output.png"); extension(n, o.png, ".png", "output.png"); }
-      else if (k == "colorspace") { o.colorspace = text(n, "output.colorspace"); o.where.colorspace = at(n.source()); }
-      else if (k == "display") { o.display = text(n, "output.display"); o.where.display = at(n.source()); }
-      else if (k == "view") { o.view = text(n, "output.view"); o.where.view = at(n.source()); }
-      else if (k == "checkpoint_seconds") o.checkpoint_seconds = number(n, "output.checkpoint_seconds", 0.0, 1e7);
-      else if (k == "pixel_type") o.pixel_type = static_cast<PixelType>(choice_index(n, "output.pixel_type", kPixelTypeNames));
-      else if (k == "transparent_sky") o.transparent_sky = boolean(n, "output.transparent_sky");
+      if (k == "exr") {
+        o.exr = file(n, "output.exr");
+        extension(n, o.exr, ".exr", "output.exr");
+      } else if (k == "png") {
+        o.png = file(n, "output.png");
+        extension(n, o.png, ".png", "output.png");
+      } else if (k == "colorspace") {
+        o.colorspace = text(n, "output.colorspace");
+        o.where.colorspace = at(n.source());
+      } else if (k == "display") {
+        o.display = text(n, "output.display");
+        o.where.display = at(n.source());
+      } else if (k == "view") {
+        o.view = text(n, "output.view");
+        o.where.view = at(n.source());
+      } else if (k == "checkpoint_seconds")
+        o.checkpoint_seconds = number(n, "output.checkpoint_seconds", 0.0, 1e7);
+      else if (k == "pixel_type")
+        o.pixel_type =
+            static_cast<PixelType>(choice_index(n, "output.pixel_type", kPixelTypeNames));
+      else if (k == "transparent_sky")
+        o.transparent_sky = boolean(n, "output.transparent_sky");
       else if (k == "aovs") {
         const toml::array* a = n.as_array();
         if (!a) fail(n, "output.aovs must be an array of strings");
@@ -350,7 +484,8 @@ class SceneReader : TomlReader {
           o.aovs.add(aov);
           if (aov == Aov::Treemaker) o.treemaker_aov_where = at(e.source());
         }
-      } else unknown(key, "output");
+      } else
+        unknown(key, "output");
     }
   }
 
@@ -368,11 +503,14 @@ void check_camera(const CameraDesc& d) {
     throw InputError(d.look_at_where, "camera.look_at must differ from camera.position");
   }
   if (glm::length(glm::cross(glm::normalize(target - origin), up)) < 1e-6f) {
-    throw InputError(d.up_where, "camera.up must not be parallel to the viewing direction (nor zero)");
+    throw InputError(d.up_where,
+                     "camera.up must not be parallel to the viewing direction (nor zero)");
   }
 }
 
-const char* name_of(Integrator integrator) { return kIntegratorNames[static_cast<std::size_t>(integrator)]; }
+const char* name_of(Integrator integrator) {
+  return kIntegratorNames[static_cast<std::size_t>(integrator)];
+}
 const char* name_of(SkyModel model) { return kSkyModelNames[static_cast<std::size_t>(model)]; }
 
 std::optional<Integrator> integrator_named(std::string_view name) {

@@ -22,10 +22,10 @@ struct PointRecord {
   glm::vec3 position{0.0f};
   float radius = 0.0f;
   int line = 0;
-  int incoming = -1;             // the point it is connected from
+  int incoming = -1;  // the point it is connected from
   int incoming_line = 0;
-  std::vector<int> outgoing;     // in file order
-  bool branch = false;           // starts a limb between two other points
+  std::vector<int> outgoing;  // in file order
+  bool branch = false;        // starts a limb between two other points
   int branch_a = -1, branch_b = -1;
   float branch_t = 0.0f;
 };
@@ -34,10 +34,10 @@ struct StemRecord {
   int level = -1;
   bool clone = false;
   float taper = -1.0f, base_radius = 0.0f, length = 0.0f, z_start = 0.0f;
-  float offset = -1.0f;  // metres along the parent where it starts; -1: computed
+  float offset = -1.0f;   // metres along the parent where it starts; -1: computed
   glm::vec3 color{1.0f};  // multiplies the bark albedo
-  float start = -1.0f;   // radius of the stem's own first point (a shared branch point has the
-                         // parent's radius in the file); -1: the point's
+  float start = -1.0f;    // radius of the stem's own first point (a shared branch point has the
+                          // parent's radius in the file); -1: the point's
   int line = 0;
 };
 
@@ -97,12 +97,16 @@ class Reader {
   }
   int known(std::size_t k) const {
     const int i = id(k);
-    if (!points_.count(i)) fail(k, "point " + std::to_string(i) + " is not defined (before this line)");
+    if (!points_.count(i))
+      fail(k, "point " + std::to_string(i) + " is not defined (before this line)");
     return i;
   }
   void count(std::size_t lo, std::size_t hi) const {
     if (tokens_.size() < lo || tokens_.size() > hi) {
-      fail(0, "'" + tokens_[0] + "' takes " + (lo == hi ? std::to_string(lo - 1) : std::to_string(lo - 1) + " to " + std::to_string(hi - 1)) + " values");
+      fail(0, "'" + tokens_[0] + "' takes " +
+                  (lo == hi ? std::to_string(lo - 1)
+                            : std::to_string(lo - 1) + " to " + std::to_string(hi - 1)) +
+                  " values");
     }
   }
 
@@ -111,7 +115,9 @@ class Reader {
     if (kind == "point") {
       count(5, 6);
       const int i = id(1);
-      if (points_.count(i)) fail(1, "point " + std::to_string(i) + " is defined twice (first on line " + std::to_string(points_[i].line) + ")");
+      if (points_.count(i))
+        fail(1, "point " + std::to_string(i) + " is defined twice (first on line " +
+                    std::to_string(points_[i].line) + ")");
       PointRecord p;
       p.position = glm::vec3(real(2), real(3), real(4));
       p.radius = tokens_.size() > 5 ? static_cast<float>(real(5)) : default_radius_;
@@ -142,25 +148,38 @@ class Reader {
     } else if (kind == "stem") {
       // stem P level L clone C taper T radius R length S zstart Z offset O: the stem whose second
       // point is P (each point has one incoming limb, so P names one stem).
-      if (tokens_.size() < 2 || tokens_.size() % 2 != 0) fail(0, "stem P followed by name value pairs");
+      if (tokens_.size() < 2 || tokens_.size() % 2 != 0)
+        fail(0, "stem P followed by name value pairs");
       const int p = known(1);
       StemRecord s;
       s.line = line_;
       for (std::size_t k = 2; k + 1 < tokens_.size(); k += 2) {
         const std::string& key = tokens_[k];
         const double v = real(k + 1);
-        if (key == "level") s.level = static_cast<int>(v);
-        else if (key == "clone") s.clone = v != 0.0;
-        else if (key == "taper") s.taper = static_cast<float>(v);
-        else if (key == "radius") s.base_radius = static_cast<float>(v);
-        else if (key == "length") s.length = static_cast<float>(v);
-        else if (key == "zstart") s.z_start = static_cast<float>(v);
-        else if (key == "offset") s.offset = static_cast<float>(v);
-        else if (key == "start") s.start = static_cast<float>(v);
-        else if (key == "red") s.color.x = static_cast<float>(v);
-        else if (key == "green") s.color.y = static_cast<float>(v);
-        else if (key == "blue") s.color.z = static_cast<float>(v);
-        else fail(k, "unknown stem property '" + key + "'");
+        if (key == "level")
+          s.level = static_cast<int>(v);
+        else if (key == "clone")
+          s.clone = v != 0.0;
+        else if (key == "taper")
+          s.taper = static_cast<float>(v);
+        else if (key == "radius")
+          s.base_radius = static_cast<float>(v);
+        else if (key == "length")
+          s.length = static_cast<float>(v);
+        else if (key == "zstart")
+          s.z_start = static_cast<float>(v);
+        else if (key == "offset")
+          s.offset = static_cast<float>(v);
+        else if (key == "start")
+          s.start = static_cast<float>(v);
+        else if (key == "red")
+          s.color.x = static_cast<float>(v);
+        else if (key == "green")
+          s.color.y = static_cast<float>(v);
+        else if (key == "blue")
+          s.color.z = static_cast<float>(v);
+        else
+          fail(k, "unknown stem property '" + key + "'");
       }
       stems_[p] = s;
     } else if (kind == "leaf") {
@@ -173,7 +192,8 @@ class Reader {
       l.length = static_cast<float>(real(11));
       l.width = static_cast<float>(real(12));
       l.shape = static_cast<std::int32_t>(real(13));
-      if (glm::length(l.axis) < 1e-6f || glm::length(l.normal) < 1e-6f) fail(5, "a leaf needs a non-zero axis and normal");
+      if (glm::length(l.axis) < 1e-6f || glm::length(l.normal) < 1e-6f)
+        fail(5, "a leaf needs a non-zero axis and normal");
       if (l.length <= 0.0f || l.width <= 0.0f) fail(11, "a leaf needs a positive length and width");
       if (l.shape < 0 || l.shape > 5) fail(13, "leaf shapes are 0 to 5");
       leaves_.emplace_back(p, l);
@@ -185,7 +205,8 @@ class Reader {
       const int leaf = static_cast<int>(real(2));
       if (tri) {
         LeafTriangle t;
-        for (int k = 0; k < 3; ++k) t.v[k] = glm::vec3(real(3 + 3 * k), real(4 + 3 * k), real(5 + 3 * k));
+        for (int k = 0; k < 3; ++k)
+          t.v[k] = glm::vec3(real(3 + 3 * k), real(4 + 3 * k), real(5 + 3 * k));
         t.color = glm::vec3(real(12), real(13), real(14));
         t.leaf = leaf;
         free_triangles_.emplace_back(p, t);
@@ -209,7 +230,9 @@ class Reader {
       default_radius_ = static_cast<float>(real(1));
       if (default_radius_ < 0.0f) fail(1, "a radius must not be negative");
     } else {
-      fail(0, "unknown record '" + kind + "' (known: point, connect, branch, stem, leaf, leaftri, leafline, trunk, radius)");
+      fail(0,
+           "unknown record '" + kind +
+               "' (known: point, connect, branch, stem, leaf, leaftri, leafline, trunk, radius)");
     }
   }
 
@@ -231,10 +254,13 @@ class Reader {
     }
     if (roots.size() != 1) {
       std::string list;
-      for (std::size_t k = 0; k < roots.size() && k < 5; ++k) list += (k ? ", " : "") + std::to_string(roots[k]);
+      for (std::size_t k = 0; k < roots.size() && k < 5; ++k)
+        list += (k ? ", " : "") + std::to_string(roots[k]);
       throw InputError({path_, roots.empty() ? 1 : points_[roots[1]].line, 1},
                        "the skeleton must have exactly one root (a point with no incoming limb); "
-                       "it has " + std::to_string(roots.size()) + (roots.empty() ? "" : ": points " + list));
+                       "it has " +
+                           std::to_string(roots.size()) +
+                           (roots.empty() ? "" : ": points " + list));
     }
     // Stems: the first outgoing connection of a point continues its stem; others start stems.
     Skeleton sk;
@@ -244,14 +270,17 @@ class Reader {
     std::sort(reached.begin(), reached.end());
     for (int i : order_) {
       if (!std::binary_search(reached.begin(), reached.end(), i)) {
-        throw InputError({path_, points_[i].line, 1}, "point " + std::to_string(i) +
-                                                          " is not connected to the root (all points must be)");
+        throw InputError(
+            {path_, points_[i].line, 1},
+            "point " + std::to_string(i) + " is not connected to the root (all points must be)");
       }
     }
     keep_file_order(sk);
     for (const auto& [p, leaf] : leaves_) {
       const auto it = stem_of_point_.find(p);
-      if (it == stem_of_point_.end()) throw InputError({path_, 1, 1}, "a leaf names point " + std::to_string(p) + ", which is on no stem");
+      if (it == stem_of_point_.end())
+        throw InputError({path_, 1, 1},
+                         "a leaf names point " + std::to_string(p) + ", which is on no stem");
       Leaf l = leaf;
       // Hand-written frames may be any length; arbor's own are unit already (kept bit for bit).
       if (std::fabs(glm::length(l.axis) - 1.0f) > 1e-5f) l.axis = glm::normalize(l.axis);
@@ -278,7 +307,8 @@ class Reader {
   int stem_on(int point) const {
     const auto it = stem_of_point_.find(point);
     if (it == stem_of_point_.end()) {
-      throw InputError({path_, 1, 1}, "a leaf element names point " + std::to_string(point) + ", which is on no stem");
+      throw InputError({path_, 1, 1}, "a leaf element names point " + std::to_string(point) +
+                                          ", which is on no stem");
     }
     return it->second;
   }
@@ -289,9 +319,8 @@ class Reader {
     const std::size_t n = sk.stems.size();
     std::vector<std::size_t> order(n);
     for (std::size_t i = 0; i < n; ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return stem_lines_[a] < stem_lines_[b];
-    });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return stem_lines_[a] < stem_lines_[b]; });
     std::vector<int> new_index(n);
     for (std::size_t i = 0; i < n; ++i) new_index[order[i]] = static_cast<int>(i);
     for (std::size_t i = 0; i < n; ++i) {
@@ -301,7 +330,8 @@ class Reader {
     std::vector<Stem> sorted(n);
     for (std::size_t i = 0; i < n; ++i) {
       sorted[i] = sk.stems[order[i]];
-      if (sorted[i].parent >= 0) sorted[i].parent = new_index[static_cast<size_t>(sorted[i].parent)];
+      if (sorted[i].parent >= 0)
+        sorted[i].parent = new_index[static_cast<size_t>(sorted[i].parent)];
     }
     sk.stems = std::move(sorted);
     for (auto& [point, stem] : stem_of_point_) stem = new_index[static_cast<size_t>(stem)];
@@ -340,8 +370,9 @@ class Reader {
                 std::vector<int>& reached, std::vector<StemStart>& children) {
     const int parent = from.parent, parent_point = from.parent_point, first = from.first;
     std::vector<int> chain{first};
-    int at = from.second_hint >= 0 ? from.second_hint
-                                   : (points_[first].outgoing.empty() ? -1 : points_[first].outgoing[0]);
+    int at = from.second_hint >= 0
+                 ? from.second_hint
+                 : (points_[first].outgoing.empty() ? -1 : points_[first].outgoing[0]);
     while (at >= 0) {
       // A point that a `stem` record names starts a stem of its own (e.g. a parent that ends
       // where its branches begin); otherwise the first outgoing limb continues this stem.
@@ -350,7 +381,8 @@ class Reader {
       at = points_[at].outgoing.empty() ? -1 : points_[at].outgoing[0];
     }
     if (chain.size() < 2) {
-      throw InputError({path_, points_[first].line, 1}, "point " + std::to_string(first) + " starts a limb that goes nowhere");
+      throw InputError({path_, points_[first].line, 1},
+                       "point " + std::to_string(first) + " starts a limb that goes nowhere");
     }
     for (std::size_t k = 1; k < chain.size(); ++k) {
       const PointRecord& a = points_[chain[k - 1]];
@@ -358,7 +390,8 @@ class Reader {
       if (glm::length(a.position - b.position) < 1e-6f) {
         // A limb segment of length 0 has no direction: splines and frames through it are NaN.
         throw InputError({path_, b.incoming_line > 0 ? b.incoming_line : b.line, 1},
-                         "points " + std::to_string(chain[k - 1]) + " and " + std::to_string(chain[k]) +
+                         "points " + std::to_string(chain[k - 1]) + " and " +
+                             std::to_string(chain[k]) +
                              " are at the same position (closer than 1 micrometre), so the limb "
                              "between them has no direction");
       }
@@ -392,7 +425,8 @@ class Reader {
       if (rec != stems_.end() && rec->second.offset >= 0.0f) {
         st.parent_offset = rec->second.offset;
       } else if (parent_point >= 0) {
-        st.parent_offset = arc_to_point_[static_cast<size_t>(parent)][static_cast<size_t>(parent_point)];
+        st.parent_offset =
+            arc_to_point_[static_cast<size_t>(parent)][static_cast<size_t>(parent_point)];
       }
     }
     const auto index = static_cast<int>(sk.stems.size());
@@ -447,12 +481,10 @@ class Reader {
   float default_radius_ = 0.0f;
 };
 
-
 }  // namespace
 
 Skeleton parse_skeleton_file(const std::string& text, const std::string& path) {
   return Reader(text, path).read();
 }
-
 
 }  // namespace arbor::gen

@@ -23,7 +23,8 @@ Species from_file(const std::string& path, ModelParams params) {
 }  // namespace
 
 Species load_species(const std::string& path) {
-  if (ends_with(path, ".toml")) return parse_species_toml(read_text_input(path, "species", kMaxTomlBytes), path);
+  if (ends_with(path, ".toml"))
+    return parse_species_toml(read_text_input(path, "species", kMaxTomlBytes), path);
   if (ends_with(path, ".xml")) return parse_arbaro_xml(read_text_file(path), path);
   if (ends_with(path, ".lsys")) {
     return from_file(path, parse_lsystem(read_text_file(path), path));

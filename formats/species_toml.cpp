@@ -42,7 +42,9 @@ class TomlSpecies : TomlReader {
     }
     const std::string problem = set_param(sp.weber_penn(), info, level, number(node, paper_name));
     if (!problem.empty()) {
-      throw InputError(at(node.source()), (level >= 0 && !info.real && !info.whole ? std::to_string(level) : "") + problem);
+      throw InputError(
+          at(node.source()),
+          (level >= 0 && !info.real && !info.whole ? std::to_string(level) : "") + problem);
     }
     positions_[paper_name] = at(node.source());
   }
@@ -51,9 +53,9 @@ class TomlSpecies : TomlReader {
     for (auto&& [key, node] : levels) {
       const std::string k(key.str());
       if (k.size() != 1 || k[0] < '0' || k[0] > '3') {
-        throw InputError(at(key.source()),
-                         "unknown level '" + k + "': levels are 0 (trunk) to 3; deeper levels "
-                         "reuse level 3");
+        throw InputError(at(key.source()), "unknown level '" + k +
+                                               "': levels are 0 (trunk) to 3; deeper levels "
+                                               "reuse level 3");
       }
       const int level = k[0] - '0';
       for (auto&& [pkey, pnode] : table(node, "level." + k)) {
@@ -81,11 +83,13 @@ class TomlSpecies : TomlReader {
         sp.bark.albedo = colour(node, "bark.albedo");
       } else if (k == "bump_height") {
         const double h = number(node, "bark.bump_height");
-        if (h < 0.0 || h > 1.0) throw InputError(at(node.source()), "bark.bump_height must be in [0, 1] metres");
+        if (h < 0.0 || h > 1.0)
+          throw InputError(at(node.source()), "bark.bump_height must be in [0, 1] metres");
         sp.bark.bump_height = h;
       } else if (k == "roughness") {
         const double r = number(node, "bark.roughness");
-        if (r < 0.0 || r > 90.0) throw InputError(at(node.source()), "bark.roughness must be in [0, 90] degrees");
+        if (r < 0.0 || r > 90.0)
+          throw InputError(at(node.source()), "bark.roughness must be in [0, 90] degrees");
         sp.bark.roughness = r;
       } else {
         throw InputError(at(key.source()), "unknown key '" + k + "' in [bark]");
@@ -101,13 +105,16 @@ class TomlSpecies : TomlReader {
       }
       const double v = number(node, "roots." + k);
       if (k == "buttresses") {
-        if (v != std::floor(v) || v < 0.0 || v > 16.0) throw InputError(at(node.source()), "roots.buttresses must be a whole number in [0, 16]");
+        if (v != std::floor(v) || v < 0.0 || v > 16.0)
+          throw InputError(at(node.source()), "roots.buttresses must be a whole number in [0, 16]");
         sp.roots.buttresses = static_cast<int>(v);
       } else if (k == "height") {
-        if (!(v > 0.0 && v <= 50.0)) throw InputError(at(node.source()), "roots.height must be in (0, 50] trunk radii");
+        if (!(v > 0.0 && v <= 50.0))
+          throw InputError(at(node.source()), "roots.height must be in (0, 50] trunk radii");
         sp.roots.height = v;
       } else {
-        if (!(v > 0.0 && v <= 20.0)) throw InputError(at(node.source()), "roots.spread must be in (0, 20] trunk radii");
+        if (!(v > 0.0 && v <= 20.0))
+          throw InputError(at(node.source()), "roots.spread must be in (0, 20] trunk radii");
         sp.roots.spread = v;
       }
     }
@@ -116,23 +123,29 @@ class TomlSpecies : TomlReader {
   void leaf(Species& sp, const toml::table& t) {
     for (auto&& [key, node] : t) {
       const std::string k(key.str());
-      if (k == "reflectance") sp.leaf.reflectance = colour(node, "leaf.reflectance");
-      else if (k == "back_reflectance") sp.leaf.back_reflectance = colour(node, "leaf.back_reflectance");
-      else if (k == "transmittance") sp.leaf.transmittance = colour(node, "leaf.transmittance");
+      if (k == "reflectance")
+        sp.leaf.reflectance = colour(node, "leaf.reflectance");
+      else if (k == "back_reflectance")
+        sp.leaf.back_reflectance = colour(node, "leaf.back_reflectance");
+      else if (k == "transmittance")
+        sp.leaf.transmittance = colour(node, "leaf.transmittance");
       else if (k == "cuticle_ior") {
         const double v = number(node, "leaf.cuticle_ior");
-        if (!(v >= 1.0 && v <= 3.0)) throw InputError(at(node.source()), "leaf.cuticle_ior must be in [1, 3] (1: no cuticle)");
+        if (!(v >= 1.0 && v <= 3.0))
+          throw InputError(at(node.source()), "leaf.cuticle_ior must be in [1, 3] (1: no cuticle)");
         sp.leaf.cuticle_ior = v;
       } else if (k == "cuticle_roughness") {
         const double v = number(node, "leaf.cuticle_roughness");
-        if (!(v >= 0.0 && v <= 1.0)) throw InputError(at(node.source()), "leaf.cuticle_roughness must be in [0, 1]");
+        if (!(v >= 0.0 && v <= 1.0))
+          throw InputError(at(node.source()), "leaf.cuticle_roughness must be in [0, 1]");
         sp.leaf.cuticle_roughness = v;
       } else if (k == "hinge_angle") {
         const double a = number(node, "leaf.hinge_angle");
-        if (a < 0.0 || a > 90.0) throw InputError(at(node.source()), "leaf.hinge_angle must be in [0, 90] degrees");
+        if (a < 0.0 || a > 90.0)
+          throw InputError(at(node.source()), "leaf.hinge_angle must be in [0, 90] degrees");
         sp.leaf.hinge_angle = a;
-      }
-      else throw InputError(at(key.source()), "unknown key '" + k + "' in [leaf]");
+      } else
+        throw InputError(at(key.source()), "unknown key '" + k + "' in [leaf]");
     }
     for (size_t i = 0; i < 3; ++i) {
       const double t_i = sp.leaf.transmittance[i];
@@ -145,29 +158,47 @@ class TomlSpecies : TomlReader {
   }
 
   // model = "fractal": Ünal's parameters (docs/fractal-format.md).
-  void fractal_key(Species& sp, const std::string& k, const toml::node& node, const toml::key& key) {
+  void fractal_key(Species& sp, const std::string& k, const toml::node& node,
+                   const toml::key& key) {
     FractalParams& f = sp.fractal();
-    struct Real { const char* name; double lo, hi; double FractalParams::*field; };
-    struct Whole { const char* name; int lo, hi; int FractalParams::*field; };
-    static const Real reals[] = {
-        {"cone_angle", 0, 180, &FractalParams::cone_angle}, {"size_ratio", 0.01, 1.5, &FractalParams::size_ratio},
-        {"taper", 0.01, 1, &FractalParams::taper}, {"length", 1e-3, 500, &FractalParams::length},
-        {"radius", 1e-5, 50, &FractalParams::radius}, {"twist", -360, 360, &FractalParams::twist},
-        {"prune", 0, 0.99, &FractalParams::prune}, {"length_variation", 0, 0.99, &FractalParams::length_variation},
-        {"angle_variation", 0, 0.99, &FractalParams::angle_variation}, {"wiggle", 0, 0.5, &FractalParams::wiggle},
-        {"radius_variation", 0, 0.5, &FractalParams::radius_variation},
-        {"years_per_level", 1e-3, 1e4, &FractalParams::years_per_level}, {"age", 0, 1e6, &FractalParams::age},
-        {"cone_widening", 0, 1, &FractalParams::cone_widening}, {"leaf_length", 1e-4, 10, &FractalParams::leaf_length},
-        {"leaf_width", 1e-4, 10, &FractalParams::leaf_width}};
-    static const Whole wholes[] = {{"depth", 1, 32, &FractalParams::depth}, {"branches", 1, 64, &FractalParams::branches},
-                                   {"discs", 2, 256, &FractalParams::discs}, {"leaves", 0, 1000, &FractalParams::leaves},
+    struct Real {
+      const char* name;
+      double lo, hi;
+      double FractalParams::*field;
+    };
+    struct Whole {
+      const char* name;
+      int lo, hi;
+      int FractalParams::*field;
+    };
+    static const Real reals[] = {{"cone_angle", 0, 180, &FractalParams::cone_angle},
+                                 {"size_ratio", 0.01, 1.5, &FractalParams::size_ratio},
+                                 {"taper", 0.01, 1, &FractalParams::taper},
+                                 {"length", 1e-3, 500, &FractalParams::length},
+                                 {"radius", 1e-5, 50, &FractalParams::radius},
+                                 {"twist", -360, 360, &FractalParams::twist},
+                                 {"prune", 0, 0.99, &FractalParams::prune},
+                                 {"length_variation", 0, 0.99, &FractalParams::length_variation},
+                                 {"angle_variation", 0, 0.99, &FractalParams::angle_variation},
+                                 {"wiggle", 0, 0.5, &FractalParams::wiggle},
+                                 {"radius_variation", 0, 0.5, &FractalParams::radius_variation},
+                                 {"years_per_level", 1e-3, 1e4, &FractalParams::years_per_level},
+                                 {"age", 0, 1e6, &FractalParams::age},
+                                 {"cone_widening", 0, 1, &FractalParams::cone_widening},
+                                 {"leaf_length", 1e-4, 10, &FractalParams::leaf_length},
+                                 {"leaf_width", 1e-4, 10, &FractalParams::leaf_width}};
+    static const Whole wholes[] = {{"depth", 1, 32, &FractalParams::depth},
+                                   {"branches", 1, 64, &FractalParams::branches},
+                                   {"discs", 2, 256, &FractalParams::discs},
+                                   {"leaves", 0, 1000, &FractalParams::leaves},
                                    {"leaf_shape", 0, 5, &FractalParams::leaf_shape}};
     for (const Real& r : reals) {
       if (k != r.name) continue;
       const double v = number(node, k);
       if (v < r.lo || v > r.hi) {
         throw InputError(at(node.source()), k + " = " + std::to_string(v) + " is out of range [" +
-                                                std::to_string(r.lo) + ", " + std::to_string(r.hi) + "]");
+                                                std::to_string(r.lo) + ", " + std::to_string(r.hi) +
+                                                "]");
       }
       f.*r.field = v;
       return;
@@ -178,7 +209,8 @@ class TomlSpecies : TomlReader {
       const double v = number(node, k);
       if (v < w.lo || v > w.hi) {
         throw InputError(at(node.source()), k + " = " + std::to_string(static_cast<long long>(v)) +
-                                                " is out of range [" + std::to_string(w.lo) + ", " + std::to_string(w.hi) + "]");
+                                                " is out of range [" + std::to_string(w.lo) + ", " +
+                                                std::to_string(w.hi) + "]");
       }
       f.*w.field = static_cast<int>(v);
       return;
@@ -193,7 +225,8 @@ class TomlSpecies : TomlReader {
     bool has_model = false;
     if (const toml::node* m = root.get("model")) {
       const std::string model = text(*m, "model");
-      if (model == "fractal") sp.params = FractalParams{};
+      if (model == "fractal")
+        sp.params = FractalParams{};
       else if (model != "weber-penn") {
         throw InputError(at(m->source()),
                          "model '" + model + "' is not known; known: weber-penn, fractal");
@@ -203,7 +236,8 @@ class TomlSpecies : TomlReader {
       const std::string k(key.str());
       if (k == "model") {
         has_model = true;
-      } else if (sp.model() == Model::Fractal && k != "name" && k != "bark" && k != "leaf" && k != "roots") {
+      } else if (sp.model() == Model::Fractal && k != "name" && k != "bark" && k != "leaf" &&
+                 k != "roots") {
         fractal_key(sp, k, node, key);
       } else if (k == "name") {
         sp.name = text(node, "name");

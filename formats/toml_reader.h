@@ -60,8 +60,10 @@ class TomlReader {
       for (; j < l.size(); ++j) {
         const char c = l[j];
         if (quote) {
-          if (c == '\\' && quote == '"') ++j;
-          else if (c == quote) quote = 0;
+          if (c == '\\' && quote == '"')
+            ++j;
+          else if (c == quote)
+            quote = 0;
         } else if (c == '"' || c == '\'') {
           quote = c;
         } else if (c == '.') {
@@ -104,17 +106,18 @@ class TomlReader {
   double number(const toml::node& n, std::string_view name, double lo, double hi) const {
     const double v = number(n, name);
     if (v < lo || v > hi) {
-      fail(n, std::string(name) + " = " + std::to_string(v) + " is out of range [" + std::to_string(lo) +
-                  ", " + std::to_string(hi) + "]");
+      fail(n, std::string(name) + " = " + std::to_string(v) + " is out of range [" +
+                  std::to_string(lo) + ", " + std::to_string(hi) + "]");
     }
     return v;
   }
-  std::int64_t integer(const toml::node& n, std::string_view name, std::int64_t lo, std::int64_t hi) const {
+  std::int64_t integer(const toml::node& n, std::string_view name, std::int64_t lo,
+                       std::int64_t hi) const {
     if (!n.is_integer()) fail(n, std::string(name) + " must be a whole number");
     const std::int64_t v = *n.value<std::int64_t>();
     if (v < lo || v > hi) {
-      fail(n, std::string(name) + " = " + std::to_string(v) + " is out of range [" + std::to_string(lo) +
-                  ", " + std::to_string(hi) + "]");
+      fail(n, std::string(name) + " = " + std::to_string(v) + " is out of range [" +
+                  std::to_string(lo) + ", " + std::to_string(hi) + "]");
     }
     return v;
   }
@@ -129,7 +132,8 @@ class TomlReader {
   }
   // The index of the one of `options` (a type's table of names) that `n` names.
   template <std::size_t N>
-  std::size_t choice_index(const toml::node& n, std::string_view name, const std::array<const char*, N>& options) const {
+  std::size_t choice_index(const toml::node& n, std::string_view name,
+                           const std::array<const char*, N>& options) const {
     return choice_index(n, name, options.data(), N);
   }
   std::size_t choice_index(const toml::node& n, std::string_view name, const char* const* options,

@@ -12,7 +12,6 @@
 
 namespace arbor::gen {
 
-
 namespace {
 
 struct Token {
@@ -34,7 +33,8 @@ class Lexer {
     const char c = cursor_.peek();
     if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {
       t.kind = Token::Word;
-      while (!cursor_.at_end() && (std::isalnum(static_cast<unsigned char>(cursor_.peek())) || cursor_.peek() == '_')) {
+      while (!cursor_.at_end() &&
+             (std::isalnum(static_cast<unsigned char>(cursor_.peek())) || cursor_.peek() == '_')) {
         t.text += cursor_.peek();
         advance();
       }
@@ -42,8 +42,9 @@ class Lexer {
     }
     if (std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.') {
       std::string s;
-      while (!cursor_.at_end() && (std::isdigit(static_cast<unsigned char>(cursor_.peek())) ||
-                                     cursor_.peek() == '.' || ((cursor_.peek() == '-' || cursor_.peek() == '+') && s.empty()))) {
+      while (!cursor_.at_end() &&
+             (std::isdigit(static_cast<unsigned char>(cursor_.peek())) || cursor_.peek() == '.' ||
+              ((cursor_.peek() == '-' || cursor_.peek() == '+') && s.empty()))) {
         s += cursor_.peek();
         advance();
       }
@@ -69,9 +70,12 @@ class Lexer {
   void advance() { cursor_.advance(); }
   void skip() {
     while (!cursor_.at_end()) {
-      if (std::isspace(static_cast<unsigned char>(cursor_.peek()))) advance();
-      else if (cursor_.peek() == '#') { while (!cursor_.at_end() && cursor_.peek() != '\n') advance(); }
-      else break;
+      if (std::isspace(static_cast<unsigned char>(cursor_.peek())))
+        advance();
+      else if (cursor_.peek() == '#') {
+        while (!cursor_.at_end() && cursor_.peek() != '\n') advance();
+      } else
+        break;
     }
   }
   TextCursor cursor_;
@@ -79,14 +83,17 @@ class Lexer {
 
 class Parser {
  public:
-  Parser(const std::string& text, const std::string& path) : lex_(text, path), path_(path) { take(); }
+  Parser(const std::string& text, const std::string& path) : lex_(text, path), path_(path) {
+    take();
+  }
 
   TreeMakerTemplate parse() {
     TreeMakerTemplate t;
     t.path = path_;
     std::map<std::string, SourceLocation> once;
     while (tok_.kind != Token::End) {
-      if (tok_.kind != Token::Word) fail("expected a section name (iterations, gravity, light, color, branch, particle, leaf)");
+      if (tok_.kind != Token::Word)
+        fail("expected a section name (iterations, gravity, light, color, branch, particle, leaf)");
       const Token section = tok_;
       take();
       expect("{");
@@ -98,7 +105,8 @@ class Parser {
       if (s == "iterations") {
         key("i");
         const double v = number();
-        if (v != std::floor(v) || v < 1 || v > 1000) fail_at(last_, "iterations must be a whole number from 1 to 1000");
+        if (v != std::floor(v) || v < 1 || v > 1000)
+          fail_at(last_, "iterations must be a whole number from 1 to 1000");
         t.iterations = static_cast<int>(v);
       } else if (s == "gravity") {
         key("g");
@@ -109,7 +117,9 @@ class Parser {
       } else if (s == "color") {
         color(t);
       } else if (s == "branch") {
-        if (!t.particles.empty()) throw InputError(section.where, "branching rules must come before the particles (Figure 6, note 4)");
+        if (!t.particles.empty())
+          throw InputError(section.where,
+                           "branching rules must come before the particles (Figure 6, note 4)");
         branch(t, section.where);
       } else if (s == "particle") {
         particle(t);
@@ -126,17 +136,26 @@ class Parser {
   }
 
  private:
-  void take() { last_ = tok_; tok_ = lex_.next(); }
+  void take() {
+    last_ = tok_;
+    tok_ = lex_.next();
+  }
   [[noreturn]] void fail(const std::string& m) const { throw InputError(tok_.where, m); }
-  [[noreturn]] void fail_at(const Token& t, const std::string& m) const { throw InputError(t.where, m); }
+  [[noreturn]] void fail_at(const Token& t, const std::string& m) const {
+    throw InputError(t.where, m);
+  }
   bool is(const char* sym) const { return tok_.kind == Token::Symbol && tok_.text == sym; }
   void expect(const char* sym) {
-    if (!is(sym)) fail(std::string("expected '") + sym + "'" + (tok_.kind == Token::End ? " before the end of the file" : ", found '" + tok_.text + "'"));
+    if (!is(sym))
+      fail(std::string("expected '") + sym + "'" +
+           (tok_.kind == Token::End ? " before the end of the file"
+                                    : ", found '" + tok_.text + "'"));
     take();
   }
   // `name=`: the next key must be this one.
   void key(const char* name) {
-    if (tok_.kind != Token::Word || tok_.text != name) fail(std::string("expected '") + name + "='");
+    if (tok_.kind != Token::Word || tok_.text != name)
+      fail(std::string("expected '") + name + "='");
     take();
     expect("=");
   }
@@ -147,7 +166,10 @@ class Parser {
     return w;
   }
   double number() {
-    if (tok_.kind != Token::Number) fail("expected a number" + (tok_.kind == Token::End ? std::string(" before the end of the file") : ", found '" + tok_.text + "'"));
+    if (tok_.kind != Token::Number)
+      fail("expected a number" + (tok_.kind == Token::End
+                                      ? std::string(" before the end of the file")
+                                      : ", found '" + tok_.text + "'"));
     const double v = tok_.value;
     // Template numbers are centimetres, degrees, factors: past a million they only overflow.
     if (!(std::fabs(v) <= 1e6)) fail("the number " + tok_.text + " is out of range [-1e6, 1e6]");
@@ -182,12 +204,19 @@ class Parser {
       expect("=");
       const double v = number();
       if (v < 0.0 || v > 10.0) fail_at(last_, "light weights must be in [0, 10]");
-      if (k.text == "ambient") l.ambient = v;
-      else if (k.text == "lambert") l.lambert = v;
-      else if (k.text == "height") l.height = v;
-      else if (k.text == "radius") l.radius = v;
-      else if (k.text == "angle") l.angle = v;
-      else fail_at(k, "unknown light weight '" + k.text + "' (ambient, lambert, height, radius, angle)");
+      if (k.text == "ambient")
+        l.ambient = v;
+      else if (k.text == "lambert")
+        l.lambert = v;
+      else if (k.text == "height")
+        l.height = v;
+      else if (k.text == "radius")
+        l.radius = v;
+      else if (k.text == "angle")
+        l.angle = v;
+      else
+        fail_at(k,
+                "unknown light weight '" + k.text + "' (ambient, lambert, height, radius, angle)");
     }
   }
 
@@ -209,11 +238,13 @@ class Parser {
     r.where = where;
     key("level");
     const double level = number();
-    if (level != std::floor(level) || level < 1 || level > 1000) fail_at(last_, "level must be a whole number ≥ 1");
+    if (level != std::floor(level) || level < 1 || level > 1000)
+      fail_at(last_, "level must be a whole number ≥ 1");
     r.level = static_cast<int>(level);
     key("number");
     r.number = range();
-    if (r.number.lo < 0.0 || r.number.hi > 100.0) fail_at(last_, "the number of branches must be in [0, 100]");
+    if (r.number.lo < 0.0 || r.number.hi > 100.0)
+      fail_at(last_, "the number of branches must be in [0, 100]");
     while (is("(")) {
       take();
       TmBranchChoice c;
@@ -230,15 +261,21 @@ class Parser {
       expect(")");
       r.choices.push_back(c);
     }
-    if (r.choices.empty()) throw InputError(where, "a branching rule needs at least one (p angle dir factor) triplet");
+    if (r.choices.empty())
+      throw InputError(where, "a branching rule needs at least one (p angle dir factor) triplet");
     double sum = 0.0;
     for (const TmBranchChoice& c : r.choices) sum += c.p;
-    if (std::fabs(sum - 1.0) > 1e-6) throw InputError(where, "the probabilities of this branching rule add up to " + std::to_string(sum) + ", not 1 (Figure 6, note 5)");
+    if (std::fabs(sum - 1.0) > 1e-6)
+      throw InputError(where, "the probabilities of this branching rule add up to " +
+                                  std::to_string(sum) + ", not 1 (Figure 6, note 5)");
     for (const TmBranchRule& other : t.branches) {
-      if (other.level == r.level) throw InputError(where, "level " + std::to_string(r.level) + " already has a branching rule");
+      if (other.level == r.level)
+        throw InputError(where,
+                         "level " + std::to_string(r.level) + " already has a branching rule");
     }
     t.branches.push_back(r);
-    std::sort(t.branches.begin(), t.branches.end(), [](const TmBranchRule& a, const TmBranchRule& b) { return a.level < b.level; });
+    std::sort(t.branches.begin(), t.branches.end(),
+              [](const TmBranchRule& a, const TmBranchRule& b) { return a.level < b.level; });
   }
 
   void particle(TreeMakerTemplate& t) {
@@ -247,21 +284,37 @@ class Parser {
       const Token k = tok_;
       take();
       expect("=");
-      if (k.text == "pos") p.pos = vec3();
-      else if (k.text == "mag") { p.mag = range(); if (p.mag.lo < 0.0) fail_at(k, "mag must not be negative"); }
-      else if (k.text == "dir") {
+      if (k.text == "pos")
+        p.pos = vec3();
+      else if (k.text == "mag") {
+        p.mag = range();
+        if (p.mag.lo < 0.0) fail_at(k, "mag must not be negative");
+      } else if (k.text == "dir") {
         p.dir = vec3();
-        if (p.dir.x == 0.0 && p.dir.y == 0.0 && p.dir.z == 0.0) fail_at(k, "dir must not be the zero vector");
+        if (p.dir.x == 0.0 && p.dir.y == 0.0 && p.dir.z == 0.0)
+          fail_at(k, "dir must not be the zero vector");
         expect(":");
         p.max_deviation = number();
-        if (p.max_deviation < 0.0 || p.max_deviation > 180.0) fail_at(last_, "the deviation must be in [0, 180] degrees");
-      }
-      else if (k.text == "acc") p.acc = number();
-      else if (k.text == "growth") { p.growth = number(); if (p.growth < 0.0) fail_at(last_, "growth must not be negative"); }
-      else if (k.text == "age") p.age = number();
-      else if (k.text == "color") { const Token c = tok_; p.color = word(); if (!t.color(p.color)) fail_at(c, "colour '" + p.color + "' is not defined (define it in a color section before)"); }
-      else if (k.text == "brightness") p.brightness = brightness();
-      else fail_at(k, "unknown particle key '" + k.text + "' (pos, mag, dir, acc, growth, age, color, brightness)");
+        if (p.max_deviation < 0.0 || p.max_deviation > 180.0)
+          fail_at(last_, "the deviation must be in [0, 180] degrees");
+      } else if (k.text == "acc")
+        p.acc = number();
+      else if (k.text == "growth") {
+        p.growth = number();
+        if (p.growth < 0.0) fail_at(last_, "growth must not be negative");
+      } else if (k.text == "age")
+        p.age = number();
+      else if (k.text == "color") {
+        const Token c = tok_;
+        p.color = word();
+        if (!t.color(p.color))
+          fail_at(c,
+                  "colour '" + p.color + "' is not defined (define it in a color section before)");
+      } else if (k.text == "brightness")
+        p.brightness = brightness();
+      else
+        fail_at(k, "unknown particle key '" + k.text +
+                       "' (pos, mag, dir, acc, growth, age, color, brightness)");
     }
     t.particles.push_back(p);
   }
@@ -282,17 +335,24 @@ class Parser {
       const Token k = tok_;
       take();
       expect("=");
-      if (k.text == "p") { l.p = number(); if (l.p < 0.0 || l.p > 1.0) fail_at(last_, "a probability must be in [0, 1]"); }
-      else if (k.text == "coord") {
+      if (k.text == "p") {
+        l.p = number();
+        if (l.p < 0.0 || l.p > 1.0) fail_at(last_, "a probability must be in [0, 1]");
+      } else if (k.text == "coord") {
         const Token c = tok_;
         const std::string w = word();
         if (w != "limb" && w != "leaf") fail_at(c, "coord must be 'limb' or 'leaf'");
         l.limb_coords = w == "limb";
-      }
-      else if (k.text == "out") l.out = number();
-      else if (k.text == "up") l.up = number();
-      else if (k.text == "color") { const Token c = tok_; color = word(); if (!t.color(color)) fail_at(c, "colour '" + color + "' is not defined"); }
-      else if (k.text == "brightness") bright = brightness();
+      } else if (k.text == "out")
+        l.out = number();
+      else if (k.text == "up")
+        l.up = number();
+      else if (k.text == "color") {
+        const Token c = tok_;
+        color = word();
+        if (!t.color(color)) fail_at(c, "colour '" + color + "' is not defined");
+      } else if (k.text == "brightness")
+        bright = brightness();
       else if (k.text == "tri" || k.text == "ln") {
         if (color.empty()) fail_at(k, "give the element's color= before its tri= or ln=");
         TmElement e;
@@ -302,10 +362,12 @@ class Parser {
         const int n = e.line ? 2 : 3;
         for (int i = 0; i < n; ++i) e.v[static_cast<size_t>(i)] = vec3();
         l.elements.push_back(e);
-      }
-      else fail_at(k, "unknown leaf key '" + k.text + "' (p, coord, out, up, color, brightness, tri, ln)");
+      } else
+        fail_at(
+            k, "unknown leaf key '" + k.text + "' (p, coord, out, up, color, brightness, tri, ln)");
     }
-    if (l.elements.empty()) throw InputError(where, "a leaf needs at least one tri= or ln= element");
+    if (l.elements.empty())
+      throw InputError(where, "a leaf needs at least one tri= or ln= element");
     t.leaves.push_back(l);
   }
 
@@ -317,7 +379,9 @@ class Parser {
     double sum = 0.0;
     for (const TmLeaf& l : t.leaves) sum += l.p;
     if (std::fabs(sum - 1.0) > 1e-6) {
-      throw InputError(t.leaves.back().where, "the leaf probabilities add up to " + std::to_string(sum) + ", not 1 (Figure 6, note 5)");
+      throw InputError(
+          t.leaves.back().where,
+          "the leaf probabilities add up to " + std::to_string(sum) + ", not 1 (Figure 6, note 5)");
     }
   }
 

@@ -12,23 +12,27 @@
 
 namespace arbor::gen {
 
-void refuse_estimate(bool force, double estimate, double limit, const char* subject, const char* things) {
+void refuse_estimate(bool force, double estimate, double limit, const char* subject,
+                     const char* things) {
   if (force || !(estimate > limit)) return;
   char buf[256];
   if (std::isfinite(estimate)) {
     std::snprintf(buf, sizeof buf, "%s about %.3g %s (limit %.3g); use --force to grow it anyway",
                   subject, estimate, things, limit);
   } else {
-    std::snprintf(buf, sizeof buf, "%s more than 1e308 %s (limit %.3g); use --force to grow it anyway",
-                  subject, things, limit);
+    std::snprintf(buf, sizeof buf,
+                  "%s more than 1e308 %s (limit %.3g); use --force to grow it anyway", subject,
+                  things, limit);
   }
   throw RuntimeFailure(buf);
 }
 
-void refuse_growth(bool force, double count, double limit, const char* subject, const char* things) {
+void refuse_growth(bool force, double count, double limit, const char* subject,
+                   const char* things) {
   if (force || !(count > 2.0 * limit)) return;
   char buf[256];
-  std::snprintf(buf, sizeof buf, "%s %.0f %s; use --force to grow it anyway", subject, count, things);
+  std::snprintf(buf, sizeof buf, "%s %.0f %s; use --force to grow it anyway", subject, count,
+                things);
   throw RuntimeFailure(buf);
 }
 
@@ -42,8 +46,7 @@ Skeleton grow_model(const Species& species, const GrowOptions& options) {
     case Model::SkeletonFile:
       return species.skeleton();  // a skeleton file is the tree itself: seed and time do nothing
     case Model::WeberPenn:
-    default:
-      return grow_weber_penn(species.weber_penn(), options);
+    default: return grow_weber_penn(species.weber_penn(), options);
   }
 }
 
@@ -59,7 +62,8 @@ Skeleton grow_tree(const Species& species, const GrowOptions& options) {
   }
   // Every model must grow a valid skeleton; one that does not is arbor's bug, never written out.
   const std::string problem = validate(sk);
-  if (!problem.empty()) check_failed(("the grown skeleton is valid: " + problem).c_str(), __FILE__, __LINE__);
+  if (!problem.empty())
+    check_failed(("the grown skeleton is valid: " + problem).c_str(), __FILE__, __LINE__);
   return sk;
 }
 

@@ -11,9 +11,9 @@ namespace arbor::gen {
 
 struct GrowOptions {
   std::uint64_t seed = 1;
-  double time = 0.0;      // seconds, for wind sway (§4.7)
-  double quality = 1.0;   // §4.5 quality factor: leaf count × quality, leaf size / sqrt(quality)
-  bool force = false;     // grow even when the size estimate is over the limits below
+  double time = 0.0;     // seconds, for wind sway (§4.7)
+  double quality = 1.0;  // §4.5 quality factor: leaf count × quality, leaf size / sqrt(quality)
+  bool force = false;    // grow even when the size estimate is over the limits below
   double max_stems = 1e7;
   double max_leaves = 1e8;
   Progress* progress = nullptr;
@@ -24,7 +24,8 @@ struct GrowOptions {
 //   anyway" when the model's estimate is over the limit ("more than 1e308" when it overflows);
 // - while growing, in case an estimate was low: RuntimeFailure "<subject> N <things>; use --force
 //   to grow it anyway" once the count passes twice the limit.
-void refuse_estimate(bool force, double estimate, double limit, const char* subject, const char* things);
+void refuse_estimate(bool force, double estimate, double limit, const char* subject,
+                     const char* things);
 void refuse_growth(bool force, double count, double limit, const char* subject, const char* things);
 
 }  // namespace arbor::gen

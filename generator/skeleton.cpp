@@ -54,12 +54,14 @@ std::string scale_problem(const Skeleton& sk) {
     return !(std::fabs(p.x) <= kReach && std::fabs(p.y) <= kReach && std::fabs(p.z) <= kReach);
   };
   for (const SkeletonPoint& p : sk.points) {
-    if (outside(p.position) || !(p.radius <= kReach)) return "a limb point lies beyond 1000 km (or is not finite)";
+    if (outside(p.position) || !(p.radius <= kReach))
+      return "a limb point lies beyond 1000 km (or is not finite)";
   }
   for (std::size_t i = 0; i < sk.stems.size(); ++i) {
     const Stem& s = sk.stems[i];
     for (std::uint32_t k = 1; k < s.point_count; ++k) {
-      const float d = glm::length(sk.points[s.first_point + k].position - sk.points[s.first_point + k - 1].position);
+      const float d = glm::length(sk.points[s.first_point + k].position -
+                                  sk.points[s.first_point + k - 1].position);
       if (!(d >= 1e-6f)) {
         return "stem " + std::to_string(i) + " (level " + std::to_string(s.level) +
                ") has a segment shorter than 1 micrometre";
@@ -77,7 +79,8 @@ std::string scale_problem(const Skeleton& sk) {
     }
   }
   for (const LeafLine& l : sk.leaf_lines) {
-    if (outside(l.a) || outside(l.b) || !(l.radius <= kReach)) return "a leaf line lies beyond 1000 km (or is not finite)";
+    if (outside(l.a) || outside(l.b) || !(l.radius <= kReach))
+      return "a leaf line lies beyond 1000 km (or is not finite)";
   }
   return "";
 }
@@ -113,8 +116,9 @@ std::string validate(const Skeleton& sk) {
       }
       const double z = parent.length > 0.0f ? s.parent_offset / parent.length : 0.0;
       const float parent_radius =
-          s.parent_point >= 0 ? sk.points[parent.first_point + static_cast<std::uint32_t>(s.parent_point)].radius
-                              : sk.radius_at(parent, std::clamp(z, 0.0, 1.0));
+          s.parent_point >= 0
+              ? sk.points[parent.first_point + static_cast<std::uint32_t>(s.parent_point)].radius
+              : sk.radius_at(parent, std::clamp(z, 0.0, 1.0));
       const float own = sk.points[s.first_point].radius;
       if (own > parent_radius * 1.0001f + 1e-7f) {
         return name + " starts with radius " + std::to_string(own) +

@@ -19,19 +19,19 @@ struct SkeletonPoint {
 // from one point of its parent's axis (at parent_offset metres from the parent's base), so every
 // point has at most one incoming limb and the stems form a tree with one root.
 struct Stem {
-  std::int32_t level = 0;         // 0 trunk, 1 branches, 2 sub-branches, …
-  std::int32_t parent = -1;       // index of the stem it grows from; -1 only for the root
-  bool is_clone = false;          // split off its parent at the same level (Weber & Penn §4.2)
-  float parent_offset = 0.0f;     // metres along the parent's axis where this stem starts
-  std::int32_t parent_point = -1; // the parent's point it starts at (a branch point), or -1 when
-                                  // it starts between two of the parent's points
-  std::uint32_t first_point = 0;  // range in Skeleton::points; the first point is the base
+  std::int32_t level = 0;          // 0 trunk, 1 branches, 2 sub-branches, …
+  std::int32_t parent = -1;        // index of the stem it grows from; -1 only for the root
+  bool is_clone = false;           // split off its parent at the same level (Weber & Penn §4.2)
+  float parent_offset = 0.0f;      // metres along the parent's axis where this stem starts
+  std::int32_t parent_point = -1;  // the parent's point it starts at (a branch point), or -1 when
+                                   // it starts between two of the parent's points
+  std::uint32_t first_point = 0;   // range in Skeleton::points; the first point is the base
   std::uint32_t point_count = 0;
-  float length = 0.0f;            // metres of the whole stem (a clone shares its twin's length)
-  float base_radius = 0.0f;       // radius at Z = 0 of the (unsplit) stem
-  float z_start = 0.0f;           // normalised position Z of the first point (> 0 for clones)
-  float taper = -1.0f;            // Weber & Penn nTaper (0–3); < 0: interpolate point radii
-  glm::vec3 color{1.0f};          // multiplies the bark albedo (TREE-MAKER limb colours)
+  float length = 0.0f;       // metres of the whole stem (a clone shares its twin's length)
+  float base_radius = 0.0f;  // radius at Z = 0 of the (unsplit) stem
+  float z_start = 0.0f;      // normalised position Z of the first point (> 0 for clones)
+  float taper = -1.0f;       // Weber & Penn nTaper (0–3); < 0: interpolate point radii
+  glm::vec3 color{1.0f};     // multiplies the bark albedo (TREE-MAKER limb colours)
 };
 
 // A leaf blade placed on a stem. The blade spans `length` along `axis` from `position`, and

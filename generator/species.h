@@ -35,7 +35,7 @@ struct LeafLook {
   Rgb transmittance{0.05, 0.18, 0.03};
   double cuticle_ior = 1.45;       // 1: no cuticle (a matte leaf)
   double cuticle_roughness = 0.5;  // [0, 1]; GGX α = roughness²
-  double hinge_angle = 0.0;  // degrees; > 0: Bloomenthal's hinged three-polygon leaf (§10)
+  double hinge_angle = 0.0;        // degrees; > 0: Bloomenthal's hinged three-polygon leaf (§10)
 };
 
 // Root buttresses at the trunk's base (Bloomenthal 1985, "the base of a tree": planar blobby
@@ -43,14 +43,16 @@ struct LeafLook {
 struct RootLook {
   int buttresses = 0;
   double height = 3.0;  // × the trunk's base radius: where the roots have merged into the trunk
-  double spread = 2.0;  // × the trunk's base radius: how far beyond the trunk they reach at the ground
+  double spread =
+      2.0;  // × the trunk's base radius: how far beyond the trunk they reach at the ground
 };
 
 // The models, in the order of ModelParams' alternatives.
 enum class Model { WeberPenn, LSystem, SkeletonFile, Fractal, TreeMaker };
 
 // Which model grows a species, with that model's parameters.
-using ModelParams = std::variant<WeberPennParams, LSystem, Skeleton, FractalParams, TreeMakerTemplate>;
+using ModelParams =
+    std::variant<WeberPennParams, LSystem, Skeleton, FractalParams, TreeMakerTemplate>;
 
 struct Species {
   std::string name;
@@ -80,7 +82,6 @@ struct Species {
 // The last step of every reader: checks the rules that involve several parameters (pointing at the
 // offending key's position, looked up in `positions` by paper name) and names an unnamed species
 // after its file. Throws InputError.
-void finish_species(Species& species,
-                    const std::map<std::string, SourceLocation>& positions);
+void finish_species(Species& species, const std::map<std::string, SourceLocation>& positions);
 
 }  // namespace arbor::gen

@@ -66,7 +66,8 @@ Mat3 inverse(const Mat3& m) {
 }
 
 std::array<double, 3> times(const Mat3& m, const std::array<double, 3>& v) {
-  return {m[0][0] * v[0] + m[0][1] * v[1] + m[0][2] * v[2], m[1][0] * v[0] + m[1][1] * v[1] + m[1][2] * v[2],
+  return {m[0][0] * v[0] + m[0][1] * v[1] + m[0][2] * v[2],
+          m[1][0] * v[0] + m[1][1] * v[1] + m[1][2] * v[2],
           m[2][0] * v[0] + m[2][1] * v[1] + m[2][2] * v[2]};
 }
 
@@ -84,8 +85,10 @@ Mat3 rgb_to_xyz_d65(const double c[8]) {
   const std::array<double, 3> scale = times(inverse(p), white);
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k) p[i][k] *= scale[k];
-  const Mat3 bradford{{{0.8951, 0.2664, -0.1614}, {-0.7502, 1.7135, 0.0367}, {0.0389, -0.0685, 1.0296}}};
-  const std::array<double, 3> from = times(bradford, white), to = times(bradford, xy_to_xyz(0.3127, 0.3290));
+  const Mat3 bradford{
+      {{0.8951, 0.2664, -0.1614}, {-0.7502, 1.7135, 0.0367}, {0.0389, -0.0685, 1.0296}}};
+  const std::array<double, 3> from = times(bradford, white),
+                              to = times(bradford, xy_to_xyz(0.3127, 0.3290));
   Mat3 cone{};
   for (int i = 0; i < 3; ++i) cone[i][i] = to[i] / from[i];
   return multiply(multiply(inverse(bradford), multiply(cone, bradford)), p);
@@ -100,16 +103,25 @@ struct KnownPrimaries {
 // Linear spaces arbor recognises by name when a config offers no XYZ: the names configs give
 // them (arbor's, the ACES configs', Blender's).
 const KnownPrimaries kPrimaries[] = {
-    {{"Linear Rec.709 (sRGB)", "lin_rec709", "Linear Rec.709", "lin_rec709_scene", "Linear", "Utility - Linear - sRGB", "lin_srgb"},
-     {0.64, 0.33, 0.30, 0.60, 0.15, 0.06, 0.3127, 0.3290}, "lin_rec709_scene"},
+    {{"Linear Rec.709 (sRGB)", "lin_rec709", "Linear Rec.709", "lin_rec709_scene", "Linear",
+      "Utility - Linear - sRGB", "lin_srgb"},
+     {0.64, 0.33, 0.30, 0.60, 0.15, 0.06, 0.3127, 0.3290},
+     "lin_rec709_scene"},
     {{"ACEScg", "ACES - ACEScg", "lin_ap1", "lin_ap1_scene", "Linear ACEScg", nullptr, nullptr},
-     {0.713, 0.293, 0.165, 0.830, 0.128, 0.044, 0.32168, 0.33767}, "lin_ap1_scene"},
-    {{"ACES2065-1", "ACES - ACES2065-1", "lin_ap0", "lin_ap0_scene", "Linear ACES", nullptr, nullptr},
-     {0.7347, 0.2653, 0.0, 1.0, 0.0001, -0.077, 0.32168, 0.33767}, "lin_ap0_scene"},
-    {{"Linear Rec.2020", "lin_rec2020", "lin_rec2020_scene", "Utility - Linear - Rec.2020", "Linear Rec.2100", nullptr, nullptr},
-     {0.708, 0.292, 0.170, 0.797, 0.131, 0.046, 0.3127, 0.3290}, "lin_rec2020_scene"},
-    {{"Linear P3-D65", "lin_p3d65", "lin_p3d65_scene", "Utility - Linear - P3-D65", "Linear Display P3", nullptr, nullptr},
-     {0.680, 0.320, 0.265, 0.690, 0.150, 0.060, 0.3127, 0.3290}, "lin_p3d65_scene"},
+     {0.713, 0.293, 0.165, 0.830, 0.128, 0.044, 0.32168, 0.33767},
+     "lin_ap1_scene"},
+    {{"ACES2065-1", "ACES - ACES2065-1", "lin_ap0", "lin_ap0_scene", "Linear ACES", nullptr,
+      nullptr},
+     {0.7347, 0.2653, 0.0, 1.0, 0.0001, -0.077, 0.32168, 0.33767},
+     "lin_ap0_scene"},
+    {{"Linear Rec.2020", "lin_rec2020", "lin_rec2020_scene", "Utility - Linear - Rec.2020",
+      "Linear Rec.2100", nullptr, nullptr},
+     {0.708, 0.292, 0.170, 0.797, 0.131, 0.046, 0.3127, 0.3290},
+     "lin_rec2020_scene"},
+    {{"Linear P3-D65", "lin_p3d65", "lin_p3d65_scene", "Utility - Linear - P3-D65",
+      "Linear Display P3", nullptr, nullptr},
+     {0.680, 0.320, 0.265, 0.690, 0.150, 0.060, 0.3127, 0.3290},
+     "lin_p3d65_scene"},
 };
 
 const KnownPrimaries* known_primaries(const std::vector<std::string>& names) {
@@ -124,7 +136,8 @@ const KnownPrimaries* known_primaries(const std::vector<std::string>& names) {
 ColorTransform matrix_transform(const Mat3& m) {
   std::array<float, 9> f{};
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) f[static_cast<std::size_t>(3 * i + j)] = static_cast<float>(m[i][j]);
+    for (int j = 0; j < 3; ++j)
+      f[static_cast<std::size_t>(3 * i + j)] = static_cast<float>(m[i][j]);
   return [f](float rgb[3]) {
     const float r = rgb[0], g = rgb[1], b = rgb[2];
     rgb[0] = f[0] * r + f[1] * g + f[2] * b;
@@ -143,7 +156,8 @@ std::string implausible_xyz(const ColorTransform& t) {
   t(tint);
   t(tint2);
   for (int c = 0; c < 3; ++c) {
-    if (!std::isfinite(white[c]) || std::fabs(twice[c] - 2 * white[c]) > 1e-3f * std::fabs(2 * white[c]) + 1e-5f ||
+    if (!std::isfinite(white[c]) ||
+        std::fabs(twice[c] - 2 * white[c]) > 1e-3f * std::fabs(2 * white[c]) + 1e-5f ||
         std::fabs(tint2[c] - 4 * tint[c]) > 1e-3f * std::fabs(4 * tint[c]) + 1e-5f) {
       return "it is not linear (a tone curve or a display encoding)";
     }
@@ -178,7 +192,8 @@ void ColorPipeline::Impl::find_xyz(const std::string& config_path) {
       return nullptr;
     }
     if (cs->getReferenceSpaceType() != OCIO::REFERENCE_SPACE_SCENE) {
-      why = std::string("\"") + cs->getName() + "\" is display-referred (reaching it needs a view transform)";
+      why = std::string("\"") + cs->getName() +
+            "\" is display-referred (reaching it needs a view transform)";
       return nullptr;
     }
     return cs;
@@ -194,8 +209,8 @@ void ColorPipeline::Impl::find_xyz(const std::string& config_path) {
     return true;
   };
   // 1. An XYZ colour space, by name, alias or role.
-  for (const char* name : {"Linear CIE-XYZ-D65", OCIO::ROLE_INTERCHANGE_DISPLAY, "XYZ", "Linear CIE-XYZ D65",
-                           "lin_ciexyzd65_scene"}) {
+  for (const char* name : {"Linear CIE-XYZ-D65", OCIO::ROLE_INTERCHANGE_DISPLAY, "XYZ",
+                           "Linear CIE-XYZ D65", "lin_ciexyzd65_scene"}) {
     std::string why;
     const OCIO::ConstColorSpaceRcPtr cs = scene_space(name, why);
     const std::string label = std::string("colour space \"") + name + "\"";
@@ -204,8 +219,12 @@ void ColorPipeline::Impl::find_xyz(const std::string& config_path) {
       continue;
     }
     try {
-      if (accept(apply(c.getProcessor(cs->getName(), OCIO::ROLE_SCENE_LINEAR)->getDefaultCPUProcessor()),
-                 label + (name == std::string(cs->getName()) ? "" : std::string(" (\"") + cs->getName() + "\")"))) {
+      if (accept(
+              apply(
+                  c.getProcessor(cs->getName(), OCIO::ROLE_SCENE_LINEAR)->getDefaultCPUProcessor()),
+              label + (name == std::string(cs->getName())
+                           ? ""
+                           : std::string(" (\"") + cs->getName() + "\")"))) {
         return;
       }
     } catch (const OCIO::Exception& e) {
@@ -223,8 +242,13 @@ void ColorPipeline::Impl::find_xyz(const std::string& config_path) {
         const ColorTransform to_ap0 = matrix_transform(inverse(rgb_to_xyz_d65(kPrimaries[2].c)));
         const ColorTransform ap0_to_linear =
             apply(c.getProcessor(cs->getName(), OCIO::ROLE_SCENE_LINEAR)->getDefaultCPUProcessor());
-        if (accept([to_ap0, ap0_to_linear](float rgb[3]) { to_ap0(rgb); ap0_to_linear(rgb); },
-                   std::string("role aces_interchange (\"") + cs->getName() + "\", ACES AP0 primaries)")) {
+        if (accept(
+                [to_ap0, ap0_to_linear](float rgb[3]) {
+                  to_ap0(rgb);
+                  ap0_to_linear(rgb);
+                },
+                std::string("role aces_interchange (\"") + cs->getName() +
+                    "\", ACES AP0 primaries)")) {
           return;
         }
       } catch (const OCIO::Exception& e) {
@@ -238,10 +262,12 @@ void ColorPipeline::Impl::find_xyz(const std::string& config_path) {
     tried.push_back("the scene_linear role: not in the config");
   } else {
     std::vector<std::string> names{linear->getName()};
-    for (std::size_t i = 0; i < linear->getNumAliases(); ++i) names.emplace_back(linear->getAlias(i));
+    for (std::size_t i = 0; i < linear->getNumAliases(); ++i)
+      names.emplace_back(linear->getAlias(i));
     if (const KnownPrimaries* known = known_primaries(names)) {
       if (accept(matrix_transform(inverse(rgb_to_xyz_d65(known->c))),
-                 std::string("the scene_linear space \"") + linear->getName() + "\" by its primaries")) {
+                 std::string("the scene_linear space \"") + linear->getName() +
+                     "\" by its primaries")) {
         return;
       }
     } else {
@@ -249,11 +275,13 @@ void ColorPipeline::Impl::find_xyz(const std::string& config_path) {
                       "\": not a space arbor knows the primaries of");
     }
   }
-  xyz_failure = "the OCIO config " + config_path + " offers no way to convert the sky's CIE XYZ (D65) to "
-                "scene_linear; tried " ;
+  xyz_failure = "the OCIO config " + config_path +
+                " offers no way to convert the sky's CIE XYZ (D65) to "
+                "scene_linear; tried ";
   for (std::size_t i = 0; i < tried.size(); ++i) xyz_failure += (i ? "; " : "") + tried[i];
-  xyz_failure += ". Add a scene-referred colour space named \"Linear CIE-XYZ-D65\" (or the "
-                 "cie_xyz_d65_interchange role pointing at one)";
+  xyz_failure +=
+      ". Add a scene-referred colour space named \"Linear CIE-XYZ-D65\" (or the "
+      "cie_xyz_d65_interchange role pointing at one)";
 }
 
 ColorPipeline::ColorPipeline(std::string config_path)
@@ -271,16 +299,19 @@ void ColorPipeline::check(const OutputSpec& o, const OutputKeys& where) const {
   const OCIO::Config& c = *impl_->config;
   if (!c.getColorSpace(o.colorspace.c_str())) {
     std::vector<std::string> names;
-    for (int i = 0; i < c.getNumColorSpaces(); ++i) names.emplace_back(c.getColorSpaceNameByIndex(i));
-    throw InputError(where.colorspace, "output.colorspace \"" + o.colorspace + "\" is not in the OCIO config " +
-                             config_path_ + "; it has " + list_of(names));
+    for (int i = 0; i < c.getNumColorSpaces(); ++i)
+      names.emplace_back(c.getColorSpaceNameByIndex(i));
+    throw InputError(where.colorspace, "output.colorspace \"" + o.colorspace +
+                                           "\" is not in the OCIO config " + config_path_ +
+                                           "; it has " + list_of(names));
   }
   check_display_view(o.display, o.view, where.display, where.view);
   (void)to_output(o.colorspace);  // a space OCIO cannot convert to fails here, not after the render
 }
 
 void ColorPipeline::check_display_view(const std::string& display, const std::string& view,
-                                       const SourceLocation& display_where, const SourceLocation& view_where) const {
+                                       const SourceLocation& display_where,
+                                       const SourceLocation& view_where) const {
   const OCIO::Config& c = *impl_->config;
   // A key's position when there is one, else the option's name.
   const bool keyed = !display_where.path.empty();
@@ -291,9 +322,9 @@ void ColorPipeline::check_display_view(const std::string& display, const std::st
     display_found = display_found || displays.back() == display;
   }
   if (!display_found) {
-    throw InputError(display_where, std::string(keyed ? "output.display" : "--display") + " \"" + display +
-                                        "\" is not a display of the OCIO config " + config_path_ + "; it has " +
-                                        list_of(displays));
+    throw InputError(display_where, std::string(keyed ? "output.display" : "--display") + " \"" +
+                                        display + "\" is not a display of the OCIO config " +
+                                        config_path_ + "; it has " + list_of(displays));
   }
   std::vector<std::string> views;
   bool view_found = false;
@@ -303,8 +334,9 @@ void ColorPipeline::check_display_view(const std::string& display, const std::st
   }
   if (!view_found) {
     throw InputError(view_where, std::string(keyed ? "output.view" : "--view") + " \"" + view +
-                                     "\" is not a view of display \"" + display + "\" in the OCIO config " +
-                                     config_path_ + "; it has " + list_of(views));
+                                     "\" is not a view of display \"" + display +
+                                     "\" in the OCIO config " + config_path_ + "; it has " +
+                                     list_of(views));
   }
 }
 
@@ -313,7 +345,8 @@ ColorTransform ColorPipeline::to_output(const std::string& colorspace) const {
     return apply(impl_->config->getProcessor(OCIO::ROLE_SCENE_LINEAR, colorspace.c_str())
                      ->getDefaultCPUProcessor());
   } catch (const OCIO::Exception& e) {
-    throw InputError({config_path_, 0, 0}, "OCIO cannot convert to " + colorspace + ": " + e.what());
+    throw InputError({config_path_, 0, 0},
+                     "OCIO cannot convert to " + colorspace + ": " + e.what());
   }
 }
 
@@ -342,7 +375,8 @@ std::string ColorPipeline::interop_id(const std::string& colorspace) const {
 }
 
 ColorTransform rgb_to_rgb(const std::vector<float>& from, const std::vector<float>& to) {
-  if (from.size() != 8 || to.size() != 8) throw std::invalid_argument("rgb_to_rgb: 8 chromaticities each");
+  if (from.size() != 8 || to.size() != 8)
+    throw std::invalid_argument("rgb_to_rgb: 8 chromaticities each");
   double a[8], b[8];
   for (int i = 0; i < 8; ++i) {
     a[i] = from[static_cast<std::size_t>(i)];
@@ -374,7 +408,9 @@ std::vector<float> ColorPipeline::chromaticities(const std::string& colorspace) 
     impl_->xyz(w);
     to_space(w);
     for (int i = 0; i < 3; ++i) {
-      if (!std::isfinite(v[i]) || std::fabs(w[i] - 3.0f * v[i]) > 1e-3f * std::fabs(3.0f * v[i]) + 1e-5f) return {};
+      if (!std::isfinite(v[i]) ||
+          std::fabs(w[i] - 3.0f * v[i]) > 1e-3f * std::fabs(3.0f * v[i]) + 1e-5f)
+        return {};
       m[i][k] = v[i];
     }
   }
@@ -387,7 +423,8 @@ std::vector<float> ColorPipeline::chromaticities(const std::string& colorspace) 
     if (!(std::fabs(sum) > 1e-9)) return {};
     c.push_back(static_cast<float>(p[0] / sum));
     c.push_back(static_cast<float>(p[1] / sum));
-    for (int i = 0; i < 3; ++i) white[static_cast<std::size_t>(i)] += p[static_cast<std::size_t>(i)];
+    for (int i = 0; i < 3; ++i)
+      white[static_cast<std::size_t>(i)] += p[static_cast<std::size_t>(i)];
   }
   const double sum = white[0] + white[1] + white[2];
   c.push_back(static_cast<float>(white[0] / sum));

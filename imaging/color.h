@@ -32,7 +32,8 @@ class ColorPipeline {
   // InputError unless `display` is a display of the config and `view` one of its views, listing
   // what the config has; `display_where`/`view_where` locate the names (a scene key, or none).
   void check_display_view(const std::string& display, const std::string& view,
-                          const SourceLocation& display_where, const SourceLocation& view_where) const;
+                          const SourceLocation& display_where,
+                          const SourceLocation& view_where) const;
   // CIE XYZ (D65) → scene_linear, for the sky models. Found, in this order: a scene-referred
   // colour space named or aliased "Linear CIE-XYZ-D65" (arbor's), the cie_xyz_d65_interchange
   // role, "XYZ" (Blender's role and space), "Linear CIE-XYZ D65" or "lin_ciexyzd65_scene"; the

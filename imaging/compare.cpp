@@ -51,8 +51,10 @@ std::vector<float> pixel_errors(const CompareImage& a, const CompareImage& b) {
 // arbor's false-colour ramp: black, violet, red, orange, pale yellow. Monotonic in luminance
 // so the picture still reads in grey. t in [0, 1]; output is display-referred sRGB.
 void ramp(float t, float rgb[3]) {
-  static const float stops[5][3] = {{0.00f, 0.00f, 0.02f}, {0.33f, 0.05f, 0.45f},
-                                    {0.80f, 0.20f, 0.25f}, {0.98f, 0.60f, 0.10f},
+  static const float stops[5][3] = {{0.00f, 0.00f, 0.02f},
+                                    {0.33f, 0.05f, 0.45f},
+                                    {0.80f, 0.20f, 0.25f},
+                                    {0.98f, 0.60f, 0.10f},
                                     {0.99f, 0.99f, 0.75f}};
   t = std::clamp(t, 0.0f, 1.0f) * 4.0f;
   const int i = std::min(3, static_cast<int>(t));
@@ -126,7 +128,9 @@ double rounding_variance(double v, bool half) {
 // off by its rounding, and no more.
 double rounding_bound(double v, bool half) { return half ? 0.5 * ulp(v, true) : ulp(v, false); }
 
-double forgive(double d, double bound) { return std::copysign(std::max(0.0, std::fabs(d) - bound), d); }
+double forgive(double d, double bound) {
+  return std::copysign(std::max(0.0, std::fabs(d) - bound), d);
+}
 
 // z of a pooled difference d with variance v (a difference where nothing is noise: infinite).
 double pooled_z(double d, double v) {
@@ -154,7 +158,8 @@ CompareImage read_compare_image(const std::string& path) {
   // Integer pixels are display-encoded (sRGB PNGs, JPEGs): not the same quantity as an EXR's
   // scene-linear values.
   im.display_encoded = !spec.channelformat(r).is_floating_point();
-  const int vr = image.index("variance.R"), vg = image.index("variance.G"), vb = image.index("variance.B");
+  const int vr = image.index("variance.R"), vg = image.index("variance.G"),
+            vb = image.index("variance.B");
   const bool has_var = vr >= 0 && vg >= 0 && vb >= 0;
   const std::size_t n = static_cast<std::size_t>(spec.width) * spec.height;
   im.rgb.resize(3 * n);
@@ -166,8 +171,9 @@ CompareImage read_compare_image(const std::string& path) {
       if (has_var) {
         const float s = image.finite(p, var_idx[c], "the variance of ");
         if (s < 0) {
-          throw InputError({path, 0, 0}, "the variance of pixel (" + std::to_string(p % spec.width) +
-                                             ", " + std::to_string(p / spec.width) + ") is negative");
+          throw InputError({path, 0, 0}, "the variance of pixel (" +
+                                             std::to_string(p % spec.width) + ", " +
+                                             std::to_string(p / spec.width) + ") is negative");
         }
         im.variance[3 * p + c] = s;
       }
@@ -197,11 +203,13 @@ CompareMetrics compare_images(const CompareImage& a, const CompareImage& b) {
   return m;
 }
 
-ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alpha, double required) {
+ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alpha,
+                       double required) {
   require_same_size(a, b);
   if (b.variance.empty()) {
-    throw InputError({b.path, 0, 0}, "has no variance.R/G/B channels; a reference for --reference-test "
-                                     "is rendered with aovs = [\"variance\"]");
+    throw InputError({b.path, 0, 0},
+                     "has no variance.R/G/B channels; a reference for --reference-test "
+                     "is rendered with aovs = [\"variance\"]");
   }
   ZTest t;
   t.alpha = alpha;
@@ -223,7 +231,9 @@ ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alph
   t.spp_ratio = t.a_has_variance && a.spp > 0 && b.spp > 0 ? double(b.spp) / double(a.spp) : 0.0;
   // Applied to sums over blocks, where A's estimate is good, not to single pixels, where
   // flooring a noisy estimate would inflate it.
-  auto var_a = [&](std::size_t i) { return t.a_has_variance ? static_cast<double>(a.variance[i]) : 0.0; };
+  auto var_a = [&](std::size_t i) {
+    return t.a_has_variance ? static_cast<double>(a.variance[i]) : 0.0;
+  };
 
   // Blocks of kBlock x kBlock pixels: A's level of noise relative to B's, and the block means.
   constexpr int kBlock = 16;
@@ -248,14 +258,16 @@ ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alph
               q[c] += rounding(i);
               ++noisy[c];
             } else {
-              d[c] += forgive(diff, rounding_bound(a.rgb[i], a.half_beauty) + rounding_bound(b.rgb[i], b.half_beauty));
+              d[c] += forgive(diff, rounding_bound(a.rgb[i], a.half_beauty) +
+                                        rounding_bound(b.rgb[i], b.half_beauty));
             }
           }
         }
       }
       for (int c = 0; c < 3; ++c) {
         va[c] = std::max(va[c], t.spp_ratio * vb[c]);
-        ratio[(static_cast<std::size_t>(j) * bx + k) * 3 + c] = vb[c] > 0 ? va[c] / vb[c] : t.spp_ratio;
+        ratio[(static_cast<std::size_t>(j) * bx + k) * 3 + c] =
+            vb[c] > 0 ? va[c] / vb[c] : t.spp_ratio;
         const double v = va[c] + vb[c] + q[c];
         const double z = pooled_z(d[c], v);
         // A block that differs by more than its rounding where neither image has noise is a
@@ -288,7 +300,9 @@ ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alph
       // and each image's own pixel estimate summed. The first alone fails wherever B's few
       // passes missed a rare bright path that A caught (Monte Carlo pixels are heavy-tailed):
       // A's own passes then carry that path's variance.
-      const double var = std::max((1.0 + ratio[block * 3 + c]) * b.variance[i], var_a(i) + b.variance[i]) + rounding(i);
+      const double var =
+          std::max((1.0 + ratio[block * 3 + c]) * b.variance[i], var_a(i) + b.variance[i]) +
+          rounding(i);
       ok = std::fabs(d) <= t.z_critical * std::sqrt(var);
     }
     if (!ok) ++t.failed;
@@ -329,13 +343,14 @@ void write_compare_pictures(const CompareImage& a, const CompareImage& b,
       // Images not written by arbor are taken to be in the config's scene_linear role.
       const std::string from = im.colorspace.empty() ? "scene_linear" : im.colorspace;
       if (!im.colorspace.empty() && std::find(names.begin(), names.end(), from) == names.end()) {
-        throw InputError({im.path, 0, 0}, "its colour space \"" + from + "\" is not in " +
-                                              pictures.ocio_config);
+        throw InputError({im.path, 0, 0},
+                         "its colour space \"" + from + "\" is not in " + pictures.ocio_config);
       }
       if (!OIIO::ImageBufAlgo::ociodisplay(out, rgb_buffer(im, im.rgb), pictures.display,
                                            pictures.view, from, "", false, "", "", &config)) {
         throw InputError({im.path, 0, 0}, "cannot show it through display \"" + pictures.display +
-                                              "\", view \"" + pictures.view + "\": " + out.geterror());
+                                              "\", view \"" + pictures.view +
+                                              "\": " + out.geterror());
       }
       return out;
     };
@@ -347,13 +362,15 @@ void write_compare_pictures(const CompareImage& a, const CompareImage& b,
     const bool ok = OIIO::ImageBufAlgo::paste(row, 0, 0, 0, 0, sa) &&
                     OIIO::ImageBufAlgo::paste(row, a.width + gap, 0, 0, 0, sb) &&
                     OIIO::ImageBufAlgo::paste(row, 2 * (a.width + gap), 0, 0, 0, heat);
-    if (!ok) throw RuntimeFailure("cannot compose " + pictures.side_by_side + ": " + row.geterror());
+    if (!ok)
+      throw RuntimeFailure("cannot compose " + pictures.side_by_side + ": " + row.geterror());
     OIIO::ImageBufAlgo::render_text(row, 4, a.height + 22, "A", 12, kFont, white);
     OIIO::ImageBufAlgo::render_text(row, a.width + gap + 4, a.height + 22, "B", 12, kFont, white);
     (void)row.geterror();
   }
   // Both pictures are made before either is written: a bad view leaves neither behind.
-  if (!pictures.heatmap.empty()) write_imagebuf_atomic(heat, pictures.heatmap, OIIO::TypeDesc::UINT8);
+  if (!pictures.heatmap.empty())
+    write_imagebuf_atomic(heat, pictures.heatmap, OIIO::TypeDesc::UINT8);
   if (!pictures.side_by_side.empty()) {
     write_imagebuf_atomic(row, pictures.side_by_side, OIIO::TypeDesc::UINT8);
   }

@@ -17,9 +17,10 @@ struct CompareImage {
   std::vector<float> rgb;       // width*height*3
   std::vector<float> variance;  // width*height*3, or empty
   bool half_beauty = false;     // R,G,B stored as half floats (adds quantisation noise)
-  int passes = 0;               // arbor:passes, the passes the variance was estimated over; 0: unknown
-  bool sequence_passes = false;  // the passes took points of one sequence: the variance is an upper bound
-  int spp = 0;                  // arbor:spp, samples a pixel; 0: unknown
+  int passes = 0;  // arbor:passes, the passes the variance was estimated over; 0: unknown
+  bool sequence_passes =
+      false;    // the passes took points of one sequence: the variance is an upper bound
+  int spp = 0;  // arbor:spp, samples a pixel; 0: unknown
   bool display_encoded = false;  // integer pixels (a PNG, JPEG, 8/16-bit TIFF): display-referred
 };
 
@@ -36,28 +37,28 @@ struct CompareMetrics {
 CompareMetrics compare_images(const CompareImage& a, const CompareImage& b);
 
 struct ZTest {
-  double alpha = 0.01;          // family-wise level over all pixels
-  double alpha_channel = 0;     // per channel, after the Sidak correction over 3*pixels tests
-  double z_critical = 0;        // two-sided critical |z| at alpha_channel (Student's t with dof)
-  double dof = 0;               // of the reference's per-pixel variance; 0: taken as normal
-  double pass_fraction = 0;     // pixels whose three channels all pass
+  double alpha = 0.01;       // family-wise level over all pixels
+  double alpha_channel = 0;  // per channel, after the Sidak correction over 3*pixels tests
+  double z_critical = 0;     // two-sided critical |z| at alpha_channel (Student's t with dof)
+  double dof = 0;            // of the reference's per-pixel variance; 0: taken as normal
+  double pass_fraction = 0;  // pixels whose three channels all pass
   double required = 0.995;
   long long pixels = 0, failed = 0;
   bool a_has_variance = false;
   // Pooled tests, each at alpha_pooled: the image mean of each channel (Sidak over the three)
   // and the chi-square of the block means' z over 16x16 blocks.
   double alpha_pooled = 0.005;
-  double mean_z[3] = {0, 0, 0}; // (mean of A - mean of B) / its standard error, per channel
+  double mean_z[3] = {0, 0, 0};  // (mean of A - mean of B) / its standard error, per channel
   double mean_z_critical = 0;
   double block_chi2 = 0, block_dof = 0, block_p = 1;
   // Channels of blocks that differ beyond their rounding where neither image has noise (a
   // deterministic difference, e.g. in a sky seen directly): any fails the block test.
   long long noiseless_blocks_differing = 0;
-  double variance_ratio = 0;    // Σ var_a / Σ var_b: how much noisier A is than B
-  double spp_ratio = 0;         // spp_b / spp_a when both say, else 0: A's variance over a block is
-                                // at least B's times this (quasi-Monte Carlo converges at least as 1/n)
+  double variance_ratio = 0;  // Σ var_a / Σ var_b: how much noisier A is than B
+  double spp_ratio = 0;       // spp_b / spp_a when both say, else 0: A's variance over a block is
+                         // at least B's times this (quasi-Monte Carlo converges at least as 1/n)
   bool pixels_passed = false, mean_passed = false, blocks_passed = false;
-  bool passed = false;          // all three
+  bool passed = false;  // all three
 };
 
 // The reference test of A against B (docs/rendering.md, "Reference tests"). Per pixel: z =
@@ -68,9 +69,9 @@ struct ZTest {
 // B's passes - 1 degrees of freedom, for at least `required` of the pixels. Pooled, with A's and
 // B's variance summed: each channel's image mean, and Σ z² of the block means against
 // chi-square, A's variance over a block taken as at least spp_ratio times B's (where A never
-// sampled a thin twig B sees, it has no variance of its own). B must carry variance (InputError otherwise); without A's, c = 0 and the pooled
-// tests use B's variance alone. Rounding is variance in the pooled tests where a pixel has
-// noise, and a bound forgiven where it has none.
+// sampled a thin twig B sees, it has no variance of its own). B must carry variance (InputError
+// otherwise); without A's, c = 0 and the pooled tests use B's variance alone. Rounding is variance
+// in the pooled tests where a pixel has noise, and a bound forgiven where it has none.
 ZTest reference_z_test(const CompareImage& a, const CompareImage& b, double alpha = 0.01,
                        double required = 0.995);
 

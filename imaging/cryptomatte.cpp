@@ -70,7 +70,9 @@ std::string hex8(std::uint32_t value) {
   return buf;
 }
 
-std::string cryptomatte_key(const std::string& layer) { return hex8(murmur3_32(layer)).substr(0, 7); }
+std::string cryptomatte_key(const std::string& layer) {
+  return hex8(murmur3_32(layer)).substr(0, 7);
+}
 
 std::string cryptomatte_manifest(const std::vector<std::string>& names) {
   JsonObject manifest;

@@ -40,7 +40,8 @@ class MemoryStream final : public Imf::OStream {
  public:
   MemoryStream() : Imf::OStream("memory") {}
   void write(const char c[], int n) override {
-    if (pos_ + static_cast<std::uint64_t>(n) > bytes_.size()) bytes_.resize(pos_ + static_cast<std::uint64_t>(n));
+    if (pos_ + static_cast<std::uint64_t>(n) > bytes_.size())
+      bytes_.resize(pos_ + static_cast<std::uint64_t>(n));
     std::memcpy(bytes_.data() + pos_, c, static_cast<std::size_t>(n));
     pos_ += static_cast<std::uint64_t>(n);
   }
@@ -68,7 +69,9 @@ namespace {
 class Planes {
  public:
   Planes(const Image& img, const OutputSpec& o)
-      : img_(img), o_(o), n_(static_cast<std::size_t>(img.width) * img.height),
+      : img_(img),
+        o_(o),
+        n_(static_cast<std::size_t>(img.width) * img.height),
         colour_(o.pixel_type == PixelType::Float ? Imf::FLOAT : Imf::HALF) {}
 
   bool wants(Aov aov) const { return o_.aovs.has(aov); }
@@ -84,7 +87,8 @@ class Planes {
     if (wants(Aov::Normal)) triple("N.X", "N.Y", "N.Z", colour_, img_.normal);
     // Depth and variance keep full precision: reference tests divide by the variance.
     if (wants(Aov::Depth)) plane("Z", Imf::FLOAT) = img_.depth;
-    if (wants(Aov::Variance)) triple("variance.R", "variance.G", "variance.B", Imf::FLOAT, img_.variance);
+    if (wants(Aov::Variance))
+      triple("variance.R", "variance.G", "variance.B", Imf::FLOAT, img_.variance);
     // Single-channel AOVs are PASS.X (Blender's multilayer reader drops a channel named without a
     // one-letter component, as it drops "object_id"; Nuke reads PASS as the layer).
     if (wants(Aov::Samples)) plane("samples.X", Imf::FLOAT) = img_.samples;
@@ -93,12 +97,16 @@ class Planes {
   // object_id / material_id: the id that covers most of the pixel, as a float (exact to 2^24),
   // for a quick mask; Cryptomatte for anti-aliased mattes.
   void add_ids() {
-    const bool ids = wants(Aov::ObjectId) || wants(Aov::MaterialId) || wants(Aov::CryptoObject) || wants(Aov::CryptoMaterial);
-    if (ids && img_.id_slots == 0) throw std::logic_error("write_exr: id AOVs asked of an image without ids");
+    const bool ids = wants(Aov::ObjectId) || wants(Aov::MaterialId) || wants(Aov::CryptoObject) ||
+                     wants(Aov::CryptoMaterial);
+    if (ids && img_.id_slots == 0)
+      throw std::logic_error("write_exr: id AOVs asked of an image without ids");
     if (wants(Aov::ObjectId)) top_id("object_id.X", img_.object_ids, img_.object_cover);
     if (wants(Aov::MaterialId)) top_id("material_id.X", img_.material_ids, img_.material_cover);
-    if (wants(Aov::CryptoObject)) crypto("crypto_object", img_.object_ids, img_.object_cover, img_.object_names);
-    if (wants(Aov::CryptoMaterial)) crypto("crypto_material", img_.material_ids, img_.material_cover, img_.material_names);
+    if (wants(Aov::CryptoObject))
+      crypto("crypto_object", img_.object_ids, img_.object_cover, img_.object_names);
+    if (wants(Aov::CryptoMaterial))
+      crypto("crypto_material", img_.material_ids, img_.material_cover, img_.material_names);
   }
 
   // The treemaker integrator's factors and contributions; they stay float: compare
@@ -121,7 +129,8 @@ class Planes {
     planes_.push_back({name, type, std::vector<float>(n_, 0.0f)});
     return planes_.back().values;
   }
-  void triple(const char* a, const char* b, const char* c, Imf::PixelType type, const std::vector<glm::vec3>& v) {
+  void triple(const char* a, const char* b, const char* c, Imf::PixelType type,
+              const std::vector<glm::vec3>& v) {
     const char* names[3] = {a, b, c};
     for (int k = 0; k < 3; ++k) {
       std::vector<float>& out = plane(names[k], type);
@@ -130,19 +139,21 @@ class Planes {
   }
   // Samples that hit nothing (the sky) count as id 0, which wins ties: a tree covering 40 % of a
   // sky pixel is not its object.
-  void top_id(const char* name, const std::vector<std::uint32_t>& v, const std::vector<float>& cover) {
+  void top_id(const char* name, const std::vector<std::uint32_t>& v,
+              const std::vector<float>& cover) {
     const std::size_t slots = img_.id_slots;
     std::vector<float>& out = plane(name, Imf::FLOAT);
     for (std::size_t p = 0; p < n_; ++p) {
       float covered = 0.0f;
       for (std::size_t k = 0; k < slots; ++k) covered += cover[p * slots + k];
       const float nothing = 1.0f - covered;
-      out[p] = v[p * slots] != 0 && cover[p * slots] > nothing ? static_cast<float>(v[p * slots]) : 0.0f;
+      out[p] =
+          v[p * slots] != 0 && cover[p * slots] > nothing ? static_cast<float>(v[p * slots]) : 0.0f;
     }
   }
   // Cryptomatte: ranks 0..5 in three RGBA channel sets (id, coverage, id, coverage).
-  void crypto(const std::string& layer, const std::vector<std::uint32_t>& id, const std::vector<float>& cover,
-              const std::vector<std::string>& names) {
+  void crypto(const std::string& layer, const std::vector<std::uint32_t>& id,
+              const std::vector<float>& cover, const std::vector<std::string>& names) {
     constexpr std::size_t kRanks = 6;
     const std::size_t slots = img_.id_slots;
     std::vector<float> hashed(names.size() + 1, 0.0f);
@@ -174,28 +185,35 @@ class Planes {
 void text_attribute(Imf::Header& header, const std::string& key, const std::string& value) {
   header.insert(key, Imf::StringAttribute(value));
 }
-void int_attribute(Imf::Header& header, const char* key, int value) { header.insert(key, Imf::IntAttribute(value)); }
+void int_attribute(Imf::Header& header, const char* key, int value) {
+  header.insert(key, Imf::IntAttribute(value));
+}
 
 // The render's own attributes (arbor:…): how it was made, how far it got.
-void add_render_attributes(Imf::Header& header, const Image& img, const OutputSpec& o, const ExrMetadata& meta,
-                           bool variance) {
-  auto text = [&](const char* key, const std::string& value) { text_attribute(header, key, value); };
+void add_render_attributes(Imf::Header& header, const Image& img, const OutputSpec& o,
+                           const ExrMetadata& meta, bool variance) {
+  auto text = [&](const char* key, const std::string& value) {
+    text_attribute(header, key, value);
+  };
   auto integer = [&](const char* key, int value) { int_attribute(header, key, value); };
   const int full_w = img.full_width > 0 ? img.full_width : img.width;
   const int full_h = img.full_height > 0 ? img.full_height : img.height;
   text("arbor:seed", std::to_string(meta.seed));
   integer("arbor:spp", meta.spp);
   text("arbor:integrator", meta.integrator);
-  header.insert("arbor:render_seconds", Imf::FloatAttribute(static_cast<float>(meta.stats.seconds)));
+  header.insert("arbor:render_seconds",
+                Imf::FloatAttribute(static_cast<float>(meta.stats.seconds)));
   text("arbor:nonfinite_samples", std::to_string(meta.stats.nonfinite));
   // What the variance channels hold, only when there are some.
-  if (variance) text("arbor:variance",
-                     meta.passes < 2 ? "variance of the pixel mean, sample variance / spp within one pass "
-                                       "(overstates it for QMC samples)"
-                     : meta.independent_passes ? "variance of the pixel mean, estimated across independent passes"
-                                               : "variance of the pixel mean, estimated across passes of one "
-                                                 "sequence (an upper bound: the passes together are better "
-                                                 "stratified than independent ones)");
+  if (variance)
+    text("arbor:variance",
+         meta.passes < 2 ? "variance of the pixel mean, sample variance / spp within one pass "
+                           "(overstates it for QMC samples)"
+         : meta.independent_passes
+             ? "variance of the pixel mean, estimated across independent passes"
+             : "variance of the pixel mean, estimated across passes of one "
+               "sequence (an upper bound: the passes together are better "
+               "stratified than independent ones)");
   integer("arbor:independent_passes", meta.independent_passes ? 1 : 0);
   integer("arbor:passes", meta.passes);
   integer("arbor:pass_spp", meta.pass_spp);
@@ -205,12 +223,14 @@ void add_render_attributes(Imf::Header& header, const Image& img, const OutputSp
   text("arbor:fingerprint", meta.fingerprint);
   integer("arbor:transparent_sky", o.transparent_sky ? 1 : 0);
   if (meta.noise_threshold > 0) {
-    header.insert("arbor:noise_threshold", Imf::FloatAttribute(static_cast<float>(meta.noise_threshold)));
+    header.insert("arbor:noise_threshold",
+                  Imf::FloatAttribute(static_cast<float>(meta.noise_threshold)));
     integer("arbor:min_spp", meta.min_spp);
   }
   if (img.width != full_w || img.height != full_h) {
     text("arbor:crop", std::to_string(img.x0) + "," + std::to_string(img.y0) + "," +
-                           std::to_string(img.x0 + img.width) + "," + std::to_string(img.y0 + img.height));
+                           std::to_string(img.x0 + img.width) + "," +
+                           std::to_string(img.y0 + img.height));
   }
   if (meta.incomplete) integer("arbor:incomplete", 1);
   if (!meta.stopped.empty()) text("arbor:stopped", meta.stopped);
@@ -221,7 +241,8 @@ void add_render_attributes(Imf::Header& header, const Image& img, const OutputSp
 // "oiio:ColorSpace" from the header; colorInteropID is the Color Interop Forum's id; the
 // chromaticities are the EXR standard's own statement. An ACES container (SMPTE ST 2065-4) says
 // so.
-void add_colour_attributes(Imf::Header& header, const OutputSpec& o, const ExrMetadata& meta, bool aces_container) {
+void add_colour_attributes(Imf::Header& header, const OutputSpec& o, const ExrMetadata& meta,
+                           bool aces_container) {
   text_attribute(header, "oiio:ColorSpace", o.colorspace);
   text_attribute(header, "arbor:colorspace", o.colorspace);
   if (!meta.interop_id.empty()) text_attribute(header, "colorInteropID", meta.interop_id);
@@ -241,7 +262,8 @@ void add_colour_attributes(Imf::Header& header, const OutputSpec& o, const ExrMe
 void add_id_attributes(Imf::Header& header, const Image& img, const Planes& planes) {
   auto id_names = [&](const char* key, const std::vector<std::string>& names) {
     JsonObject ids_json;
-    for (std::size_t i = 0; i < names.size(); ++i) ids_json.integer(names[i], static_cast<long long>(i + 1));
+    for (std::size_t i = 0; i < names.size(); ++i)
+      ids_json.integer(names[i], static_cast<long long>(i + 1));
     text_attribute(header, key, ids_json.str());
   };
   if (planes.wants(Aov::ObjectId)) id_names("arbor:object_ids", img.object_names);
@@ -258,8 +280,8 @@ void add_id_attributes(Imf::Header& header, const Image& img, const Planes& plan
 }
 
 // The file encoded whole in memory.
-void encode(const Image& img, const Imf::Header& header, std::vector<Plane>& planes, const Imath::Box2i& data,
-            MemoryStream& memory) {
+void encode(const Image& img, const Imf::Header& header, std::vector<Plane>& planes,
+            const Imath::Box2i& data, MemoryStream& memory) {
   Imf::OutputFile file(memory, header, 1);
   Imf::FrameBuffer frame;
   // OpenEXR writes a channel from a slice of its own type: half channels from half copies
@@ -270,9 +292,11 @@ void encode(const Image& img, const Imf::Header& header, std::vector<Plane>& pla
     const std::size_t row = static_cast<std::size_t>(img.width);
     if (pl.type == Imf::HALF) {
       halves.emplace_back(pl.values.begin(), pl.values.end());
-      frame.insert(pl.name, Imf::Slice::Make(Imf::HALF, halves.back().data(), data, sizeof(half), sizeof(half) * row));
+      frame.insert(pl.name, Imf::Slice::Make(Imf::HALF, halves.back().data(), data, sizeof(half),
+                                             sizeof(half) * row));
     } else {
-      frame.insert(pl.name, Imf::Slice::Make(Imf::FLOAT, pl.values.data(), data, sizeof(float), sizeof(float) * row));
+      frame.insert(pl.name, Imf::Slice::Make(Imf::FLOAT, pl.values.data(), data, sizeof(float),
+                                             sizeof(float) * row));
     }
   }
   file.setFrameBuffer(frame);
@@ -281,7 +305,8 @@ void encode(const Image& img, const Imf::Header& header, std::vector<Plane>& pla
 
 }  // namespace
 
-void write_exr(const Image& img, const OutputSpec& o, const ExrMetadata& meta, const std::string& path) {
+void write_exr(const Image& img, const OutputSpec& o, const ExrMetadata& meta,
+               const std::string& path) {
   Planes planes(img, o);
   planes.add_pixels();
   planes.add_ids();
@@ -289,10 +314,12 @@ void write_exr(const Image& img, const OutputSpec& o, const ExrMetadata& meta, c
   const int full_w = img.full_width > 0 ? img.full_width : img.width;
   const int full_h = img.full_height > 0 ? img.full_height : img.height;
   const Imath::Box2i display(Imath::V2i(0, 0), Imath::V2i(full_w - 1, full_h - 1));
-  const Imath::Box2i data(Imath::V2i(img.x0, img.y0), Imath::V2i(img.x0 + img.width - 1, img.y0 + img.height - 1));
+  const Imath::Box2i data(Imath::V2i(img.x0, img.y0),
+                          Imath::V2i(img.x0 + img.width - 1, img.y0 + img.height - 1));
   // An ACES container (SMPTE ST 2065-4) only when the file is one: ACES2065-1, half RGBA, no AOVs.
-  const bool aces_container = meta.interop_id == "lin_ap0_scene" && meta.chromaticities.size() == 8 &&
-                              planes.colour() == Imf::HALF && planes.planes().size() == 4;
+  const bool aces_container = meta.interop_id == "lin_ap0_scene" &&
+                              meta.chromaticities.size() == 8 && planes.colour() == Imf::HALF &&
+                              planes.planes().size() == 4;
   Imf::Header header(display, data, 1.0f, Imath::V2f(0.0f, 0.0f), 1.0f, Imf::INCREASING_Y,
                      aces_container ? Imf::PIZ_COMPRESSION : Imf::ZIP_COMPRESSION);
   for (const Plane& pl : planes.planes()) header.channels().insert(pl.name, Imf::Channel(pl.type));
@@ -300,7 +327,8 @@ void write_exr(const Image& img, const OutputSpec& o, const ExrMetadata& meta, c
   text_attribute(header, "arbor:version", ARBOR_VERSION_STRING);
   text_attribute(header, "arbor:commit", ARBOR_COMMIT);
   text_attribute(header, "arbor:scene", meta.scene);
-  if (meta.render_attributes) add_render_attributes(header, img, o, meta, planes.wants(Aov::Variance));
+  if (meta.render_attributes)
+    add_render_attributes(header, img, o, meta, planes.wants(Aov::Variance));
   add_id_attributes(header, img, planes);
 
   MemoryStream memory;
@@ -327,7 +355,7 @@ void write_png(const Image& img, const OutputSpec& o, const ColorPipeline& color
   OIIO::ColorConfig config(color.config_path());
   OIIO::ImageBuf shown;
   if (!OIIO::ImageBufAlgo::ociodisplay(shown, src, o.display, o.view, o.colorspace, "", false, "",
-                                        "", &config)) {
+                                       "", &config)) {
     throw RuntimeFailure("cannot apply the display view for " + path + ": " + shown.geterror());
   }
   write_imagebuf_atomic(shown, path, OIIO::TypeDesc::UINT8);
@@ -352,7 +380,8 @@ void write_image_atomic(const std::string& path, const OIIO::ImageSpec& spec,
   file.commit();
 }
 
-void write_imagebuf_atomic(const OIIO::ImageBuf& buf, const std::string& path, OIIO::TypeDesc type) {
+void write_imagebuf_atomic(const OIIO::ImageBuf& buf, const std::string& path,
+                           OIIO::TypeDesc type) {
   OIIO::ImageSpec spec = buf.spec();
   spec.set_format(type);
   write_image_atomic(path, spec, [&](OIIO::ImageOutput& out) { return buf.write(&out); });

@@ -24,12 +24,12 @@ struct ExrMetadata {
   // this image holds passes [pass_begin, pass_begin + passes).
   int pass_spp = 0, passes = 1, passes_planned = 1, pass_begin = 0, pass_end = 1;
   bool independent_passes = false;  // each pass its own scramble (else one sequence)
-  bool incomplete = false;   // stopped by a signal before the passes asked for
-  std::string stopped;       // "", "interrupted" or "time limit"
-  std::string fingerprint;   // of the scene, its inputs and the settings (film_file.h)
+  bool incomplete = false;          // stopped by a signal before the passes asked for
+  std::string stopped;              // "", "interrupted" or "time limit"
+  std::string fingerprint;          // of the scene, its inputs and the settings (film_file.h)
   double noise_threshold = 0.0;
   int min_spp = 0;
-  double mean_spp = 0.0;     // samples a pixel on average (below spp with adaptive sampling)
+  double mean_spp = 0.0;  // samples a pixel on average (below spp with adaptive sampling)
   // The output colour space's chromaticities (ColorPipeline::chromaticities: 8 floats, or empty)
   // and Color Interop Forum id ("" when arbor does not know the space).
   std::vector<float> chromaticities;

@@ -20,12 +20,24 @@ inline constexpr std::array<const char*, 2> kPixelTypeNames = {"half", "float"};
 const char* name_of(PixelType type);
 std::optional<PixelType> pixel_type_named(std::string_view name);
 
-// The AOVs an EXR can carry besides RGBA (docs/outputs.md), in the order their channels are written.
-enum class Aov { Albedo, Normal, Depth, Variance, Samples, ObjectId, MaterialId, CryptoObject, CryptoMaterial, Treemaker };
+// The AOVs an EXR can carry besides RGBA (docs/outputs.md), in the order their channels are
+// written.
+enum class Aov {
+  Albedo,
+  Normal,
+  Depth,
+  Variance,
+  Samples,
+  ObjectId,
+  MaterialId,
+  CryptoObject,
+  CryptoMaterial,
+  Treemaker
+};
 inline constexpr std::size_t kAovCount = 10;
 inline constexpr std::array<const char*, kAovCount> kAovNames = {
-    "albedo", "normal", "depth", "variance", "samples", "object_id", "material_id", "crypto_object", "crypto_material",
-    "treemaker"};
+    "albedo",    "normal",      "depth",         "variance",        "samples",
+    "object_id", "material_id", "crypto_object", "crypto_material", "treemaker"};
 const char* name_of(Aov aov);
 std::optional<Aov> aov_named(std::string_view name);
 
@@ -37,7 +49,8 @@ class AovSet {
   bool empty() const { return bits_.none(); }
   // Whether any needs the compositing ids (object_id, material_id, crypto_*).
   bool wants_ids() const {
-    return has(Aov::ObjectId) || has(Aov::MaterialId) || has(Aov::CryptoObject) || has(Aov::CryptoMaterial);
+    return has(Aov::ObjectId) || has(Aov::MaterialId) || has(Aov::CryptoObject) ||
+           has(Aov::CryptoMaterial);
   }
   // The names, space-separated, in channel order ("" for none).
   std::string text() const;
@@ -53,8 +66,8 @@ struct OutputSpec {
   // "Linear", Nuke's "linear", OIIO's "Linear"), so the EXR opens right without setting anything;
   // "ACEScg" on request (tagged, for ACES pipelines).
   std::string colorspace = "Linear Rec.709 (sRGB)";
-  std::string display = "sRGB";               // the PNG's OCIO display
-  std::string view = "ACES 1.0 SDR-video";    // and view
+  std::string display = "sRGB";             // the PNG's OCIO display
+  std::string view = "ACES 1.0 SDR-video";  // and view
   PixelType pixel_type = PixelType::Half;
   AovSet aovs;
   bool transparent_sky = false;  // camera rays that escape add nothing: alpha 0, premultiplied

@@ -8,7 +8,8 @@
 namespace arbor::trace {
 
 // The factors in Figure 3's order: 1, N·L, h/h0, r/r0, sin(q/2).
-inline constexpr const char* kTreemakerTermNames[5] = {"ambient", "lambert", "height", "radius", "angle"};
+inline constexpr const char* kTreemakerTermNames[5] = {"ambient", "lambert", "height", "radius",
+                                                       "angle"};
 
 // EXR channel names of the "treemaker" AOV, in the order render writes them: the factors
 // "term_ambient.X" … "term_angle.X", the contributions "tm_ambient.R" … "tm_angle.B",

@@ -66,7 +66,8 @@ struct NormalEquations {
   double yy = 0.0;
 };
 
-NormalEquations normal_equations(const CompareImage& exact, const TreemakerAovs& tm, long long& pixels) {
+NormalEquations normal_equations(const CompareImage& exact, const TreemakerAovs& tm,
+                                 long long& pixels) {
   NormalEquations ne;
   const std::size_t n = static_cast<std::size_t>(tm.width) * tm.height;
   for (std::size_t p = 0; p < n; ++p) {
@@ -164,8 +165,10 @@ TreemakerAovs read_treemaker_aovs(const std::string& path) {
   auto need = [&](const std::string& name) {
     const int c = image.index(name);
     if (c < 0) {
-      throw InputError({path, 0, 0}, "has no channel " + name + "; --fit-treemaker needs a render "
-                                     "made with --integrator treemaker and output.aovs = [\"treemaker\"]");
+      throw InputError({path, 0, 0},
+                       "has no channel " + name +
+                           "; --fit-treemaker needs a render "
+                           "made with --integrator treemaker and output.aovs = [\"treemaker\"]");
     }
     return c;
   };
@@ -187,7 +190,8 @@ TreemakerAovs read_treemaker_aovs(const std::string& path) {
       t.beauty[3 * p + c] = image.finite(p, beauty[c], "");
       t.rest[3 * p + c] = image.finite(p, rest[c], "tm_rest of ");
       for (int i = 0; i < kFactors; ++i) {
-        t.contribution[(p * kFactors + i) * 3 + c] = image.finite(p, contribution[i][c], "a tm_ channel of ");
+        t.contribution[(p * kFactors + i) * 3 + c] =
+            image.finite(p, contribution[i][c], "a tm_ channel of ");
       }
     }
   }
@@ -196,19 +200,22 @@ TreemakerAovs read_treemaker_aovs(const std::string& path) {
 
 TreemakerFit fit_treemaker(const CompareImage& exact, const TreemakerAovs& tm) {
   if (exact.width != tm.width || exact.height != tm.height) {
-    throw InputError({tm.path, 0, 0}, "is " + std::to_string(tm.width) + "x" + std::to_string(tm.height) +
-                                          " but " + exact.path + " is " + std::to_string(exact.width) +
-                                          "x" + std::to_string(exact.height) +
+    throw InputError({tm.path, 0, 0}, "is " + std::to_string(tm.width) + "x" +
+                                          std::to_string(tm.height) + " but " + exact.path +
+                                          " is " + std::to_string(exact.width) + "x" +
+                                          std::to_string(exact.height) +
                                           "; the fit needs two renders of the same view");
   }
   if (!exact.colorspace.empty() && !tm.colorspace.empty() && exact.colorspace != tm.colorspace) {
     throw InputError({tm.path, 0, 0}, "is in " + tm.colorspace + " but " + exact.path + " is in " +
-                                          exact.colorspace + "; render both to the same colour space");
+                                          exact.colorspace +
+                                          "; render both to the same colour space");
   }
   TreemakerFit fit;
   const NormalEquations ne = normal_equations(exact, tm, fit.pixels);
   if (fit.pixels == 0) {
-    throw InputError({tm.path, 0, 0}, "shows no tree (term_ambient.X is 0 everywhere): nothing to fit");
+    throw InputError({tm.path, 0, 0},
+                     "shows no tree (term_ambient.X is 0 everywhere): nothing to fit");
   }
   for (int i = 0; i < kFactors; ++i) fit.determined[static_cast<std::size_t>(i)] = ne.g[i][i] > 0.0;
   fit.weights = non_negative_solution(ne);

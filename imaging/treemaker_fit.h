@@ -39,8 +39,8 @@ struct TreemakerFit {
   long long pixels = 0;              // pixels where a tree is seen (coverage > 0): the fit's rows
   double rmse = 0.0, rel_mse = 0.0;  // of the fitted image against the exact one, those pixels
   double render_rmse = 0.0, render_rel_mse = 0.0;  // of the treemaker render's own beauty
-  std::string render_weights;        // the render's weights (arbor:treemaker_weights)
-  std::vector<float> fitted;         // the fitted image (width*height*3): rest + Σ w_i × tm_i
+  std::string render_weights;                      // the render's weights (arbor:treemaker_weights)
+  std::vector<float> fitted;  // the fitted image (width*height*3): rest + Σ w_i × tm_i
 };
 
 // Least squares over every pixel a tree covers and every channel of

@@ -9,7 +9,8 @@ namespace arbor::mat {
 namespace {
 
 std::uint32_t lattice_hash(std::int32_t x, std::int32_t y, std::int32_t z) {
-  std::uint32_t h = static_cast<std::uint32_t>(x) * 0x8da6b343u ^ static_cast<std::uint32_t>(y) * 0xd8163841u ^
+  std::uint32_t h = static_cast<std::uint32_t>(x) * 0x8da6b343u ^
+                    static_cast<std::uint32_t>(y) * 0xd8163841u ^
                     static_cast<std::uint32_t>(z) * 0xcb1ab31fu;
   h ^= h >> 15;
   h *= 0x2c1b3c6du;
@@ -59,8 +60,8 @@ double bark_height(double along, double azimuth, double radius) {
   const double x = radius * std::cos(azimuth), y = radius * std::sin(azimuth);
   double h = 0.0, amplitude = 0.6, frequency = 1.0, total = 0.0;
   for (int octave = 0; octave < 3; ++octave) {
-    const double n = gradient_noise(along * 8.0 * frequency, x * 33.0 * frequency,
-                                    y * 33.0 * frequency);
+    const double n =
+        gradient_noise(along * 8.0 * frequency, x * 33.0 * frequency, y * 33.0 * frequency);
     h += amplitude * (1.0 - std::fabs(n));
     total += amplitude;
     amplitude *= 0.45;

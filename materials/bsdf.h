@@ -16,7 +16,7 @@ using Dir = glm::dvec3;
 enum LobeFlags : unsigned { kReflection = 1u, kTransmission = 2u, kDiffuse = 4u };
 
 struct BsdfSample {
-  Rgb value{0.0};   // f(wo, wi), no cosine
+  Rgb value{0.0};  // f(wo, wi), no cosine
   Dir wi{0.0, 0.0, 1.0};
   double pdf = 0.0;  // solid angle; 0 means the sample failed
   unsigned flags = 0;

@@ -1,8 +1,8 @@
-// GGX microfacet reflection of a dielectric coat (Walter, Marschner, Li & Torrance 2007, "Microfacet
-// models for refraction through rough surfaces": eq. 33 D, eq. 34 Smith G1; the height-correlated
-// G2 = 1 / (1 + Λ(o) + Λ(i)) of Heitz 2014, eq. 99), sampled through the distribution of visible
-// normals (Heitz 2018, "Sampling the GGX distribution of visible normals"), and its tabulated
-// directional albedo for the layering of cuticle.h.
+// GGX microfacet reflection of a dielectric coat (Walter, Marschner, Li & Torrance 2007,
+// "Microfacet models for refraction through rough surfaces": eq. 33 D, eq. 34 Smith G1; the
+// height-correlated G2 = 1 / (1 + Λ(o) + Λ(i)) of Heitz 2014, eq. 99), sampled through the
+// distribution of visible normals (Heitz 2018, "Sampling the GGX distribution of visible normals"),
+// and its tabulated directional albedo for the layering of cuticle.h.
 #include "materials/cuticle.h"
 
 #include <algorithm>
@@ -69,8 +69,10 @@ CuticleCoat::CuticleCoat(double ior, double roughness)
   double mean = 0.0;
   for (int k = 0; k + 1 < kTable; ++k) {
     const double m0 = double(k) / (kTable - 1), m1 = double(k + 1) / (kTable - 1);
-    mean += (m1 - m0) * (albedo_[static_cast<size_t>(k)] * (2.0 * m0 + m1) +
-                         albedo_[static_cast<size_t>(k + 1)] * (m0 + 2.0 * m1)) / 6.0;
+    mean += (m1 - m0) *
+            (albedo_[static_cast<size_t>(k)] * (2.0 * m0 + m1) +
+             albedo_[static_cast<size_t>(k + 1)] * (m0 + 2.0 * m1)) /
+            6.0;
   }
   mean_albedo_ = 2.0 * mean;
 }

@@ -20,7 +20,8 @@ class CuticleCoat {
   // roughness in [0, 1] maps to GGX α = roughness², at least kMinAlpha; ior > 1. The coat's
   // directional albedo is tabulated here (a few milliseconds).
   CuticleCoat(double ior, double roughness);
-  // The coat of a leaf material, or null for ior 1 (no coat: the leaf BSDF is the bare diffuse one).
+  // The coat of a leaf material, or null for ior 1 (no coat: the leaf BSDF is the bare diffuse
+  // one).
   static std::shared_ptr<const CuticleCoat> make(double ior, double roughness);
 
   static constexpr double kMinAlpha = 1e-3;  // roughness 0: a mirror to within about 0.1°

@@ -9,8 +9,8 @@
 namespace arbor::mat {
 
 struct LeafBsdf {
-  Rgb reflectance{0.1};    // of the side the ray came from
-  Rgb transmittance{0.1};  // R + T ≤ 1 per channel
+  Rgb reflectance{0.1};               // of the side the ray came from
+  Rgb transmittance{0.1};             // R + T ≤ 1 per channel
   const CuticleCoat* coat = nullptr;  // null: no cuticle (the bare diffuse leaf)
 
   Rgb eval(const Dir& wo, const Dir& wi) const;

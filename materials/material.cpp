@@ -76,7 +76,9 @@ void GroundMaterial::set_cover(float c) {
     for (int j = 0; j < 512; ++j) v.push_back(noise(i * 0.137, j * 0.137));  // 70 × 70 scales
   }
   std::sort(v.begin(), v.end());
-  auto quantile = [&](double q) { return v[std::min(v.size() - 1, static_cast<size_t>(q * v.size()))]; };
+  auto quantile = [&](double q) {
+    return v[std::min(v.size() - 1, static_cast<size_t>(q * v.size()))];
+  };
   threshold = c >= 1.0f ? -1e9 : quantile(1.0 - c);
   edge = 0.25 * (quantile(0.84) - quantile(0.16));  // a quarter of the noise's spread
 }
@@ -84,7 +86,8 @@ void GroundMaterial::set_cover(float c) {
 float GroundMaterial::patch(glm::vec2 xy) const {
   if (cover <= 0.0f) return 0.0f;
   // A smoothstep of the noise across [threshold − edge, threshold + edge]: soft-edged patches.
-  const double e = std::clamp((noise(xy.x / scale, xy.y / scale) - threshold) / (2.0 * edge) + 0.5, 0.0, 1.0);
+  const double e =
+      std::clamp((noise(xy.x / scale, xy.y / scale) - threshold) / (2.0 * edge) + 0.5, 0.0, 1.0);
   return static_cast<float>(e * e * (3.0 - 2.0 * e));
 }
 
@@ -92,12 +95,8 @@ SurfaceBsdf Material::bsdf(const SurfacePoint& p) const {
   SurfaceBsdf b;
   b.normal = p.shading_normal;
   switch (kind) {
-    case Kind::Diffuse:
-      b.diffuse.albedo = glm::dvec3(albedo);
-      break;
-    case Kind::Ground:
-      b.diffuse.albedo = glm::dvec3(albedo_at(p));
-      break;
+    case Kind::Diffuse: b.diffuse.albedo = glm::dvec3(albedo); break;
+    case Kind::Ground: b.diffuse.albedo = glm::dvec3(albedo_at(p)); break;
     case Kind::Bark:
       b.diffuse.albedo = glm::dvec3(bark.albedo_at(p));
       b.diffuse.sigma = bark.roughness;
@@ -108,7 +107,8 @@ SurfaceBsdf Material::bsdf(const SurfacePoint& p) const {
       const glm::vec3 t = leaf.tinted ? leaf.tint(p) : glm::vec3(1.0f);
       const glm::vec3 side = p.leaf_back ? leaf.back : leaf.front;
       b.leaf_bsdf.reflectance = glm::dvec3(leaf.tinted ? side * t : side);
-      b.leaf_bsdf.transmittance = glm::dvec3(leaf.tinted ? leaf.transmittance * t : leaf.transmittance);
+      b.leaf_bsdf.transmittance =
+          glm::dvec3(leaf.tinted ? leaf.transmittance * t : leaf.transmittance);
       b.leaf_bsdf.coat = leaf.cuticle.get();
       break;
     }

@@ -17,22 +17,22 @@ namespace arbor::mat {
 struct SurfacePoint {
   glm::vec3 shading_normal{0.0f, 0.0f, 1.0f};  // on the side the ray came from
   glm::vec3 geometric_normal{0.0f, 0.0f, 1.0f};
-  glm::vec3 tangent{1.0f, 0.0f, 0.0f};  // along the limb, for bark bump mapping
+  glm::vec3 tangent{1.0f, 0.0f, 0.0f};                // along the limb, for bark bump mapping
   float along = 0.0f, azimuth = 0.0f, radius = 0.0f;  // bark coordinates (metres, radians, metres)
-  glm::vec2 uv{0.0f};          // over the unit leaf
-  glm::vec3 color{1.0f};       // the primitive's colour, multiplying the albedo
-  glm::vec2 ground{0.0f};      // world x, y of a ground point (its patches)
-  bool leaf_back = false;      // a leaf seen from its back (the back reflectance applies)
+  glm::vec2 uv{0.0f};                                 // over the unit leaf
+  glm::vec3 color{1.0f};   // the primitive's colour, multiplying the albedo
+  glm::vec2 ground{0.0f};  // world x, y of a ground point (its patches)
+  bool leaf_back = false;  // a leaf seen from its back (the back reflectance applies)
 };
 
 // Bark: Oren–Nayar reflection (Lambertian at σ = 0) of an albedo, optionally mapped by an image
 // tiled along and round the limb, with bump mapping by procedural furrows or a height image.
 struct BarkMaterial {
   glm::vec3 albedo{0.3f};
-  float roughness = 0.0f;     // radians (Oren–Nayar σ)
-  float bump_height = 0.0f;   // metres of relief
+  float roughness = 0.0f;                // radians (Oren–Nayar σ)
+  float bump_height = 0.0f;              // metres of relief
   const HeightMap* bump_map = nullptr;   // null: procedural bark (bark_noise.h)
-  float bump_tile = 0.25f;    // metres per repeat of bump_map and albedo_map
+  float bump_tile = 0.25f;               // metres per repeat of bump_map and albedo_map
   const ColorMap* albedo_map = nullptr;  // multiplies albedo
 
   glm::vec3 albedo_at(const SurfacePoint& p) const;
@@ -73,7 +73,8 @@ struct SurfaceBsdf {
   }
   // u chooses the direction, u_lobe the leaf's lobe (reflect or transmit).
   BsdfSample sample(const glm::dvec3& wo, glm::vec2 u, float u_lobe) const {
-    return leaf ? leaf_bsdf.sample(wo, glm::dvec3(u_lobe, u.x, u.y)) : diffuse.sample(wo, glm::dvec2(u.x, u.y));
+    return leaf ? leaf_bsdf.sample(wo, glm::dvec3(u_lobe, u.x, u.y))
+                : diffuse.sample(wo, glm::dvec2(u.x, u.y));
   }
 };
 
@@ -81,8 +82,8 @@ struct SurfaceBsdf {
 // 2D noise of the position exceeds the threshold that leaves `cover` of the plane patched.
 struct GroundMaterial {
   glm::vec3 patch_albedo{0.0f};
-  float scale = 3.0f;        // metres
-  float cover = 0.0f;        // fraction of the ground patched; set by set_cover
+  float scale = 3.0f;                  // metres
+  float cover = 0.0f;                  // fraction of the ground patched; set by set_cover
   double threshold = 1e9, edge = 0.1;  // of the noise, from the cover
 
   // Finds the noise's threshold that leaves `cover` of the plane patched (its quantile over a

@@ -11,7 +11,7 @@ struct OrenNayar {
   double sigma = 0.0;
 
   Rgb eval(const Dir& wo, const Dir& wi) const;
-  double pdf(const Dir& wo, const Dir& wi) const;         // cosine-weighted
+  double pdf(const Dir& wo, const Dir& wi) const;  // cosine-weighted
   BsdfSample sample(const Dir& wo, const glm::dvec2& u) const;
 };
 

@@ -63,12 +63,13 @@ std::vector<T> load_texels(const OIIO::ImageBuf& image, const std::string& path,
 }  // namespace
 
 HeightMap::HeightMap(const std::string& path) {
-  values_ = load_texels<float>(read_float_image(path), path, width_, height_,
-                               [&](const float* px, int channels, int, int) {
-    const float v = channels >= 3 ? luminance(px[0], px[1], px[2]) : px[0];
-    if (!std::isfinite(v)) throw InputError({path, 0, 0}, "the image has a pixel that is not finite");
-    return v;
-  });
+  values_ = load_texels<float>(
+      read_float_image(path), path, width_, height_, [&](const float* px, int channels, int, int) {
+        const float v = channels >= 3 ? luminance(px[0], px[1], px[2]) : px[0];
+        if (!std::isfinite(v))
+          throw InputError({path, 0, 0}, "the image has a pixel that is not finite");
+        return v;
+      });
 }
 
 HeightMap::HeightMap(std::vector<float> values, int width, int height)
@@ -82,28 +83,31 @@ ColorMap::ColorMap(const std::string& path, const std::string& ocio_config) {
   const OIIO::ImageBuf image = read_float_image(path);
   // OIIO names the file's encoding ("sRGB" for PNG/JPEG, "Linear" for EXR).
   const std::string declared = image.spec().get_string_attribute("oiio:ColorSpace", "Linear");
-  const bool srgb = declared.find("sRGB") != std::string::npos || declared.find("srgb") != std::string::npos;
+  const bool srgb =
+      declared.find("sRGB") != std::string::npos || declared.find("srgb") != std::string::npos;
   OIIO::ImageBuf linear;
   if (srgb) {
     OIIO::ColorConfig config(ocio_config);
     if (!OIIO::ImageBufAlgo::colorconvert(linear, image, "sRGB - Texture", "scene_linear", true, "",
                                           "", &config)) {
-      throw InputError({path, 0, 0}, "cannot convert the image to scene-linear: " + linear.geterror());
+      throw InputError({path, 0, 0},
+                       "cannot convert the image to scene-linear: " + linear.geterror());
     }
   } else {
     linear = image;
   }
-  values_ = load_texels<glm::vec3>(linear, path, width_, height_,
-                                   [&](const float* px, int channels, int x, int y) {
-    const glm::vec3 c = channels >= 3 ? glm::vec3(px[0], px[1], px[2]) : glm::vec3(px[0]);
-    for (int k = 0; k < 3; ++k) {
-      if (!std::isfinite(c[k]) || c[k] < 0.0f || c[k] > 1.0f + 1e-4f) {
-        throw InputError({path, 0, 0}, "albedo texels must be in [0, 1]; pixel (" +
-                                           std::to_string(x) + ", " + std::to_string(y) + ") is not");
-      }
-    }
-    return glm::min(c, glm::vec3(1.0f));
-  });
+  values_ = load_texels<glm::vec3>(
+      linear, path, width_, height_, [&](const float* px, int channels, int x, int y) {
+        const glm::vec3 c = channels >= 3 ? glm::vec3(px[0], px[1], px[2]) : glm::vec3(px[0]);
+        for (int k = 0; k < 3; ++k) {
+          if (!std::isfinite(c[k]) || c[k] < 0.0f || c[k] > 1.0f + 1e-4f) {
+            throw InputError({path, 0, 0}, "albedo texels must be in [0, 1]; pixel (" +
+                                               std::to_string(x) + ", " + std::to_string(y) +
+                                               ") is not");
+          }
+        }
+        return glm::min(c, glm::vec3(1.0f));
+      });
 }
 
 glm::vec3 ColorMap::sample(double u, double v) const {

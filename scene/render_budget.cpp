@@ -14,14 +14,14 @@ namespace arbor::trace {
 
 namespace {
 
-constexpr std::uint64_t kBytesPerPixel = 72;      // image and beauty, PNG included
-constexpr std::uint64_t kFilmBytesPerPixel = 152; // the film's state and AOV sums (tracer/film.h)
-constexpr std::uint64_t kBytesPerChannel = 8;     // each EXR channel: its pixels and encoding
-constexpr std::uint64_t kRecordBytes = 15 * 8;    // a pass record of a pixel, beside its extras
-constexpr std::uint64_t kIdBytes = 16 * 8;        // the id slots (film.h kIdSlots, objects and materials)
+constexpr std::uint64_t kBytesPerPixel = 72;       // image and beauty, PNG included
+constexpr std::uint64_t kFilmBytesPerPixel = 152;  // the film's state and AOV sums (tracer/film.h)
+constexpr std::uint64_t kBytesPerChannel = 8;      // each EXR channel: its pixels and encoding
+constexpr std::uint64_t kRecordBytes = 15 * 8;     // a pass record of a pixel, beside its extras
+constexpr std::uint64_t kIdBytes = 16 * 8;  // the id slots (film.h kIdSlots, objects and materials)
 constexpr std::uint64_t kBytesPerInstance = 1024;
-constexpr std::uint64_t kTreemakerChannels = 23;  // the treemaker AOVs (film.cpp)
-constexpr std::uint64_t kBaseline = 256ull << 20; // libraries, OCIO, Embree's device
+constexpr std::uint64_t kTreemakerChannels = 23;   // the treemaker AOVs (film.cpp)
+constexpr std::uint64_t kBaseline = 256ull << 20;  // libraries, OCIO, Embree's device
 
 double gigabytes(std::uint64_t bytes) { return static_cast<double>(bytes) / double(1ull << 30); }
 
@@ -33,16 +33,19 @@ MemoryEstimate estimate_render_memory(const SceneDesc& s, std::uint64_t record_p
   for (std::size_t i = 0; i < kAovCount; ++i) {
     const Aov a = static_cast<Aov>(i);
     if (!s.output.aovs.has(a)) continue;
-    channels += a == Aov::Depth || a == Aov::Samples || a == Aov::ObjectId || a == Aov::MaterialId ? 1
-                : a == Aov::Treemaker                                                      ? kTreemakerChannels
-                : a == Aov::CryptoObject || a == Aov::CryptoMaterial                      ? 12
-                                                                                           : 3;
+    channels += a == Aov::Depth || a == Aov::Samples || a == Aov::ObjectId || a == Aov::MaterialId
+                    ? 1
+                : a == Aov::Treemaker                                ? kTreemakerChannels
+                : a == Aov::CryptoObject || a == Aov::CryptoMaterial ? 12
+                                                                     : 3;
     if (a == Aov::Treemaker) extras = kTreemakerChannels;
   }
   // The id slots count like extras: in the film's sums and in every pass record.
   if (s.output.wants_ids()) extras += kIdBytes / 8;
-  const std::uint64_t pixels = static_cast<std::uint64_t>(s.render.width) * static_cast<std::uint64_t>(s.render.height);
-  const std::uint64_t film = kFilmBytesPerPixel + 8 * extras + record_passes * (kRecordBytes + 8 * extras);
+  const std::uint64_t pixels =
+      static_cast<std::uint64_t>(s.render.width) * static_cast<std::uint64_t>(s.render.height);
+  const std::uint64_t film =
+      kFilmBytesPerPixel + 8 * extras + record_passes * (kRecordBytes + 8 * extras);
   e.image_bytes = pixels * (kBytesPerPixel + film + kBytesPerChannel * channels);
   e.instances = s.trees.size();
   for (const ForestDesc& f : s.forests) e.instances += static_cast<std::uint64_t>(f.count);
@@ -52,8 +55,9 @@ MemoryEstimate estimate_render_memory(const SceneDesc& s, std::uint64_t record_p
 
 std::uint64_t usable_memory_bytes() {
   const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
-  std::uint64_t usable = pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page)
-                                               : ~0ull;
+  std::uint64_t usable = pages > 0 && page > 0
+                             ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page)
+                             : ~0ull;
   for (const int resource : {RLIMIT_AS, RLIMIT_DATA}) {
     rlimit limit{};
     if (::getrlimit(resource, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
@@ -63,13 +67,15 @@ std::uint64_t usable_memory_bytes() {
   return usable;
 }
 
-std::uint64_t geometry_budget(const SceneDesc& s, bool force, std::uint64_t usable, std::uint64_t record_passes) {
+std::uint64_t geometry_budget(const SceneDesc& s, bool force, std::uint64_t usable,
+                              std::uint64_t record_passes) {
   if (force) return 0;
   const std::uint64_t used = estimate_render_memory(s, record_passes).total() + kBaseline;
   return usable > used ? usable - used : 1;
 }
 
-void check_render_memory(const SceneDesc& s, bool force, std::uint64_t usable, std::uint64_t record_passes) {
+void check_render_memory(const SceneDesc& s, bool force, std::uint64_t usable,
+                         std::uint64_t record_passes) {
   const MemoryEstimate e = estimate_render_memory(s, record_passes);
   if (force || e.total() + kBaseline <= usable) return;
   SourceLocation where{s.path, 0, 0};
@@ -81,12 +87,13 @@ void check_render_memory(const SceneDesc& s, bool force, std::uint64_t usable, s
     }
   }
   char buf[400];
-  std::snprintf(buf, sizeof buf,
-                "the render would need about %.1f GB (a %dx%d image with its outputs: %.1f GB; %llu "
-                "trees: %.1f GB), more than the %.1f GB this process may use; lower the size or the "
-                "count, or use --force to render it anyway",
-                gigabytes(e.total() + kBaseline), s.render.width, s.render.height, gigabytes(e.image_bytes),
-                static_cast<unsigned long long>(e.instances), gigabytes(e.instance_bytes), gigabytes(usable));
+  std::snprintf(
+      buf, sizeof buf,
+      "the render would need about %.1f GB (a %dx%d image with its outputs: %.1f GB; %llu "
+      "trees: %.1f GB), more than the %.1f GB this process may use; lower the size or the "
+      "count, or use --force to render it anyway",
+      gigabytes(e.total() + kBaseline), s.render.width, s.render.height, gigabytes(e.image_bytes),
+      static_cast<unsigned long long>(e.instances), gigabytes(e.instance_bytes), gigabytes(usable));
   throw InputError(where, buf);
 }
 

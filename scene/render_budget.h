@@ -15,9 +15,9 @@ struct MemoryEstimate {
   std::uint64_t total() const { return image_bytes + instance_bytes; }
 };
 
-// Calibrated on the development machine (peak RSS of renders at growing sizes, /usr/bin/time): about
-// 77 bytes a pixel with beauty only, 106 with four AOVs, 257 with the treemaker AOVs, and 0.7 KB
-// a forest instance, before the film kept its state across passes (144 bytes a pixel more, 8 a
+// Calibrated on the development machine (peak RSS of renders at growing sizes, /usr/bin/time):
+// about 77 bytes a pixel with beauty only, 106 with four AOVs, 257 with the treemaker AOVs, and 0.7
+// KB a forest instance, before the film kept its state across passes (144 bytes a pixel more, 8 a
 // treemaker AOV; a work unit of passes A:B with A > 0 also keeps each pass: `record_passes` of
 // 112 bytes a pixel). Measured since: a 2000x2000 render peaks at 996 MB with beauty only (about
 // 225 bytes a pixel over the baseline) and 1043 MB with the variance AOV; the estimate (240 and
@@ -31,12 +31,14 @@ std::uint64_t usable_memory_bytes();
 
 // InputError (at the largest forest, or the scene file) when the estimate exceeds `usable`
 // bytes, saying how much each part needs and that --force renders it anyway.
-void check_render_memory(const SceneDesc& scene, bool force, std::uint64_t usable = usable_memory_bytes(),
+void check_render_memory(const SceneDesc& scene, bool force,
+                         std::uint64_t usable = usable_memory_bytes(),
                          std::uint64_t record_passes = 0);
 
 // The bytes left for tree geometry once the image, the instances and the libraries have theirs
 // (0 with `force`: no limit). build_scene refuses a forest whose variants would not fit.
-std::uint64_t geometry_budget(const SceneDesc& scene, bool force, std::uint64_t usable = usable_memory_bytes(),
+std::uint64_t geometry_budget(const SceneDesc& scene, bool force,
+                              std::uint64_t usable = usable_memory_bytes(),
                               std::uint64_t record_passes = 0);
 
 }  // namespace arbor::trace

@@ -1,6 +1,5 @@
 #include "scene/render_input.h"
 
-
 namespace arbor::trace {
 
 namespace {
@@ -10,10 +9,13 @@ glm::dvec3 vec(const Vec3d& v) { return {v[0], v[1], v[2]}; }
 }  // namespace
 
 CameraSpec camera_spec(const CameraDesc& c) {
-  return {vec(c.position), vec(c.look_at), vec(c.up), c.fov, c.aperture_radius, c.focus_distance, c.exposure};
+  return {vec(c.position),   vec(c.look_at),   vec(c.up), c.fov,
+          c.aperture_radius, c.focus_distance, c.exposure};
 }
 
-SunSpec sun_spec(const SunDesc& s) { return {s.enabled, s.elevation, s.azimuth, s.irradiance, s.angular_diameter}; }
+SunSpec sun_spec(const SunDesc& s) {
+  return {s.enabled, s.elevation, s.azimuth, s.irradiance, s.angular_diameter};
+}
 
 SkySpec sky_spec(const SkyDesc& s) {
   SkySpec sky;

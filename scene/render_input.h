@@ -19,26 +19,26 @@ namespace arbor::trace {
 
 struct RenderSpec {
   int width = 0, height = 0;
-  int spp = 0;                    // of the path integrator
+  int spp = 0;  // of the path integrator
   std::uint64_t seed = 0;
   Integrator integrator = Integrator::Path;
   int max_depth = 0;
-  int treemaker_spp = 0;          // of the treemaker integrator (anti-aliasing)
+  int treemaker_spp = 0;  // of the treemaker integrator (anti-aliasing)
   int pass_spp = 0;
   bool independent_passes = false;
-  double noise_threshold = 0.0;   // adaptive sampling; 0: off
+  double noise_threshold = 0.0;  // adaptive sampling; 0: off
   int min_spp = 0;
-  int threads = 0;                // 0: all cores
+  int threads = 0;  // 0: all cores
   // The sample count of the integrator in use.
   int samples() const { return integrator == Integrator::Treemaker ? treemaker_spp : spp; }
 };
 
 struct CameraSpec {
   glm::dvec3 position{0.0}, look_at{0.0}, up{0.0, 0.0, 1.0};
-  double fov = 45.0;              // vertical, degrees
-  double aperture_radius = 0.0;   // metres
-  double focus_distance = 0.0;    // metres; 0: distance to look_at
-  double exposure = 0.0;          // stops
+  double fov = 45.0;             // vertical, degrees
+  double aperture_radius = 0.0;  // metres
+  double focus_distance = 0.0;   // metres; 0: distance to look_at
+  double exposure = 0.0;         // stops
 };
 
 struct SunSpec {
@@ -50,11 +50,11 @@ struct SunSpec {
 
 struct SkySpec {
   SkyModel model = SkyModel::None;
-  double turbidity = 0.0;                                                    // preetham
+  double turbidity = 0.0;                                                             // preetham
   double air_density = 1.0, dust_density = 1.0, ozone_density = 1.0, altitude = 0.0;  // nishita
-  glm::dvec3 color{1.0};                                                     // constant
-  std::string path;                                                          // envmap
-  double rotation = 0.0, scale = 1.0;                                        // envmap
+  glm::dvec3 color{1.0};                                                              // constant
+  std::string path;                                                                   // envmap
+  double rotation = 0.0, scale = 1.0;                                                 // envmap
 };
 
 struct RenderInput {

@@ -73,7 +73,8 @@ struct TreeLook {
 
 class SceneBuilder {
  public:
-  SceneBuilder(Scene& scene, std::string ocio_config) : s_(scene), ocio_config_(std::move(ocio_config)) {}
+  SceneBuilder(Scene& scene, std::string ocio_config)
+      : s_(scene), ocio_config_(std::move(ocio_config)) {}
 
   const gen::Species& species(const std::string& path) {
     for (const auto& [p, sp] : species_) {
@@ -84,7 +85,8 @@ class SceneBuilder {
     return *species_.back().second;
   }
 
-  int prototype_for(const std::string& path, std::uint64_t seed, double time, const SourceLocation& where) {
+  int prototype_for(const std::string& path, std::uint64_t seed, double time,
+                    const SourceLocation& where) {
     const std::string key = path + "#" + std::to_string(seed) + "@" + std::to_string(time);
     for (const auto& [k, index] : prototype_keys_) {
       if (k == key) return index;
@@ -166,9 +168,11 @@ class SceneBuilder {
     l.cuticle = cuticle(leaf.cuticle_ior.value_or(sp.leaf.cuticle_ior),
                         leaf.cuticle_roughness.value_or(sp.leaf.cuticle_roughness));
     for (int i = 0; i < 3; ++i) {
-      if (l.front[i] + l.transmittance[i] > 1.0f + 1e-6f || l.back[i] + l.transmittance[i] > 1.0f + 1e-6f) {
-        throw InputError(where, "leaf reflectance + transmittance must be at most 1 in every "
-                                "channel, front and back (species values with this tree's overrides)");
+      if (l.front[i] + l.transmittance[i] > 1.0f + 1e-6f ||
+          l.back[i] + l.transmittance[i] > 1.0f + 1e-6f) {
+        throw InputError(where,
+                         "leaf reflectance + transmittance must be at most 1 in every "
+                         "channel, front and back (species values with this tree's overrides)");
       }
     }
     return look;
@@ -188,7 +192,8 @@ class SceneBuilder {
     return material_ids_[name] = static_cast<std::uint32_t>(s_.material_names.size());
   }
 
-  void add_instance(int prototype, const Placement& pl, const TreeLook& look, const std::string& species) {
+  void add_instance(int prototype, const Placement& pl, const TreeLook& look,
+                    const std::string& species) {
     TreeInstance inst;
     const std::string name = file_stem(species);
     inst.object_id = new_object(name);
@@ -218,7 +223,8 @@ class SceneBuilder {
   std::string ocio_config_;
   std::vector<std::pair<std::string, std::unique_ptr<gen::Species>>> species_;
   std::vector<std::pair<std::string, int>> prototype_keys_;
-  std::vector<std::pair<std::pair<double, double>, std::shared_ptr<const mat::CuticleCoat>>> cuticles_;
+  std::vector<std::pair<std::pair<double, double>, std::shared_ptr<const mat::CuticleCoat>>>
+      cuticles_;
   std::map<std::string, int> object_count_;
   std::map<std::string, std::uint32_t> material_ids_;
 };
@@ -256,7 +262,8 @@ void SceneBuilder::add_mesh(const MeshDesc& d) {
       }
     }
     mesh.materials.push_back(material);
-    mesh.material_ids.push_back(material_named(file_stem(d.path) + "/" + (name.empty() ? "default" : name)));
+    mesh.material_ids.push_back(
+        material_named(file_stem(d.path) + "/" + (name.empty() ? "default" : name)));
     return material_index[name] = static_cast<std::uint16_t>(mesh.materials.size() - 1);
   };
   // [mesh.material.NAME] by the faces' material name, else by their group; with no table at all
@@ -266,12 +273,15 @@ void SceneBuilder::add_mesh(const MeshDesc& d) {
     const ObjMesh::Part& part = obj.parts[i];
     std::string key;
     if (!d.materials.empty()) {
-      if (!part.material.empty() && d.materials.count(part.material)) key = part.material;
-      else if (d.materials.count(part.group)) key = part.group;
+      if (!part.material.empty() && d.materials.count(part.material))
+        key = part.material;
+      else if (d.materials.count(part.group))
+        key = part.group;
       else {
-        throw InputError(d.where, "mesh " + d.path + ": faces of group '" + part.group + "' (material '" +
-                                      part.material + "', from line " + std::to_string(obj.part_line[i]) +
-                                      ") have no [mesh.material.*] entry; name the group or the material");
+        throw InputError(d.where,
+                         "mesh " + d.path + ": faces of group '" + part.group + "' (material '" +
+                             part.material + "', from line " + std::to_string(obj.part_line[i]) +
+                             ") have no [mesh.material.*] entry; name the group or the material");
       }
     }
     material_of_part[i] = material_of(key);
@@ -280,16 +290,19 @@ void SceneBuilder::add_mesh(const MeshDesc& d) {
   // Normals go through the inverse transpose of the placement (scale is uniform, but stay exact).
   const glm::mat3 to_world_normal = glm::transpose(glm::inverse(glm::mat3(m)));
   mesh.normals.reserve(obj.normals.size());
-  for (const glm::vec3& n : obj.normals) mesh.normals.push_back(glm::normalize(to_world_normal * n));
-  static_assert(MeshObject::kNoNormal == ObjMesh::kNoNormal, "a mesh keeps the OBJ reader's \"no normal\"");
+  for (const glm::vec3& n : obj.normals)
+    mesh.normals.push_back(glm::normalize(to_world_normal * n));
+  static_assert(MeshObject::kNoNormal == ObjMesh::kNoNormal,
+                "a mesh keeps the OBJ reader's \"no normal\"");
   mesh.normal_indices = obj.normal_indices;
   mesh.material.reserve(obj.part.size());
   for (const std::uint32_t p : obj.part) mesh.material.push_back(material_of_part[p]);
   if (mesh.indices.empty()) throw InputError({d.path, 0, 0}, "the OBJ mesh has no faces");
   s_.stats.triangles += mesh.indices.size() / 3;
-  s_.stats.geometry_bytes += sizeof(glm::vec3) * (mesh.positions.size() + mesh.normals.size()) +
-                             sizeof(std::uint32_t) * (mesh.indices.size() + mesh.normal_indices.size()) +
-                             sizeof(std::uint16_t) * mesh.material.size();
+  s_.stats.geometry_bytes +=
+      sizeof(glm::vec3) * (mesh.positions.size() + mesh.normals.size()) +
+      sizeof(std::uint32_t) * (mesh.indices.size() + mesh.normal_indices.size()) +
+      sizeof(std::uint16_t) * mesh.material.size();
   s_.meshes.push_back(std::move(mesh));
 }
 
@@ -315,12 +328,15 @@ std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::strin
   // model (formats/scene_desc.h, AnimationDesc).
   const auto animated = [&](const std::string& species, double time) {
     if (desc.clock == 0.0) return time;
-    return b.species(species).model() == gen::Model::Fractal ? time + desc.clock * desc.animation.years_per_second
-                                                              : time + desc.clock;
+    return b.species(species).model() == gen::Model::Fractal
+               ? time + desc.clock * desc.animation.years_per_second
+               : time + desc.clock;
   };
   for (const TreeDesc& t : desc.trees) {
     const int p = b.prototype_for(t.species, t.seed, animated(t.species, t.time), t.where);
-    b.add_instance(p, t.placement, b.look_for(b.species(t.species), t.bark, t.leaf, t.treemaker, t.where), t.species);
+    b.add_instance(p, t.placement,
+                   b.look_for(b.species(t.species), t.bark, t.leaf, t.treemaker, t.where),
+                   t.species);
     if (progress) progress->update(++done);
   }
   for (const ForestDesc& f : desc.forests) {
@@ -328,7 +344,8 @@ std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::strin
     std::vector<int> variants;
     for (int v = 0; v < f.variants; ++v) {
       const std::size_t before = scene->stats.geometry_bytes;
-      variants.push_back(b.prototype_for(f.species, derive_key(f.seed, static_cast<std::uint64_t>(v)),
+      variants.push_back(b.prototype_for(f.species,
+                                         derive_key(f.seed, static_cast<std::uint64_t>(v)),
                                          animated(f.species, 0.0), f.where));
       if (progress) progress->update(++done);
       if (v == 0 && geometry_budget > 0) {
@@ -338,12 +355,13 @@ std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::strin
         const double projected = 2.0 * static_cast<double>(before) + each * f.variants;
         if (projected > static_cast<double>(geometry_budget)) {
           char buf[400];
-          std::snprintf(buf, sizeof buf,
-                        "the forest's %d variants would need about %.1f GB of geometry (%.0f MB each, with "
-                        "Embree's structures), more than the %.1f GB left for trees; lower variants, or use "
-                        "--force to render it anyway",
-                        f.variants, projected / double(1ull << 30), each / double(1ull << 20),
-                        static_cast<double>(geometry_budget) / double(1ull << 30));
+          std::snprintf(
+              buf, sizeof buf,
+              "the forest's %d variants would need about %.1f GB of geometry (%.0f MB each, with "
+              "Embree's structures), more than the %.1f GB left for trees; lower variants, or use "
+              "--force to render it anyway",
+              f.variants, projected / double(1ull << 30), each / double(1ull << 20),
+              static_cast<double>(geometry_budget) / double(1ull << 30));
           throw InputError(f.where, buf);
         }
       }
@@ -374,7 +392,8 @@ std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::strin
   }
   scene->stats.prototypes = scene->prototypes.size();
   scene->stats.instances = scene->instances.size();
-  scene->stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  scene->stats.build_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return scene;
 }
 

@@ -44,9 +44,9 @@ struct TreeInstance {
   int prototype = 0;
   glm::mat4 to_world{1.0f}, to_object{1.0f};
   glm::mat3 normal_to_world{1.0f};
-  mat::Material bark, leaf;             // species defaults with the scene's overrides
-  mat::TreemakerWeights treemaker;      // the TREE-MAKER shading weights (§III) of this tree
-  TreeExtent extent;                    // world space
+  mat::Material bark, leaf;         // species defaults with the scene's overrides
+  mat::TreemakerWeights treemaker;  // the TREE-MAKER shading weights (§III) of this tree
+  TreeExtent extent;                // world space
   // Compositing ids (1-based into Scene::object_names / material_names; docs/outputs.md).
   std::uint32_t object_id = 0;
   std::uint32_t bark_id = 0, leaf_front_id = 0, leaf_back_id = 0;
@@ -55,7 +55,7 @@ struct TreeInstance {
 // An external mesh in world space.
 struct MeshObject {
   std::vector<glm::vec3> positions;
-  std::vector<std::uint32_t> indices;   // three per triangle
+  std::vector<std::uint32_t> indices;  // three per triangle
   // The OBJ's vertex normals, placed in the world (unit length), and three indices into them
   // per triangle (kNoNormal: that corner has none, the triangle is flat); both empty when the
   // file has no `vn`.
@@ -64,7 +64,7 @@ struct MeshObject {
   std::vector<std::uint32_t> normal_indices;
   std::vector<std::uint16_t> material;  // per triangle, into materials
   std::vector<mat::Material> materials;
-  std::uint32_t object_id = 0;             // compositing ids, as for a TreeInstance
+  std::uint32_t object_id = 0;              // compositing ids, as for a TreeInstance
   std::vector<std::uint32_t> material_ids;  // per material
 };
 
@@ -72,7 +72,7 @@ struct SceneStats {
   std::size_t prototypes = 0, instances = 0;
   std::size_t curve_segments = 0, triangles = 0;  // over prototypes (not multiplied by instances)
   std::size_t geometry_bytes = 0;  // arbor's arrays of trees and meshes (not Embree's BVH)
-  double build_seconds = 0.0;  // growing trees and building their geometry
+  double build_seconds = 0.0;      // growing trees and building their geometry
 };
 
 struct Scene {
@@ -100,7 +100,8 @@ struct Scene {
 // (InputError at the forest): each variant is taken at the first one's size, twice over for
 // Embree's structures over it.
 std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::string& ocio_config,
-                                         Progress* progress = nullptr, std::uint64_t geometry_budget = 0);
+                                         Progress* progress = nullptr,
+                                         std::uint64_t geometry_budget = 0);
 
 // The affine map of a placement: translate · rotate about z · uniform scale.
 glm::mat4 placement_matrix(const Placement& placement);

@@ -23,6 +23,7 @@ packages=(
   libgtest-dev libgmock-dev  # GoogleTest
   libbenchmark-dev       # Google Benchmark
   fonts-dejavu-core      # the font of the scale bar in compare heatmaps
+  clang-format           # the layout check (ctest layout.format, .clang-format)
 )
 
 if [ "${1:-}" = "--fuzz" ]; then

@@ -61,8 +61,9 @@ void PixelAccumulator::reset() {
   std::fill(sums_.begin(), sums_.end(), 0.0);
 }
 
-void PixelAccumulator::add(const float rgb[3], const float alb[3], const glm::vec3& normal, float depth,
-                           float alpha, const float* extra, std::uint32_t object_id, std::uint32_t material_id) {
+void PixelAccumulator::add(const float rgb[3], const float alb[3], const glm::vec3& normal,
+                           float depth, float alpha, const float* extra, std::uint32_t object_id,
+                           std::uint32_t material_id) {
   // Welford's running mean and squared deviations.
   ++count_;
   const glm::dvec3 v(rgb[0], rgb[1], rgb[2]);
@@ -91,7 +92,8 @@ Film::Film(Window window, std::size_t extras, int pass_begin, bool keep_records,
       states_(window.pixels()),
       sums_(window.pixels() * sum_stride(), 0.0) {}
 
-void Film::fold(std::size_t p, double n, const glm::dvec3& m, const glm::dvec3& m2, const double* s) {
+void Film::fold(std::size_t p, double n, const glm::dvec3& m, const glm::dvec3& m2,
+                const double* s) {
   if (n <= 0) return;  // every sample of the pass was NaN or infinite
   PixelState& st = states_[p];
   // West's weighted incremental mean and spread: a pass of n samples and mean m has weight n.
@@ -109,7 +111,8 @@ void Film::fold(std::size_t p, double n, const glm::dvec3& m, const glm::dvec3& 
     for (std::size_t k = 0; k < 2; ++k) {
       double* to = sum + kAovSums + extras_ + k * kIdSlots;
       const double* from = s + kAovSums + extras_ + k * kIdSlots;
-      for (std::size_t i = 0; i < kIdSlots && from[i] != 0.0; ++i) add_to_slots(to, slot_id(from[i]), slot_samples(from[i]));
+      for (std::size_t i = 0; i < kIdSlots && from[i] != 0.0; ++i)
+        add_to_slots(to, slot_id(from[i]), slot_samples(from[i]));
     }
   }
 }
@@ -117,7 +120,8 @@ void Film::fold(std::size_t p, double n, const glm::dvec3& m, const glm::dvec3& 
 void Film::add_pass(std::size_t p, const PixelAccumulator& a) {
   if (keep_records_) {
     const std::size_t r = record_size();
-    double* rec = &records_[static_cast<std::size_t>(next_pass_ - pass_begin_) * r * states_.size() + p * r];
+    double* rec =
+        &records_[static_cast<std::size_t>(next_pass_ - pass_begin_) * r * states_.size() + p * r];
     rec[0] = a.count();
     for (int c = 0; c < 3; ++c) rec[1 + c] = a.mean()[c];
     for (int c = 0; c < 3; ++c) rec[4 + c] = a.m2()[c];
@@ -144,7 +148,9 @@ double Film::relative_error(std::size_t p) const {
 void Film::begin_pass() {
   // Zero records for every pixel: a pixel that takes no samples folds nothing from its record.
   if (keep_records_) {
-    records_.resize(static_cast<std::size_t>(next_pass_ - pass_begin_ + 1) * record_size() * states_.size(), 0.0);
+    records_.resize(
+        static_cast<std::size_t>(next_pass_ - pass_begin_ + 1) * record_size() * states_.size(),
+        0.0);
   }
 }
 
@@ -158,8 +164,9 @@ void Film::finish_pass(const AdaptiveSettings& adaptive) {
   std::vector<unsigned char> converged(states_.size(), 0);
   for (std::size_t p = 0; p < states_.size(); ++p) {
     const PixelState& st = states_[p];
-    converged[p] = st.done || (st.passes >= 2 && st.count >= static_cast<std::uint32_t>(adaptive.min_spp) &&
-                               relative_error(p) <= adaptive.noise_threshold);
+    converged[p] =
+        st.done || (st.passes >= 2 && st.count >= static_cast<std::uint32_t>(adaptive.min_spp) &&
+                    relative_error(p) <= adaptive.noise_threshold);
   }
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
@@ -169,7 +176,8 @@ void Film::finish_pass(const AdaptiveSettings& adaptive) {
       for (int dy = -1; dy <= 1 && all; ++dy) {
         for (int dx = -1; dx <= 1 && all; ++dx) {
           const int nx = x + dx, ny = y + dy;
-          if (nx >= 0 && ny >= 0 && nx < w && ny < h) all = converged[static_cast<std::size_t>(ny) * w + nx] != 0;
+          if (nx >= 0 && ny >= 0 && nx < w && ny < h)
+            all = converged[static_cast<std::size_t>(ny) * w + nx] != 0;
         }
       }
       if (all) states_[p].done = 1;

@@ -29,11 +29,16 @@ struct PassPlan {
   int spp = 1, pass_spp = 1;
   bool independent = false;
   int passes() const { return (spp + pass_spp - 1) / pass_spp; }
-  int size(int pass) const { return pass < passes() - 1 ? pass_spp : spp - (passes() - 1) * pass_spp; }
+  int size(int pass) const {
+    return pass < passes() - 1 ? pass_spp : spp - (passes() - 1) * pass_spp;
+  }
   // The scramble pass `pass` draws from (0 is a single-pass render's) and its first sample index.
-  std::uint32_t scramble(int pass) const { return independent ? static_cast<std::uint32_t>(pass) : 0u; }
+  std::uint32_t scramble(int pass) const {
+    return independent ? static_cast<std::uint32_t>(pass) : 0u;
+  }
   std::uint32_t first_sample(int pass) const {
-    return independent ? 0u : static_cast<std::uint32_t>(pass) * static_cast<std::uint32_t>(pass_spp);
+    return independent ? 0u
+                       : static_cast<std::uint32_t>(pass) * static_cast<std::uint32_t>(pass_spp);
   }
   // Samples a pixel of passes [begin, end).
   int samples(int begin, int end) const;
@@ -44,8 +49,12 @@ struct Window {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
   int width() const { return x1 - x0; }
   int height() const { return y1 - y0; }
-  std::size_t pixels() const { return static_cast<std::size_t>(width()) * static_cast<std::size_t>(height()); }
-  bool operator==(const Window& o) const { return x0 == o.x0 && y0 == o.y0 && x1 == o.x1 && y1 == o.y1; }
+  std::size_t pixels() const {
+    return static_cast<std::size_t>(width()) * static_cast<std::size_t>(height());
+  }
+  bool operator==(const Window& o) const {
+    return x0 == o.x0 && y0 == o.y0 && x1 == o.x1 && y1 == o.y1;
+  }
   bool operator!=(const Window& o) const { return !(*this == o); }
 };
 
@@ -78,8 +87,8 @@ class PixelAccumulator {
   void reset();
   // A finite sample: beauty and albedo already in the output colour space; `alpha` 1 when the
   // camera ray hit something; the first hit's ids (0: none), kept only with `ids`.
-  void add(const float rgb[3], const float albedo[3], const glm::vec3& normal, float depth, float alpha,
-           const float* extra, std::uint32_t object_id, std::uint32_t material_id);
+  void add(const float rgb[3], const float albedo[3], const glm::vec3& normal, float depth,
+           float alpha, const float* extra, std::uint32_t object_id, std::uint32_t material_id);
 
   int count() const { return count_; }
   const glm::dvec3& mean() const { return mean_; }
@@ -95,12 +104,12 @@ class PixelAccumulator {
 
 // What one pixel has gathered over its passes.
 struct PixelState {
-  std::uint32_t passes = 0;   // passes that gave at least one finite sample
-  std::uint32_t count = 0;    // finite samples over all passes
-  std::uint32_t done = 0;     // 1: adaptive sampling stopped it
-  glm::dvec3 mean{0.0};       // mean of all samples (passes weighted by their sample counts)
-  glm::dvec3 spread{0.0};     // Σ n_p (m_p − mean)², by West's weighted update
-  glm::dvec3 first_m2{0.0};   // Σ (x − m)² within its first pass (the estimate when passes = 1)
+  std::uint32_t passes = 0;  // passes that gave at least one finite sample
+  std::uint32_t count = 0;   // finite samples over all passes
+  std::uint32_t done = 0;    // 1: adaptive sampling stopped it
+  glm::dvec3 mean{0.0};      // mean of all samples (passes weighted by their sample counts)
+  glm::dvec3 spread{0.0};    // Σ n_p (m_p − mean)², by West's weighted update
+  glm::dvec3 first_m2{0.0};  // Σ (x − m)² within its first pass (the estimate when passes = 1)
 };
 
 // The settings adaptive sampling judges pixels by (docs/rendering.md, "Adaptive sampling").
@@ -157,7 +166,8 @@ class Film {
   void fold_record(std::size_t p, const double* record);
 
  private:
-  void fold(std::size_t p, double count, const glm::dvec3& mean, const glm::dvec3& m2, const double* sums);
+  void fold(std::size_t p, double count, const glm::dvec3& mean, const glm::dvec3& m2,
+            const double* sums);
 
   Window window_;
   std::size_t extras_;

@@ -98,7 +98,9 @@ std::string settings_difference(const std::string& a, const std::string& b, cons
     if (i < ia.size() && i < ib.size() && ia[i] == ib[i]) continue;
     if (i < ia.size() && i < ib.size() && ia[i].first == ib[i].first) {
       const bool digest = ia[i].first.rfind("input", 0) == 0 || ia[i].first.rfind("the ", 0) == 0;
-      add(digest ? ia[i].first + " has other contents" : ia[i].first + " " + ia[i].second + " " + in_a + ", " + ib[i].second + " " + in_b);
+      add(digest
+              ? ia[i].first + " has other contents"
+              : ia[i].first + " " + ia[i].second + " " + in_a + ", " + ib[i].second + " " + in_b);
     } else if (i < ia.size() && i < ib.size()) {
       add(ia[i].first + " " + in_a + ", " + ib[i].first + " " + in_b);
     } else {
@@ -108,7 +110,9 @@ std::string settings_difference(const std::string& a, const std::string& b, cons
   return out.empty() ? "the same settings" : out;
 }
 
-std::uint64_t fnv1a(const std::string& text, std::uint64_t hash) { return fnv1a_bytes(text.data(), text.size(), hash); }
+std::uint64_t fnv1a(const std::string& text, std::uint64_t hash) {
+  return fnv1a_bytes(text.data(), text.size(), hash);
+}
 
 std::string fingerprint_hex(std::uint64_t hash) {
   char buf[24];
@@ -125,7 +129,8 @@ void write_film_state(const std::string& path, const FilmHeader& h, const Film& 
        << "scene " << h.scene << "\n"
        << "size " << h.full_width << " " << h.full_height << "\n"
        << "window " << w.x0 << " " << w.y0 << " " << w.x1 << " " << w.y1 << "\n"
-       << "plan " << h.plan.spp << " " << h.plan.pass_spp << " " << (h.plan.independent ? 1 : 0) << "\n"
+       << "plan " << h.plan.spp << " " << h.plan.pass_spp << " " << (h.plan.independent ? 1 : 0)
+       << "\n"
        << "passes " << film.pass_begin() << " " << film.next_pass() << " " << h.pass_end << "\n"
        << "adaptive " << number_text(h.noise_threshold) << " " << h.min_spp << "\n"
        << "extras " << film.extras() << " " << (film.keeps_records() ? 1 : 0) << " "
@@ -162,16 +167,20 @@ void write_film_state(const std::string& path, const FilmHeader& h, const Film& 
 FilmFile read_film_state(const std::string& path) {
   check_input_file(path, "film state");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0, 0}, "cannot read the film state (it is written beside an EXR "
-                                          "whose render can be resumed or merged)");
+  if (!in)
+    throw InputError({path, 0, 0},
+                     "cannot read the film state (it is written beside an EXR "
+                     "whose render can be resumed or merged)");
   auto bad = [&](const std::string& why) {
     return InputError({path, 0, 0}, "is not a film state arbor can read: " + why);
   };
   std::string line;
-  if (!std::getline(in, line) || line != kMagic) throw bad("it does not start with \"" + std::string(kMagic) + "\"");
+  if (!std::getline(in, line) || line != kMagic)
+    throw bad("it does not start with \"" + std::string(kMagic) + "\"");
   std::string header = line + "\n";
   std::map<std::string, std::string> keys;
-  while (header.size() < (1u << 24) && std::getline(in, line) && (header += line + "\n", line != "end")) {
+  while (header.size() < (1u << 24) && std::getline(in, line) &&
+         (header += line + "\n", line != "end")) {
     const auto space = line.find(' ');
     if (space == std::string::npos) throw bad("a header line without a value: " + line);
     keys[line.substr(0, space)] = line.substr(space + 1);
@@ -188,7 +197,8 @@ FilmFile read_film_state(const std::string& path) {
   h.settings = keys["settings"];
   h.scene = keys["scene"];
   const std::optional<Integrator> integrator = integrator_named(keys["integrator"]);
-  if (!integrator) throw bad("its integrator \"" + keys["integrator"] + "\" is not path or treemaker");
+  if (!integrator)
+    throw bad("its integrator \"" + keys["integrator"] + "\" is not path or treemaker");
   h.integrator = *integrator;
   h.output.colorspace = keys["colorspace"];
   h.output.display = keys["display"];
@@ -221,15 +231,17 @@ FilmFile read_film_state(const std::string& path) {
   ok = ok && static_cast<bool>(field("seconds") >> h.seconds);
   ok = ok && static_cast<bool>(field("counts") >> h.nonfinite >> h.rays);
   ok = ok && static_cast<bool>(field("seed") >> h.seed);
-  if (!ok || h.full_width <= 0 || h.full_height <= 0 || w.x0 < 0 || w.y0 < 0 || w.x1 > h.full_width ||
-      w.y1 > h.full_height || w.width() <= 0 || w.height() <= 0 || h.plan.spp <= 0 || h.plan.pass_spp <= 0 ||
-      begin < 0 || next < begin || h.pass_end < next || h.pass_end > h.plan.passes() || extras > 64 ||
-      h.plan.spp > (1 << 20) || h.min_spp < 0 || !std::isfinite(h.noise_threshold) || !std::isfinite(h.seconds)) {
+  if (!ok || h.full_width <= 0 || h.full_height <= 0 || w.x0 < 0 || w.y0 < 0 ||
+      w.x1 > h.full_width || w.y1 > h.full_height || w.width() <= 0 || w.height() <= 0 ||
+      h.plan.spp <= 0 || h.plan.pass_spp <= 0 || begin < 0 || next < begin || h.pass_end < next ||
+      h.pass_end > h.plan.passes() || extras > 64 || h.plan.spp > (1 << 20) || h.min_spp < 0 ||
+      !std::isfinite(h.noise_threshold) || !std::isfinite(h.seconds)) {
     throw bad("its header is malformed");
   }
   if (h.full_width > kMaxSide || h.full_height > kMaxSide) {
-    throw bad("its image size " + std::to_string(h.full_width) + "x" + std::to_string(h.full_height) +
-              " is over the largest arbor renders (" + std::to_string(kMaxSide) + " a side)");
+    throw bad("its image size " + std::to_string(h.full_width) + "x" +
+              std::to_string(h.full_height) + " is over the largest arbor renders (" +
+              std::to_string(kMaxSide) + " a side)");
   }
   // Every size the header implies is checked against the file's own size before anything is
   // allocated: a forged header cannot ask for more memory than the file holds.
@@ -237,12 +249,15 @@ FilmFile read_film_state(const std::string& path) {
   const std::uint64_t stride = kAovSums + extras + (ids != 0 ? 2 * kIdSlots : 0);
   const std::uint64_t record_doubles =
       records != 0 ? static_cast<std::uint64_t>(next - begin) * (7 + stride) * pixels : 0;
-  const std::uint64_t body = pixels * sizeof(PixelState) + pixels * stride * sizeof(double) + record_doubles * sizeof(double);
+  const std::uint64_t body = pixels * sizeof(PixelState) + pixels * stride * sizeof(double) +
+                             record_doubles * sizeof(double);
   const std::uint64_t trailer = std::string("checksum 0123456789abcdef\n").size();
   struct stat st;
-  if (::stat(path.c_str(), &st) != 0 || static_cast<std::uint64_t>(st.st_size) != header.size() + body + trailer) {
-    throw bad("its size (" + std::to_string(st.st_size) + " bytes) is not what its header describes (" +
-              std::to_string(header.size() + body + trailer) + " bytes): it is truncated or damaged");
+  if (::stat(path.c_str(), &st) != 0 ||
+      static_cast<std::uint64_t>(st.st_size) != header.size() + body + trailer) {
+    throw bad(
+        "its size (" + std::to_string(st.st_size) + " bytes) is not what its header describes (" +
+        std::to_string(header.size() + body + trailer) + " bytes): it is truncated or damaged");
   }
   f.film = std::make_unique<Film>(w, extras, begin, records != 0, ids != 0);
   Film& film = *f.film;
@@ -251,13 +266,15 @@ FilmFile read_film_state(const std::string& path) {
   Checksum sum;
   sum.add(header.data(), header.size());
   auto read = [&](void* data, std::size_t bytes) {
-    if (!in.read(static_cast<char*>(data), static_cast<std::streamsize>(bytes))) throw bad("it is truncated");
+    if (!in.read(static_cast<char*>(data), static_cast<std::streamsize>(bytes)))
+      throw bad("it is truncated");
     sum.add(data, bytes);
   };
   read(film.states().data(), film.states().size() * sizeof(PixelState));
   read(film.sums().data(), film.sums().size() * sizeof(double));
   read(film.records().data(), film.records().size() * sizeof(double));
-  if (!std::getline(in, line) || line != "checksum " + fingerprint_hex(sum.h) || in.peek() != std::char_traits<char>::eof()) {
+  if (!std::getline(in, line) || line != "checksum " + fingerprint_hex(sum.h) ||
+      in.peek() != std::char_traits<char>::eof()) {
     throw bad("its checksum does not match its contents: the file is damaged");
   }
   // A state arbor wrote holds only finite numbers (non-finite samples are dropped and counted).
@@ -267,13 +284,16 @@ FilmFile read_film_state(const std::string& path) {
     }
     return true;
   };
-  bool ok_numbers = finite(film.sums().data(), film.sums().size()) && finite(film.records().data(), film.records().size());
+  bool ok_numbers = finite(film.sums().data(), film.sums().size()) &&
+                    finite(film.records().data(), film.records().size());
   for (const PixelState& s : film.states()) {
-    const double v[9] = {s.mean.x, s.mean.y, s.mean.z, s.spread.x, s.spread.y, s.spread.z,
-                         s.first_m2.x, s.first_m2.y, s.first_m2.z};
-    ok_numbers = ok_numbers && finite(v, 9) && s.passes <= static_cast<std::uint32_t>(next - begin) && s.done <= 1;
+    const double v[9] = {s.mean.x,   s.mean.y,     s.mean.z,     s.spread.x,  s.spread.y,
+                         s.spread.z, s.first_m2.x, s.first_m2.y, s.first_m2.z};
+    ok_numbers = ok_numbers && finite(v, 9) &&
+                 s.passes <= static_cast<std::uint32_t>(next - begin) && s.done <= 1;
   }
-  if (!ok_numbers) throw bad("it holds a sum that is not a finite number, or a pixel with impossible counts");
+  if (!ok_numbers)
+    throw bad("it holds a sum that is not a finite number, or a pixel with impossible counts");
   return f;
 }
 

@@ -21,10 +21,10 @@ struct FilmHeader {
   std::string scene;        // the scene file, for messages
   int full_width = 0, full_height = 0;
   PassPlan plan;
-  int pass_end = 0;         // the pass range's end: the part renders [film.pass_begin(), pass_end)
+  int pass_end = 0;  // the pass range's end: the part renders [film.pass_begin(), pass_end)
   double noise_threshold = 0;
   int min_spp = 0;
-  double seconds = 0;       // render time spent so far
+  double seconds = 0;  // render time spent so far
   std::uint64_t nonfinite = 0, rays = 0;
   // What the outputs are written with (a merge writes them again without the scene).
   Integrator integrator = Integrator::Path;
@@ -50,7 +50,8 @@ void write_film_state(const std::string& path, const FilmHeader& header, const F
 FilmFile read_film_state(const std::string& path);
 
 // Which settings items differ between two renders' `settings`, as "spp 64 in A, 128 in B; input
-// aspen.toml has other contents" with `in_a`, `in_b` naming them; "the same settings" when none does.
+// aspen.toml has other contents" with `in_a`, `in_b` naming them; "the same settings" when none
+// does.
 std::string settings_difference(const std::string& a, const std::string& b, const std::string& in_a,
                                 const std::string& in_b);
 

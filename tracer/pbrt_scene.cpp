@@ -41,7 +41,9 @@ std::string number(double v) {
   return s;
 }
 
-std::string triple(const glm::vec3& v) { return number(v.x) + " " + number(v.y) + " " + number(v.z); }
+std::string triple(const glm::vec3& v) {
+  return number(v.x) + " " + number(v.y) + " " + number(v.z);
+}
 
 // Colours in pbrt's space; reflectances must lie in [0, 1] there (pbrt-v4 refuses others), so a
 // component pushed past by the change of primaries is clamped and reported.
@@ -59,7 +61,8 @@ struct Colors {
     if (to_pbrt) to_pbrt(rgb);
     const glm::vec3 v(rgb[0], rgb[1], rgb[2]);
     const glm::vec3 kept = glm::clamp(v, glm::vec3(0.0f), glm::vec3(1.0f));
-    if (kept != v && clamped) clamped->push_back(what + " (" + triple(v) + " → " + triple(kept) + ")");
+    if (kept != v && clamped)
+      clamped->push_back(what + " (" + triple(v) + " → " + triple(kept) + ")");
     return kept;
   }
   std::string rgb(const char* name, const glm::vec3& c, const std::string& what) const {
@@ -79,9 +82,10 @@ class Materials {
     switch (m.kind) {
       case mat::Material::Kind::Leaf: {
         const mat::LeafMaterial& l = m.leaf;
-        body = gen::pbrt_leaf_material(Colors::to_rgb(colors_.reflectance(l.front, label + " front")),
-                                       Colors::to_rgb(colors_.reflectance(l.back, label + " back")),
-                                       Colors::to_rgb(colors_.reflectance(l.transmittance, label + " transmittance")));
+        body = gen::pbrt_leaf_material(
+            Colors::to_rgb(colors_.reflectance(l.front, label + " front")),
+            Colors::to_rgb(colors_.reflectance(l.back, label + " back")),
+            Colors::to_rgb(colors_.reflectance(l.transmittance, label + " transmittance")));
         break;
       }
       case mat::Material::Kind::Bark:
@@ -91,7 +95,8 @@ class Materials {
         // The patches' noise has no pbrt counterpart: their cover-weighted mean, for the ground
         // beyond the baked square around the camera (write_ground_exr).
         const float c = m.ground.cover;
-        body = "\"diffuse\" " + colors_.rgb("reflectance", (1.0f - c) * m.albedo + c * m.ground.patch_albedo, label);
+        body = "\"diffuse\" " +
+               colors_.rgb("reflectance", (1.0f - c) * m.albedo + c * m.ground.patch_albedo, label);
         break;
       }
       case mat::Material::Kind::Diffuse:
@@ -126,8 +131,8 @@ std::string transform_of(const glm::mat4& m) {
 // azimuth instead of black: the ground hides them, and pbrt's bilinear lookup of the texels just
 // above the horizon then blends no black into them (at 512 texels a side the last rows rendered
 // 0.31-0.67x dark).
-void write_sky_exr(const Sky& sky, const Colors& colors, const PbrtColorSpace& space, int n, bool fill_below,
-                   const std::string& path) {
+void write_sky_exr(const Sky& sky, const Colors& colors, const PbrtColorSpace& space, int n,
+                   bool fill_below, const std::string& path) {
   Image img;
   img.width = img.full_width = n;
   img.height = img.full_height = n;
@@ -137,17 +142,19 @@ void write_sky_exr(const Sky& sky, const Colors& colors, const PbrtColorSpace& s
   for (int y = 0; y < n; ++y) {
     for (int x = 0; x < n; ++x) {
       glm::vec3 d = glm::normalize(equal_area_square_to_sphere(
-          glm::vec2((static_cast<float>(x) + 0.5f) / static_cast<float>(n), (static_cast<float>(y) + 0.5f) / static_cast<float>(n))));
+          glm::vec2((static_cast<float>(x) + 0.5f) / static_cast<float>(n),
+                    (static_cast<float>(y) + 0.5f) / static_cast<float>(n))));
       // The texels centred on the horizon itself (z = 0 exactly: the square's diamond runs through
       // texel centres) belong to the sky above it; arbor's map puts z = 0 in its first row below,
       // which is black, and pbrt's bilinear lookup spread that black over the last half degree of
       // sky (0.02-0.2x in pbrt at 512 texels).
       if ((fill_below && d.z < 0.0f) || d.z == 0.0f) {
         const float across = std::hypot(d.x, d.y);
-        d = across > 1e-6f ? glm::normalize(glm::vec3(d.x / across, d.y / across, 1e-4f)) : glm::vec3(1.0f, 0.0f, 1e-4f);
+        d = across > 1e-6f ? glm::normalize(glm::vec3(d.x / across, d.y / across, 1e-4f))
+                           : glm::vec3(1.0f, 0.0f, 1e-4f);
       }
-      img.beauty[static_cast<std::size_t>(y) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x)] =
-          colors.light(sky.radiance(d));
+      img.beauty[static_cast<std::size_t>(y) * static_cast<std::size_t>(n) +
+                 static_cast<std::size_t>(x)] = colors.light(sky.radiance(d));
     }
   }
   OutputSpec output;
@@ -157,7 +164,8 @@ void write_sky_exr(const Sky& sky, const Colors& colors, const PbrtColorSpace& s
   output.pixel_type = PixelType::Float;
   ExrMetadata meta;
   meta.scene = "arbor sky for pbrt-v4 (equal-area octahedral map), linear in pbrt's colour space " +
-               std::string(space.name) + (fill_below ? "; below the horizon, the horizon's radiance" : "");
+               std::string(space.name) +
+               (fill_below ? "; below the horizon, the horizon's radiance" : "");
   meta.chromaticities = space.chromaticities;
   meta.render_attributes = false;
   write_exr(img, output, meta, path);
@@ -180,18 +188,21 @@ glm::vec3 equal_area_square_to_sphere(glm::vec2 uv) {
 PbrtColorSpace pbrt_color_space_for(const std::vector<float>& c) {
   for (const PbrtColorSpace& p : kPbrtSpaces) {
     bool same = c.size() == 8;
-    for (std::size_t i = 0; same && i < 8; ++i) same = std::fabs(c[i] - p.chromaticities[i]) < 1e-3f;
+    for (std::size_t i = 0; same && i < 8; ++i)
+      same = std::fabs(c[i] - p.chromaticities[i]) < 1e-3f;
     if (same) return p;
   }
   return kPbrtSpaces[2];
 }
 
 std::string sky_path_for(const std::string& pbrt_path) {
-  return (ends_with(pbrt_path, ".pbrt") ? pbrt_path.substr(0, pbrt_path.size() - 5) : pbrt_path) + ".sky.exr";
+  return (ends_with(pbrt_path, ".pbrt") ? pbrt_path.substr(0, pbrt_path.size() - 5) : pbrt_path) +
+         ".sky.exr";
 }
 
 std::string ground_path_for(const std::string& pbrt_path) {
-  return (ends_with(pbrt_path, ".pbrt") ? pbrt_path.substr(0, pbrt_path.size() - 5) : pbrt_path) + ".ground.exr";
+  return (ends_with(pbrt_path, ".pbrt") ? pbrt_path.substr(0, pbrt_path.size() - 5) : pbrt_path) +
+         ".ground.exr";
 }
 
 namespace {
@@ -205,8 +216,8 @@ constexpr float kGroundHalf = 128.0f;
 // The ground's albedo over the square centred at `centre`, in pbrt's colour space, as pbrt's
 // imagemap reads it: row 0 at the square's +y edge (pbrt flips v: texture (0,0) is the image's
 // lower left), column 0 at its −x edge.
-void write_ground_exr(const mat::Material& ground, const Colors& colors, const PbrtColorSpace& space,
-                      glm::vec2 centre, const std::string& path) {
+void write_ground_exr(const mat::Material& ground, const Colors& colors,
+                      const PbrtColorSpace& space, glm::vec2 centre, const std::string& path) {
   Image img;
   img.width = img.full_width = img.height = img.full_height = kGroundTexels;
   img.beauty.resize(static_cast<std::size_t>(kGroundTexels) * kGroundTexels);
@@ -214,43 +225,51 @@ void write_ground_exr(const mat::Material& ground, const Colors& colors, const P
   const float texel = 2.0f * kGroundHalf / kGroundTexels;
   for (int row = 0; row < kGroundTexels; ++row) {
     for (int column = 0; column < kGroundTexels; ++column) {
-      const glm::vec2 xy(centre.x - kGroundHalf + (column + 0.5f) * texel, centre.y + kGroundHalf - (row + 0.5f) * texel);
+      const glm::vec2 xy(centre.x - kGroundHalf + (column + 0.5f) * texel,
+                         centre.y + kGroundHalf - (row + 0.5f) * texel);
       const float w = ground.ground.patch(xy);
-      img.beauty[static_cast<std::size_t>(row) * kGroundTexels + column] =
-          colors.reflectance(ground.albedo + (ground.ground.patch_albedo - ground.albedo) * w, "the ground's patches");
+      img.beauty[static_cast<std::size_t>(row) * kGroundTexels + column] = colors.reflectance(
+          ground.albedo + (ground.ground.patch_albedo - ground.albedo) * w, "the ground's patches");
     }
   }
   OutputSpec output;
   output.colorspace = "Linear";
   output.pixel_type = PixelType::Half;
   ExrMetadata meta;
-  meta.scene = "arbor ground albedo for pbrt-v4 (its patches), linear in pbrt's colour space " + std::string(space.name);
+  meta.scene = "arbor ground albedo for pbrt-v4 (its patches), linear in pbrt's colour space " +
+               std::string(space.name);
   meta.chromaticities = space.chromaticities;
   meta.render_attributes = false;
   write_exr(img, output, meta, path);
 }
 
 // The opening comment, colour space, camera, film, sampler and integrator, up to WorldBegin.
-std::string camera_text(const RenderInput& input, const PbrtColorSpace& space, bool converted, const std::string& out) {
+std::string camera_text(const RenderInput& input, const PbrtColorSpace& space, bool converted,
+                        const std::string& out) {
   const RenderSpec& r = input.render;
   std::string text = "# pbrt-v4 scene written by arbor from " + input.scene + "\n";
-  text += "# Units are metres, z is up; colours are in pbrt's \"" + std::string(space.name) +
-          "\" space (arbor's scene_linear" + (converted ? ", converted" : "") + ").\n"
-          "# Not in pbrt-v4, so not here: the sun's disk (a distant light is a point), the leaves'\n"
-          "# two sides (one reflectance, the mean of front and back) and their cuticle, bark\n"
-          "# roughness (Oren-Nayar) and relief, albedo maps, the ground's patches beyond 128 m of the\n"
-          "# camera (their mean albedo there; nearer, an image), the transparent sky, the AOVs, arbor's\n"
-          "# sampling (pbrt samples its own way).\n";
+  text +=
+      "# Units are metres, z is up; colours are in pbrt's \"" + std::string(space.name) +
+      "\" space (arbor's scene_linear" + (converted ? ", converted" : "") +
+      ").\n"
+      "# Not in pbrt-v4, so not here: the sun's disk (a distant light is a point), the leaves'\n"
+      "# two sides (one reflectance, the mean of front and back) and their cuticle, bark\n"
+      "# roughness (Oren-Nayar) and relief, albedo maps, the ground's patches beyond 128 m of the\n"
+      "# camera (their mean albedo there; nearer, an image), the transparent sky, the AOVs, "
+      "arbor's\n"
+      "# sampling (pbrt samples its own way).\n";
   text += "ColorSpace \"" + std::string(space.name) + "\"\n";
   // pbrt's camera space is left-handed: mirroring x keeps arbor's right-handed image unmirrored.
   const CameraSpec& cam = input.camera;
   text += "Scale -1 1 1\nLookAt " + number(cam.position[0]) + " " + number(cam.position[1]) + " " +
-          number(cam.position[2]) + "  " + number(cam.look_at[0]) + " " + number(cam.look_at[1]) + " " +
-          number(cam.look_at[2]) + "  " + number(cam.up[0]) + " " + number(cam.up[1]) + " " + number(cam.up[2]) + "\n";
+          number(cam.position[2]) + "  " + number(cam.look_at[0]) + " " + number(cam.look_at[1]) +
+          " " + number(cam.look_at[2]) + "  " + number(cam.up[0]) + " " + number(cam.up[1]) + " " +
+          number(cam.up[2]) + "\n";
   // arbor's fov is vertical; pbrt's spans the image's shorter side.
   const double aspect = static_cast<double>(r.width) / r.height;
-  const double fov = aspect >= 1.0 ? cam.fov
-                                   : 2.0 * std::atan(std::tan(cam.fov * kPi / 360.0) * aspect) * 180.0 / kPi;
+  const double fov = aspect >= 1.0
+                         ? cam.fov
+                         : 2.0 * std::atan(std::tan(cam.fov * kPi / 360.0) * aspect) * 180.0 / kPi;
   const double focus = cam.focus_distance > 0.0
                            ? cam.focus_distance
                            : std::sqrt(std::pow(cam.look_at[0] - cam.position[0], 2) +
@@ -258,10 +277,12 @@ std::string camera_text(const RenderInput& input, const PbrtColorSpace& space, b
                                        std::pow(cam.look_at[2] - cam.position[2], 2));
   text += "Camera \"perspective\" \"float fov\" " + number(fov);
   if (cam.aperture_radius > 0.0) {
-    text += " \"float lensradius\" " + number(cam.aperture_radius) + " \"float focaldistance\" " + number(focus);
+    text += " \"float lensradius\" " + number(cam.aperture_radius) + " \"float focaldistance\" " +
+            number(focus);
   }
-  text += "\nFilm \"rgb\" \"integer xresolution\" " + std::to_string(r.width) + " \"integer yresolution\" " +
-          std::to_string(r.height) + " \"string filename\" \"" + file_name(out.substr(0, out.size() - 5)) + ".exr\"\n";
+  text += "\nFilm \"rgb\" \"integer xresolution\" " + std::to_string(r.width) +
+          " \"integer yresolution\" " + std::to_string(r.height) + " \"string filename\" \"" +
+          file_name(out.substr(0, out.size() - 5)) + ".exr\"\n";
   text += "PixelFilter \"triangle\" \"float xradius\" 1 \"float yradius\" 1\n";
   text += "Sampler \"zsobol\" \"integer pixelsamples\" " + std::to_string(r.spp) + "\n";
   text += "Integrator \"volpath\" \"integer maxdepth\" " + std::to_string(r.max_depth) + "\n";
@@ -269,18 +290,22 @@ std::string camera_text(const RenderInput& input, const PbrtColorSpace& space, b
 }
 
 // The sun and the sky; the camera's exposure scales them (pbrt's film has no exposure of its own).
-std::string lights_text(const RenderInput& input, const Sky& sky, const Colors& colors, const std::string& sky_path) {
+std::string lights_text(const RenderInput& input, const Sky& sky, const Colors& colors,
+                        const std::string& sky_path) {
   const float exposure = std::exp2(static_cast<float>(input.camera.exposure));
   std::string text;
   if (sky.has_sun() && sky.sun_irradiance() > 0.0f) {
     const glm::vec3 e = colors.light(sky.sun_irradiance_color());
-    text += "# the sun: irradiance on a plane facing it\nLightSource \"distant\" \"point3 from\" [ " +
-            triple(sky.sun_direction()) + " ] \"point3 to\" [ 0 0 0 ] " + gen::pbrt_rgb("L", Colors::to_rgb(e)) +
-            " \"float scale\" " + number(exposure) + "\n";
+    text +=
+        "# the sun: irradiance on a plane facing it\nLightSource \"distant\" \"point3 from\" [ " +
+        triple(sky.sun_direction()) + " ] \"point3 to\" [ 0 0 0 ] " +
+        gen::pbrt_rgb("L", Colors::to_rgb(e)) + " \"float scale\" " + number(exposure) + "\n";
   }
   if (!sky.empty()) {
-    text += "# the sky (" + std::string(name_of(input.sky.model)) + "), sampled into an equal-area square\nLightSource \"infinite\" \"string filename\" \"" +
-            file_name(sky_path) + "\" \"float scale\" " + number(exposure) + "\n";
+    text +=
+        "# the sky (" + std::string(name_of(input.sky.model)) +
+        "), sampled into an equal-area square\nLightSource \"infinite\" \"string filename\" \"" +
+        file_name(sky_path) + "\" \"float scale\" " + number(exposure) + "\n";
   }
   return text;
 }
@@ -288,7 +313,8 @@ std::string lights_text(const RenderInput& input, const Sky& sky, const Colors& 
 // The trees as object instances: one object per prototype and its pair of materials (named in
 // `materials` on first use), and the instances of them.
 struct TreeObjects {
-  std::map<std::tuple<int, std::string, std::string>, std::string> objects;  // (prototype, bark, leaf) → name
+  std::map<std::tuple<int, std::string, std::string>, std::string>
+      objects;  // (prototype, bark, leaf) → name
   std::string instances;
 };
 
@@ -301,8 +327,8 @@ TreeObjects tree_objects(const Scene& built, Materials& materials) {
     const std::string leaf = materials.name_of(inst.leaf, species + " leaf");
     auto [at, fresh] = trees.objects.emplace(std::make_tuple(inst.prototype, bark, leaf), "");
     if (fresh) at->second = "tree" + std::to_string(trees.objects.size()) + " " + species;
-    trees.instances += "AttributeBegin # " + label + "\n  " + transform_of(inst.to_world) + "\n  ObjectInstance \"" +
-                       at->second + "\"\nAttributeEnd\n";
+    trees.instances += "AttributeBegin # " + label + "\n  " + transform_of(inst.to_world) +
+                       "\n  ObjectInstance \"" + at->second + "\"\nAttributeEnd\n";
   }
   return trees;
 }
@@ -310,10 +336,12 @@ TreeObjects tree_objects(const Scene& built, Materials& materials) {
 // The objects' shapes, then the instances, appended to `out` (flushed to `file` as it grows).
 void write_trees(const Scene& built, const TreeObjects& trees, std::string& out, AtomicFile& file) {
   for (const auto& [key, name] : trees.objects) {
-    const gen::TreeGeometry& g = *built.prototypes.at(static_cast<std::size_t>(std::get<0>(key))).geometry;
+    const gen::TreeGeometry& g =
+        *built.prototypes.at(static_cast<std::size_t>(std::get<0>(key))).geometry;
     out += "ObjectBegin \"" + name + "\"\n";
     gen::append_pbrt_shapes(g, "NamedMaterial \"" + std::get<1>(key) + "\"",
-                            "NamedMaterial \"" + std::get<2>(key) + "\"", gen::UpAxis::Z, out, file);
+                            "NamedMaterial \"" + std::get<2>(key) + "\"", gen::UpAxis::Z, out,
+                            file);
     out += "ObjectEnd\n";
     gen::flush_if_large(out, file);
   }
@@ -322,8 +350,8 @@ void write_trees(const Scene& built, const TreeObjects& trees, std::string& out,
 
 // The OBJ meshes, one trianglemesh per mesh and material, with the materials named in
 // `mesh_materials`.
-void write_meshes(const Scene& built, const std::vector<std::vector<std::string>>& mesh_materials, std::string& out,
-                  AtomicFile& file) {
+void write_meshes(const Scene& built, const std::vector<std::vector<std::string>>& mesh_materials,
+                  std::string& out, AtomicFile& file) {
   for (std::size_t i = 0; i < built.meshes.size(); ++i) {
     const MeshObject& m = built.meshes[i];
     const bool has_normals = !m.normals.empty();
@@ -338,8 +366,9 @@ void write_meshes(const Scene& built, const std::vector<std::vector<std::string>
           if (has_normals) {
             const std::uint32_t ni = m.normal_indices[3 * t + c];
             // A corner without a normal: the flat triangle's.
-            const glm::vec3 flat = glm::normalize(glm::cross(m.positions[m.indices[3 * t + 1]] - m.positions[m.indices[3 * t]],
-                                                             m.positions[m.indices[3 * t + 2]] - m.positions[m.indices[3 * t]]));
+            const glm::vec3 flat = glm::normalize(
+                glm::cross(m.positions[m.indices[3 * t + 1]] - m.positions[m.indices[3 * t]],
+                           m.positions[m.indices[3 * t + 2]] - m.positions[m.indices[3 * t]]));
             n += triple(ni < m.normals.size() ? m.normals[ni] : flat) + " ";
           }
           ++corners;
@@ -359,25 +388,41 @@ void write_meshes(const Scene& built, const std::vector<std::vector<std::string>
 
 // The ground: the plane z = 0, 10 km each way, in material `ground`; with patches, the square
 // around `centre` in their baked image (ground_image) and the rest around it in `ground`.
-std::string ground_text(const std::string& ground, bool patches, glm::vec2 centre, const std::string& ground_image) {
+std::string ground_text(const std::string& ground, bool patches, glm::vec2 centre,
+                        const std::string& ground_image) {
   if (!patches) {
     return "AttributeBegin # ground: the plane z = 0, 10 km each way\n  NamedMaterial \"" + ground +
-           "\"\n  Shape \"trianglemesh\" \"point3 P\" [ -1e4 -1e4 0  1e4 -1e4 0  1e4 1e4 0  -1e4 1e4 0 ]"
+           "\"\n  Shape \"trianglemesh\" \"point3 P\" [ -1e4 -1e4 0  1e4 -1e4 0  1e4 1e4 0  -1e4 "
+           "1e4 0 ]"
            " \"integer indices\" [ 0 1 2 0 2 3 ]\nAttributeEnd\n";
   }
   const float x0 = centre.x - kGroundHalf, x1 = centre.x + kGroundHalf;
   const float y0 = centre.y - kGroundHalf, y1 = centre.y + kGroundHalf;
-  const std::string inner = number(x0) + " " + number(y0) + " 0  " + number(x1) + " " + number(y0) + " 0  " +
-                            number(x1) + " " + number(y1) + " 0  " + number(x0) + " " + number(y1) + " 0";
-  return "# the ground's patches near the camera, baked (" + file_name(ground_image) + "); beyond, their mean\n"
-         "Texture \"ground patches\" \"spectrum\" \"imagemap\" \"string filename\" \"" + file_name(ground_image) +
-         "\"\nMakeNamedMaterial \"ground patches\" \"string type\" \"diffuse\" \"texture reflectance\" \"ground patches\"\n"
-         "AttributeBegin # ground near the camera: " + number(2.0f * kGroundHalf) + " m square\n  NamedMaterial \"ground patches\"\n"
-         "  Shape \"trianglemesh\" \"point3 P\" [ " + inner + " ] \"point2 uv\" [ 0 0  1 0  1 1  0 1 ]"
+  const std::string inner = number(x0) + " " + number(y0) + " 0  " + number(x1) + " " + number(y0) +
+                            " 0  " + number(x1) + " " + number(y1) + " 0  " + number(x0) + " " +
+                            number(y1) + " 0";
+  return "# the ground's patches near the camera, baked (" + file_name(ground_image) +
+         "); beyond, their mean\n"
+         "Texture \"ground patches\" \"spectrum\" \"imagemap\" \"string filename\" \"" +
+         file_name(ground_image) +
+         "\"\nMakeNamedMaterial \"ground patches\" \"string type\" \"diffuse\" \"texture "
+         "reflectance\" \"ground patches\"\n"
+         "AttributeBegin # ground near the camera: " +
+         number(2.0f * kGroundHalf) +
+         " m square\n  NamedMaterial \"ground patches\"\n"
+         "  Shape \"trianglemesh\" \"point3 P\" [ " +
+         inner +
+         " ] \"point2 uv\" [ 0 0  1 0  1 1  0 1 ]"
          " \"integer indices\" [ 0 1 2 0 2 3 ]\nAttributeEnd\n"
-         "AttributeBegin # the rest of the ground: the plane z = 0 to 10 km each way, around that square\n"
-         "  NamedMaterial \"" + ground + "\"\n  Shape \"trianglemesh\" \"point3 P\" [ -1e4 -1e4 0  1e4 -1e4 0  1e4 1e4 0  -1e4 1e4 0  " +
-         inner + " ] \"integer indices\" [ 0 1 5  0 5 4  1 2 6  1 6 5  2 3 7  2 7 6  3 0 4  3 4 7 ]\nAttributeEnd\n";
+         "AttributeBegin # the rest of the ground: the plane z = 0 to 10 km each way, around that "
+         "square\n"
+         "  NamedMaterial \"" +
+         ground +
+         "\"\n  Shape \"trianglemesh\" \"point3 P\" [ -1e4 -1e4 0  1e4 -1e4 0  1e4 1e4 0  -1e4 1e4 "
+         "0  " +
+         inner +
+         " ] \"integer indices\" [ 0 1 5  0 5 4  1 2 6  1 6 5  2 3 7  2 7 6  3 0 4  3 4 7 "
+         "]\nAttributeEnd\n";
 }
 
 }  // namespace
@@ -385,15 +430,17 @@ std::string ground_text(const std::string& ground, bool patches, glm::vec2 centr
 PbrtColorSpace pbrt_color_space_of(const ColorPipeline& color) {
   const std::vector<float> linear = color.chromaticities("scene_linear");
   if (linear.empty()) {
-    throw InputError({}, "the OCIO config " + color.config_path() +
-                             ": arbor cannot tell the primaries of its scene_linear space, so it cannot "
-                             "state the scene's colours in a pbrt-v4 colour space");
+    throw InputError(
+        {}, "the OCIO config " + color.config_path() +
+                ": arbor cannot tell the primaries of its scene_linear space, so it cannot "
+                "state the scene's colours in a pbrt-v4 colour space");
   }
   return pbrt_color_space_for(linear);
 }
 
-PbrtExport write_pbrt_scene(const Scene& scene, const RenderInput& input, const ColorPipeline& color,
-                            const std::string& out, int sky_resolution) {
+PbrtExport write_pbrt_scene(const Scene& scene, const RenderInput& input,
+                            const ColorPipeline& color, const std::string& out,
+                            int sky_resolution) {
   const std::vector<float> linear = color.chromaticities("scene_linear");
   PbrtExport result;
   const PbrtColorSpace space = pbrt_color_space_of(color);
@@ -415,7 +462,8 @@ PbrtExport write_pbrt_scene(const Scene& scene, const RenderInput& input, const 
   for (const MeshObject& m : scene.meshes) {
     std::vector<std::string> names;
     for (std::size_t k = 0; k < m.materials.size(); ++k) {
-      names.push_back(materials.name_of(m.materials[k], scene.material_names.at(m.material_ids[k] - 1)));
+      names.push_back(
+          materials.name_of(m.materials[k], scene.material_names.at(m.material_ids[k] - 1)));
     }
     mesh_materials.push_back(names);
   }
@@ -423,7 +471,8 @@ PbrtExport write_pbrt_scene(const Scene& scene, const RenderInput& input, const 
   text += "\n" + materials.text() + "\n";
   write_trees(scene, trees, text, file);
   write_meshes(scene, mesh_materials, text, file);
-  const bool ground_patches = scene.has_ground && scene.ground.kind == mat::Material::Kind::Ground &&
+  const bool ground_patches = scene.has_ground &&
+                              scene.ground.kind == mat::Material::Kind::Ground &&
                               scene.ground.ground.cover > 0.0f;
   // Centred on the camera, on a whole metre (the same export twice gives the same files).
   const glm::vec2 ground_centre(std::round(static_cast<float>(input.camera.position[0])),

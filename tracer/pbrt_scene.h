@@ -26,8 +26,8 @@ struct PbrtExport {
 // (sky_path_for) as an equal-area square `sky_resolution` texels a side, and the ground's
 // patches near the camera (ground_path_for) when it has them; each file atomically, the images
 // first. InputError when the OCIO config's scene_linear has no known primaries.
-PbrtExport write_pbrt_scene(const Scene& scene, const RenderInput& input, const ColorPipeline& color,
-                            const std::string& out, int sky_resolution);
+PbrtExport write_pbrt_scene(const Scene& scene, const RenderInput& input,
+                            const ColorPipeline& color, const std::string& out, int sky_resolution);
 
 // The sky image beside OUT.pbrt: OUT.sky.exr for OUT.pbrt.
 std::string sky_path_for(const std::string& pbrt_path);

@@ -41,10 +41,10 @@ struct SurfaceHit {
 // A hit in the world: the surface in world space and what it is made of.
 struct WorldHit {
   SurfaceHit surface;
-  int instance = -1;               // tree instance; -1 for the ground or a mesh
+  int instance = -1;  // tree instance; -1 for the ground or a mesh
   bool ground = false;
-  bool mesh = false;               // a [[mesh]] face
-  bool mesh_front = true;          // the side a mesh face's counter-clockwise normal faces
+  bool mesh = false;       // a [[mesh]] face
+  bool mesh_front = true;  // the side a mesh face's counter-clockwise normal faces
   const mat::Material* material = nullptr;
   // Compositing ids (Scene::object_names / material_names, 1-based).
   std::uint32_t object_id = 0, material_id = 0;

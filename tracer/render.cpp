@@ -23,15 +23,18 @@ namespace {
 constexpr int kTile = 16;
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 // The pass loop shared by the integrators. `trace(ray, sampler, index, extra)` returns the
 // sample's PathSample (scene-linear radiance and albedo) and writes the film's extras, already
 // in their output form, to `extra`. `full_width` numbers the pixels of the whole image, which
 // key their samples: a crop renders each pixel exactly as the whole image does.
 template <class Trace>
-RenderOutcome render_passes(const RenderInput& input, const RenderJob& job, Film& film, const Trace& trace,
-                            const ColorTransform& to_output, Progress* progress, RenderStats& stats) {
+RenderOutcome render_passes(const RenderInput& input, const RenderJob& job, Film& film,
+                            const Trace& trace, const ColorTransform& to_output, Progress* progress,
+                            RenderStats& stats) {
   const RenderSpec& rs = input.render;
   const Window win = film.window();
   const int ww = win.width(), wh = win.height();
@@ -46,7 +49,9 @@ RenderOutcome render_passes(const RenderInput& input, const RenderJob& job, Film
   std::atomic<std::uint64_t> rays{0}, nonfinite{0}, samples{0};
   std::atomic<std::uint64_t> tiles_done{0};
   std::mutex progress_mutex;
-  if (progress) progress->set_total(static_cast<std::uint64_t>(tiles) * static_cast<std::uint64_t>(last - first));
+  if (progress)
+    progress->set_total(static_cast<std::uint64_t>(tiles) *
+                        static_cast<std::uint64_t>(last - first));
   const auto start = Clock::now();
   auto last_checkpoint = start;
   RenderOutcome outcome;
@@ -87,12 +92,13 @@ RenderOutcome render_passes(const RenderInput& input, const RenderJob& job, Film
               ++tile_bad;
               continue;
             }
-            float rgb[3] = {s.radiance.x * exposure, s.radiance.y * exposure, s.radiance.z * exposure};
+            float rgb[3] = {s.radiance.x * exposure, s.radiance.y * exposure,
+                            s.radiance.z * exposure};
             to_output(rgb);
             float alb[3] = {s.albedo.x, s.albedo.y, s.albedo.z};
             to_output(alb);
-            pixel.add(rgb, alb, s.normal, s.depth, s.hit || !transparent ? 1.0f : 0.0f, sample_extra.data(), s.object_id,
-                      s.material_id);
+            pixel.add(rgb, alb, s.normal, s.depth, s.hit || !transparent ? 1.0f : 0.0f,
+                      sample_extra.data(), s.object_id, s.material_id);
           }
           tile_samples += static_cast<std::uint64_t>(spp);
           film.add_pass(p, pixel);
@@ -108,9 +114,10 @@ RenderOutcome render_passes(const RenderInput& input, const RenderJob& job, Film
       }
     };
     arena.execute([&] {
-      tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
-        for (int t = r.begin(); t < r.end(); ++t) render_tile(t);
-      });
+      tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1),
+                        [&](const tbb::blocked_range<int>& r) {
+                          for (int t = r.begin(); t < r.end(); ++t) render_tile(t);
+                        });
     });
     film.finish_pass(job.adaptive);
     if (pass + 1 == last) break;
@@ -121,11 +128,14 @@ RenderOutcome render_passes(const RenderInput& input, const RenderJob& job, Film
       break;
     }
     const double elapsed = seconds_since(start);
-    if (job.time_limit > 0 && elapsed + seconds_since(pass_start) * double(job.plan.size(pass + 1)) / spp > job.time_limit) {
+    if (job.time_limit > 0 &&
+        elapsed + seconds_since(pass_start) * double(job.plan.size(pass + 1)) / spp >
+            job.time_limit) {
       outcome.stopped = StopReason::TimeLimit;
       break;
     }
-    if (job.checkpoint && job.checkpoint_seconds > 0 && seconds_since(last_checkpoint) >= job.checkpoint_seconds) {
+    if (job.checkpoint && job.checkpoint_seconds > 0 &&
+        seconds_since(last_checkpoint) >= job.checkpoint_seconds) {
       stats.seconds = elapsed;
       job.checkpoint(film);
       last_checkpoint = Clock::now();

@@ -56,7 +56,8 @@ void write_render(const FilmHeader& h, const Film& film, const RenderWrite& what
     meta.pass_end = film.next_pass();
     meta.passes = film.next_pass() - film.pass_begin();
     meta.spp = h.plan.samples(film.pass_begin(), film.next_pass());
-    meta.incomplete = what.stopped == StopReason::Interrupted || what.stopped == StopReason::InProgress;
+    meta.incomplete =
+        what.stopped == StopReason::Interrupted || what.stopped == StopReason::InProgress;
     meta.stopped = name_of(what.stopped);
     meta.fingerprint = h.fingerprint;
     meta.noise_threshold = h.noise_threshold;

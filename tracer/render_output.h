@@ -14,7 +14,7 @@
 namespace arbor::trace {
 
 struct RenderWrite {
-  std::string exr, png;            // empty: not written
+  std::string exr, png;                  // empty: not written
   const ColorPipeline* color = nullptr;  // for the PNG
   StopReason stopped = StopReason::None;
 };

@@ -1,6 +1,6 @@
-// Low-discrepancy samples keyed by (pixel, pass, sample index, dimension, seed): padded 2D Sobol' points
-// with hash-based Owen scrambling (Burley 2020). No state, so any thread and tile order gives the
-// same numbers.
+// Low-discrepancy samples keyed by (pixel, pass, sample index, dimension, seed): padded 2D Sobol'
+// points with hash-based Owen scrambling (Burley 2020). No state, so any thread and tile order
+// gives the same numbers.
 #pragma once
 
 #include <array>
@@ -42,7 +42,8 @@ class PixelSampler {
   // Pass 0 keeps the key a single-pass render always had; every other pass scrambles anew, so
   // pass means are independent replicates (randomised QMC).
   PixelSampler(std::uint32_t pixel, std::uint64_t seed, std::uint32_t pass = 0)
-      : key_(hash32(pixel, static_cast<std::uint32_t>(seed) ^ hash32(static_cast<std::uint32_t>(seed >> 32), 0x51ed27u))) {
+      : key_(hash32(pixel, static_cast<std::uint32_t>(seed) ^
+                               hash32(static_cast<std::uint32_t>(seed >> 32), 0x51ed27u))) {
     if (pass != 0) key_ = hash32(key_ ^ 0x7a55e5u, pass);
   }
 
@@ -57,7 +58,9 @@ class PixelSampler {
   float get1d(std::uint32_t index, std::uint32_t dim) const { return get2d(index, dim).x; }
 
   // For tests: the second dimension's byte tables give what its bit loop gives.
-  static bool sobol_tables_agree(std::uint32_t i) { return sobol_second(i) == sobol_second_bits(i); }
+  static bool sobol_tables_agree(std::uint32_t i) {
+    return sobol_second(i) == sobol_second_bits(i);
+  }
 
  private:
   // Second dimension of the Sobol' sequence (generator matrix with v_k = 1 + 2 v_{k-1} pattern):

@@ -22,24 +22,31 @@ namespace arbor::app {
 using namespace arbor::trace;
 
 CLI::App* add_export_command(CLI::App& app, ExportRequest& exp) {
-  CLI::App* cmd = app.add_subcommand(
-      "export", "Write a scene as a complete pbrt-v4 scene (camera, sun and sky, materials, trees, meshes, ground)");
+  CLI::App* cmd = app.add_subcommand("export",
+                                     "Write a scene as a complete pbrt-v4 scene (camera, sun and "
+                                     "sky, materials, trees, meshes, ground)");
   cmd->add_option("SCENE", exp.scene, "scene file (.toml)")->required();
-  cmd->add_option("-o,--output", exp.out, "the pbrt-v4 scene to write (OUT.pbrt; its sky goes beside it as OUT.sky.exr)")
+  cmd->add_option("-o,--output", exp.out,
+                  "the pbrt-v4 scene to write (OUT.pbrt; its sky goes beside it as OUT.sky.exr)")
       ->required();
-  add_override_options(cmd, exp.overrides, kSppOption, "pbrt's pixel samples (overrides render.spp)");
-  cmd->add_option("--frame", exp.frame, "frame N of the scene's [animation]: every tree at time N / fps")
+  add_override_options(cmd, exp.overrides, kSppOption,
+                       "pbrt's pixel samples (overrides render.spp)");
+  cmd->add_option("--frame", exp.frame,
+                  "frame N of the scene's [animation]: every tree at time N / fps")
       ->check(CLI::Range(0, 1000000));
-  cmd->add_option("--sky-resolution", exp.sky_resolution, "texels along each side of the sky's equal-area square image")
+  cmd->add_option("--sky-resolution", exp.sky_resolution,
+                  "texels along each side of the sky's equal-area square image")
       ->check(CLI::Range(16, 8192))
       ->capture_default_str();
   return cmd;
 }
 
 int export_command(const ExportRequest& a) {
-  if (!ends_with(a.out, ".pbrt")) throw InputError({}, "-o " + a.out + ": the pbrt-v4 scene must end in .pbrt");
+  if (!ends_with(a.out, ".pbrt"))
+    throw InputError({}, "-o " + a.out + ": the pbrt-v4 scene must end in .pbrt");
   if (a.sky_resolution < 16 || a.sky_resolution > 8192) {
-    throw InputError({}, "--sky-resolution " + std::to_string(a.sky_resolution) + " must be 16 to 8192");
+    throw InputError(
+        {}, "--sky-resolution " + std::to_string(a.sky_resolution) + " must be 16 to 8192");
   }
   SceneDesc scene = load_scene(a.scene);
   // pbrt renders the exact image: --spp is the path integrator's sample count.
@@ -60,12 +67,14 @@ int export_command(const ExportRequest& a) {
   prepare_output_folder(a.out);
 
   Progress build_progress("build", 1);
-  const std::unique_ptr<const Scene> built = build_scene(scene, color.config_path(), &build_progress);
+  const std::unique_ptr<const Scene> built =
+      build_scene(scene, color.config_path(), &build_progress);
   build_progress.finish();
-  const PbrtExport result = write_pbrt_scene(*built, render_input(scene), color, a.out, a.sky_resolution);
+  const PbrtExport result =
+      write_pbrt_scene(*built, render_input(scene), color, a.out, a.sky_resolution);
   for (const std::string& c : result.clamped) {
-    std::fprintf(stderr, "arbor: warning: %s is outside [0, 1] in pbrt's %s space; clamped\n", c.c_str(),
-                 result.space.c_str());
+    std::fprintf(stderr, "arbor: warning: %s is outside [0, 1] in pbrt's %s space; clamped\n",
+                 c.c_str(), result.space.c_str());
   }
   std::string files;
   for (const std::string& f : result.written) files += (files.empty() ? "" : ", ") + f;

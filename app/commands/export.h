@@ -12,11 +12,11 @@ namespace arbor::app {
 
 struct ExportRequest {
   std::string scene;
-  std::string out;               // OUT.pbrt; the sky goes beside it as OUT.sky.exr
-  RenderOverrides overrides;     // width, height, spp (pbrt's pixel samples), time
-  std::optional<int> frame;      // the [animation]'s frame N (its clock and seed)
-  int sky_resolution = 512;      // texels along each side of the sky's equal-area square
-  std::string ocio_config;       // the run's OCIO config (default_ocio_config())
+  std::string out;            // OUT.pbrt; the sky goes beside it as OUT.sky.exr
+  RenderOverrides overrides;  // width, height, spp (pbrt's pixel samples), time
+  std::optional<int> frame;   // the [animation]'s frame N (its clock and seed)
+  int sky_resolution = 512;   // texels along each side of the sky's equal-area square
+  std::string ocio_config;    // the run's OCIO config (default_ocio_config())
 };
 
 // Adds `arbor export` to `app`, its options bound to `request`.

@@ -22,24 +22,31 @@
 namespace arbor::app {
 
 CLI::App* add_grow_command(CLI::App& app, GrowRequest& grow) {
-  CLI::App* cmd = app.add_subcommand("grow", "Grow a tree from a species file and report or export it");
+  CLI::App* cmd =
+      app.add_subcommand("grow", "Grow a tree from a species file and report or export it");
   cmd->add_option("SPECIES", grow.species,
-                  "species file: .toml (model = weber-penn or fractal), .xml (Arbaro), .lsys (L-system), .tmpl (TREE-MAKER) or .skel (skeleton)")
+                  "species file: .toml (model = weber-penn or fractal), .xml (Arbaro), .lsys "
+                  "(L-system), .tmpl (TREE-MAKER) or .skel (skeleton)")
       ->required();
-  cmd->add_option("--seed", grow.seed, "random seed (same seed, same tree)")->check(seed_check())->capture_default_str();
-  cmd->add_option("--time", grow.time,
-                  "Weber & Penn species: seconds of wind sway (needs WindSpeed/WindGust); fractal "
-                  "(time-aware) trees: the age in years (0: the species' own age); other models ignore it")
+  cmd->add_option("--seed", grow.seed, "random seed (same seed, same tree)")
+      ->check(seed_check())
+      ->capture_default_str();
+  cmd->add_option(
+         "--time", grow.time,
+         "Weber & Penn species: seconds of wind sway (needs WindSpeed/WindGust); fractal "
+         "(time-aware) trees: the age in years (0: the species' own age); other models ignore it")
       ->check(finite_in(-1e6, 1e6))
       ->capture_default_str();
-  cmd->add_option("--quality", grow.quality, "leaf quality factor: leaf count x Q, leaf size / sqrt(Q)")
+  cmd->add_option("--quality", grow.quality,
+                  "leaf quality factor: leaf count x Q, leaf size / sqrt(Q)")
       ->check(finite_in(1e-6, 100.0))
       ->capture_default_str();
   cmd->add_option("-o,--output", grow.out,
                   "write the tree: .obj (tessellated mesh, bark and leaf groups, with a .mtl "
                   "beside it) or .ply (binary), .pbrt (pbrt-v4, limbs as curves) or .skel "
                   "(skeleton file)");
-  cmd->add_option("--up", grow.up, "up axis of the .obj, .ply or .pbrt: z (arbor's) or y "
+  cmd->add_option("--up", grow.up,
+                  "up axis of the .obj, .ply or .pbrt: z (arbor's) or y "
                   "(Blender's OBJ importer, Maya, game engines)")
       ->check(CLI::IsMember({"z", "y"}))
       ->capture_default_str();
@@ -47,24 +54,27 @@ CLI::App* add_grow_command(CLI::App& app, GrowRequest& grow) {
                 "print statistics of the tree (height and crown width are its envelope's: an upper "
                 "bound within a few cm)");
   cmd->add_flag("--json", grow.json, "print the statistics as one JSON object");
-  cmd->add_flag("--force", grow.force, "grow even a tree estimated at over 10 million stems or 100 million leaves");
+  cmd->add_flag("--force", grow.force,
+                "grow even a tree estimated at over 10 million stems or 100 million leaves");
   return cmd;
 }
 
-
 int grow_command(const GrowRequest& a) {
   if (a.out.empty() && !a.stats && !a.json) {
-    throw InputError({}, "grow has nothing to do: give -o OUT (.obj, .ply, .pbrt, .skel), --stats or --json");
+    throw InputError(
+        {}, "grow has nothing to do: give -o OUT (.obj, .ply, .pbrt, .skel), --stats or --json");
   }
   if (!a.out.empty() && !ends_with(a.out, ".obj") && !ends_with(a.out, ".ply") &&
       !ends_with(a.out, ".pbrt") && !ends_with(a.out, ".skel")) {
     throw InputError({}, "-o " + a.out + ": the output must be .obj, .ply, .pbrt or .skel");
   }
-  if (a.up != "z" && a.up != "y") throw InputError({}, "--up " + a.up + ": the up axis must be z or y");
+  if (a.up != "z" && a.up != "y")
+    throw InputError({}, "--up " + a.up + ": the up axis must be z or y");
   const gen::UpAxis up = a.up == "y" ? gen::UpAxis::Y : gen::UpAxis::Z;
   if (up == gen::UpAxis::Y && ends_with(a.out, ".skel")) {
-    throw InputError({}, "--up y: a skeleton file is arbor's own input and always z-up; --up is for "
-                         ".obj, .ply and .pbrt");
+    throw InputError({},
+                     "--up y: a skeleton file is arbor's own input and always z-up; --up is for "
+                     ".obj, .ply and .pbrt");
   }
   if (!a.out.empty()) {
     refuse_overwriting("-o", a.out, {a.species});
@@ -109,18 +119,22 @@ int grow_command(const GrowRequest& a) {
       const gen::TreeMesh mesh = gen::tessellate(geometry);
       mesh_triangles = static_cast<long long>(mesh.triangle_count());
       const gen::MeshLooks looks{species.name, species.bark, species.leaf};
-      if (ends_with(a.out, ".obj")) gen::write_obj(mesh, a.out, looks, up);
-      else gen::write_ply(mesh, a.out, looks, up);
+      if (ends_with(a.out, ".obj"))
+        gen::write_obj(mesh, a.out, looks, up);
+      else
+        gen::write_ply(mesh, a.out, looks, up);
     }
   }
   if (a.json) {
     std::fputs(gen::stats_json(stats, species.name, a.seed, mesh_triangles).c_str(), stdout);
   } else if (a.stats) {
-    std::printf("%s (seed %llu)\n%s", species.name.c_str(), static_cast<unsigned long long>(a.seed), gen::stats_text(stats).c_str());
+    std::printf("%s (seed %llu)\n%s", species.name.c_str(), static_cast<unsigned long long>(a.seed),
+                gen::stats_text(stats).c_str());
   }
   if (!a.out.empty() && !a.json) {
     if (ends_with(a.out, ".obj")) {
-      std::fprintf(stderr, "arbor: wrote %s and %s\n", a.out.c_str(), gen::mtl_path_for(a.out).c_str());
+      std::fprintf(stderr, "arbor: wrote %s and %s\n", a.out.c_str(),
+                   gen::mtl_path_for(a.out).c_str());
     } else {
       std::fprintf(stderr, "arbor: wrote %s\n", a.out.c_str());
     }

@@ -13,11 +13,11 @@ struct GrowRequest {
   std::uint64_t seed = 1;
   double time = 0.0;
   double quality = 1.0;
-  std::string out;     // .obj, .ply, .pbrt or .skel; empty: none
+  std::string out;       // .obj, .ply, .pbrt or .skel; empty: none
   std::string up = "z";  // "z" or "y": the up axis of the .obj, .ply or .pbrt written
-  bool stats = false;  // print the statistics as text
-  bool json = false;   // print them as one JSON object
-  bool force = false;  // grow even past the size limits
+  bool stats = false;    // print the statistics as text
+  bool json = false;     // print them as one JSON object
+  bool force = false;    // grow even past the size limits
 };
 
 // Adds `arbor grow` to `app`, its options bound to `request`.

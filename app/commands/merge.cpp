@@ -21,8 +21,10 @@ namespace {
 
 void check_outputs(const MergeRequest& req) {
   if (req.parts.empty()) throw InputError({}, "merge needs at least one part");
-  if (!ends_with(req.exr, ".exr")) throw InputError({}, "the merged output must end in .exr: " + req.exr);
-  if (!req.png.empty() && !ends_with(req.png, ".png")) throw InputError({}, "--png must end in .png: " + req.png);
+  if (!ends_with(req.exr, ".exr"))
+    throw InputError({}, "the merged output must end in .exr: " + req.exr);
+  if (!req.png.empty() && !ends_with(req.png, ".png"))
+    throw InputError({}, "--png must end in .png: " + req.png);
   std::vector<std::string> inputs;
   for (const std::string& p : req.parts) {
     inputs.push_back(p);
@@ -30,7 +32,8 @@ void check_outputs(const MergeRequest& req) {
   }
   refuse_overwriting("the merged EXR", req.exr, inputs);
   refuse_overwriting("the merged EXR's film state", state_path(req.exr), inputs, {req.exr});
-  if (!req.png.empty()) refuse_overwriting("the merged PNG", req.png, inputs, {req.exr, state_path(req.exr)});
+  if (!req.png.empty())
+    refuse_overwriting("the merged PNG", req.png, inputs, {req.exr, state_path(req.exr)});
 }
 
 // Every part there and finished, or one error naming each that is not (a farm re-runs those).
@@ -47,15 +50,22 @@ std::vector<FilmPart> read_parts(const std::vector<std::string>& paths) {
     parts.push_back({p, read_film_state(state)});
     const FilmPart& part = parts.back();
     if (part.end() < part.file.header.pass_end) {
-      incomplete.push_back(p + " (holds " + (part.end() > part.begin() ? passes_text(part.begin(), part.end()) : "no pass") +
-                           " of its " + passes_text(part.begin(), part.file.header.pass_end) + ")");
+      incomplete.push_back(
+          p + " (holds " +
+          (part.end() > part.begin() ? passes_text(part.begin(), part.end()) : "no pass") +
+          " of its " + passes_text(part.begin(), part.file.header.pass_end) + ")");
     }
   }
   if (!missing.empty() || !incomplete.empty()) {
-    std::string text = std::to_string(missing.size() + incomplete.size()) + " of the " + std::to_string(paths.size()) +
+    std::string text = std::to_string(missing.size() + incomplete.size()) + " of the " +
+                       std::to_string(paths.size()) +
                        " parts cannot be merged; run those units again:";
-    for (const std::string& m : missing) text += "\n  missing: " + m + (std::filesystem::exists(m) ? " (its film state " + state_path(m) + " is not there)" : "");
-    for (const std::string& m : incomplete) text += "\n  incomplete: " + m + " (stopped; --resume finishes it)";
+    for (const std::string& m : missing)
+      text += "\n  missing: " + m +
+              (std::filesystem::exists(m) ? " (its film state " + state_path(m) + " is not there)"
+                                          : "");
+    for (const std::string& m : incomplete)
+      text += "\n  incomplete: " + m + " (stopped; --resume finishes it)";
     throw InputError({}, text);
   }
   return parts;
@@ -64,10 +74,12 @@ std::vector<FilmPart> read_parts(const std::vector<std::string>& paths) {
 }  // namespace
 
 CLI::App* add_merge_command(CLI::App& app, MergeRequest& merge) {
-  CLI::App* cmd = app.add_subcommand(
-      "merge", "Combine work units of one render (--passes ranges, --crop windows) into its image, bit for bit");
-  cmd->add_option("PARTS", merge.parts,
-                  "the parts' EXRs, in any order (each with its film state PART.exr.state beside it)")
+  CLI::App* cmd = app.add_subcommand("merge",
+                                     "Combine work units of one render (--passes ranges, --crop "
+                                     "windows) into its image, bit for bit");
+  cmd->add_option(
+         "PARTS", merge.parts,
+         "the parts' EXRs, in any order (each with its film state PART.exr.state beside it)")
       ->required();
   cmd->add_option("-o,--output", merge.exr, "the merged EXR")->required();
   cmd->add_option("--png", merge.png, "also write a PNG of it through the display view");
@@ -85,9 +97,11 @@ int merge_command(const MergeRequest& req) {
   const ColorPipeline color(req.ocio_config);
   write_render(merged.header, *merged.film, {req.exr, req.png, &color, StopReason::None});
   const Window& box = merged.film->window();
-  std::fprintf(stderr, "arbor: merged %zu parts: %dx%d at (%d, %d), %s of %d%s\n", count, box.width(), box.height(),
-               box.x0, box.y0, passes_text(merged.film->pass_begin(), merged.film->next_pass()).c_str(),
-               merged.header.plan.passes(), film_complete(merged.header, *merged.film) ? " (the whole render)" : "");
+  std::fprintf(stderr, "arbor: merged %zu parts: %dx%d at (%d, %d), %s of %d%s\n", count,
+               box.width(), box.height(), box.x0, box.y0,
+               passes_text(merged.film->pass_begin(), merged.film->next_pass()).c_str(),
+               merged.header.plan.passes(),
+               film_complete(merged.header, *merged.film) ? " (the whole render)" : "");
   std::fprintf(stderr, "arbor: wrote %s\n", req.exr.c_str());
   if (!req.png.empty()) std::fprintf(stderr, "arbor: wrote %s\n", req.png.c_str());
   return 0;

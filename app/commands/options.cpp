@@ -12,7 +12,8 @@ CLI::Validator seed_check() {
         std::uint64_t parsed = 0;
         const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), parsed);
         if (v.empty() || ec != std::errc() || end != v.data() + v.size()) {
-          return "the seed must be a whole number from 0 to 2^64-1 (18446744073709551615), not '" + v + "'";
+          return "the seed must be a whole number from 0 to 2^64-1 (18446744073709551615), not '" +
+                 v + "'";
         }
         return std::string();
       },
@@ -26,7 +27,8 @@ CLI::Validator finite_in(double lo, double hi) {
       [lo, hi, text = std::string(range)](std::string& v) {
         double parsed = 0.0;
         const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), parsed);
-        if (v.empty() || ec != std::errc() || end != v.data() + v.size() || !std::isfinite(parsed)) {
+        if (v.empty() || ec != std::errc() || end != v.data() + v.size() ||
+            !std::isfinite(parsed)) {
           return "'" + v + "' is not a finite number";
         }
         if (parsed < lo || parsed > hi) return v + " is out of range " + text;
@@ -36,33 +38,46 @@ CLI::Validator finite_in(double lo, double hi) {
 }
 
 CLI::Validator non_empty() {
-  return CLI::Validator([](std::string& v) { return v.empty() ? std::string("needs a value, not an empty one") : std::string(); },
-                        "");
+  return CLI::Validator(
+      [](std::string& v) {
+        return v.empty() ? std::string("needs a value, not an empty one") : std::string();
+      },
+      "");
 }
 
-void add_override_options(CLI::App* command, RenderOverrides& o, unsigned which, const std::string& spp_help) {
-  command->add_option("--width", o.width, "image width (overrides render.width)")->check(CLI::Range(1, 16384));
-  command->add_option("--height", o.height, "image height (overrides render.height)")->check(CLI::Range(1, 16384));
-  if (which & kSppOption) command->add_option("--spp", o.spp, spp_help)->check(CLI::Range(1, 1 << 20));
+void add_override_options(CLI::App* command, RenderOverrides& o, unsigned which,
+                          const std::string& spp_help) {
+  command->add_option("--width", o.width, "image width (overrides render.width)")
+      ->check(CLI::Range(1, 16384));
+  command->add_option("--height", o.height, "image height (overrides render.height)")
+      ->check(CLI::Range(1, 16384));
+  if (which & kSppOption)
+    command->add_option("--spp", o.spp, spp_help)->check(CLI::Range(1, 1 << 20));
   if (which & kSeedOption) {
-    command->add_option("--seed", o.seed, "random seed (overrides render.seed)")->check(seed_check());
+    command->add_option("--seed", o.seed, "random seed (overrides render.seed)")
+        ->check(seed_check());
   }
   if (which & kIntegratorOption) {
-    command->add_option("--integrator", o.integrator, "path (exact) or treemaker (TREE-MAKER's approximate shading)")
+    command
+        ->add_option("--integrator", o.integrator,
+                     "path (exact) or treemaker (TREE-MAKER's approximate shading)")
         ->check(CLI::IsMember({"path", "treemaker"}));
   }
-  command->add_option("--time", o.time, "seconds of wind sway for every [[tree]]")->check(finite_in(-1e6, 1e6));
+  command->add_option("--time", o.time, "seconds of wind sway for every [[tree]]")
+      ->check(finite_in(-1e6, 1e6));
   if (which & kTransparentOption) {
-    command->add_flag("--transparent", o.transparent,
-                      "camera rays that escape to the sky add nothing and leave alpha 0 (premultiplied "
-                      "RGBA, for compositing; sets output.transparent_sky)");
+    command->add_flag(
+        "--transparent", o.transparent,
+        "camera rays that escape to the sky add nothing and leave alpha 0 (premultiplied "
+        "RGBA, for compositing; sets output.transparent_sky)");
   }
 }
 
 void apply_overrides(trace::SceneDesc& scene, const RenderOverrides& o) {
   using namespace arbor::trace;
   RenderSettings& r = scene.render;
-  if (!o.integrator.empty()) r.integrator = integrator_named(o.integrator).value();  // CLI11 checked the name
+  if (!o.integrator.empty())
+    r.integrator = integrator_named(o.integrator).value();  // CLI11 checked the name
   if (o.spp > 0) (r.integrator == Integrator::Treemaker ? r.treemaker_spp : r.spp) = o.spp;
   if (o.width > 0) r.width = o.width;
   if (o.height > 0) r.height = o.height;

@@ -41,7 +41,8 @@ enum OverrideOptions : unsigned {
 };
 
 // Adds the overrides `which` names to `command`, bound to `o`; `spp_help` describes --spp.
-void add_override_options(CLI::App* command, RenderOverrides& o, unsigned which, const std::string& spp_help);
+void add_override_options(CLI::App* command, RenderOverrides& o, unsigned which,
+                          const std::string& spp_help);
 
 // Applies the overrides to a loaded scene. --spp sets the sample count of the integrator in use
 // (the scene keeps one for each).

@@ -16,20 +16,21 @@ constexpr long long kMaxMergeParts = 4096;
 
 struct PlanRequest {
   std::string scene;
-  std::string exr, png;  // the merged outputs (with a run of '#' for the frame number when --frames)
+  std::string exr,
+      png;  // the merged outputs (with a run of '#' for the frame number when --frames)
   RenderOverrides overrides;  // handed on to every unit as given
   std::string tiles = "1x1";  // CxR: columns × rows of crop windows
   int pass_groups = 1;        // K: contiguous runs of passes per tile
   std::string frames;         // "A:B": frames A to B-1 of the [animation]; empty: a still
   bool json = false;
-  std::string arbor;          // the executable the commands run; empty: this one
+  std::string arbor;  // the executable the commands run; empty: this one
 };
 
 // One work unit or merge: what it makes and the command that makes it.
 struct PlanStep {
-  std::string kind;  // "render" or "merge"
-  int frame = -1;    // -1: a still
-  int column = 0, row = 0;   // render: the tile
+  std::string kind;                  // "render" or "merge"
+  int frame = -1;                    // -1: a still
+  int column = 0, row = 0;           // render: the tile
   int pass_begin = 0, pass_end = 0;  // render: passes [begin, end)
   int crop[4] = {0, 0, 0, 0};        // render: X0, Y0, X1, Y1
   std::string output;                // the part (render) or the merged EXR

@@ -52,8 +52,10 @@ std::string treemaker_weights_text(const Scene& scene) {
     char buf[160];
     std::snprintf(buf, sizeof buf, "ambient=%.9g lambert=%.9g height=%.9g radius=%.9g angle=%.9g",
                   w.ambient, w.lambert, w.height, w.radius, w.angle);
-    if (i == 0) text = buf;
-    else if (text != buf) return "per tree";
+    if (i == 0)
+      text = buf;
+    else if (text != buf)
+      return "per tree";
   }
   return text;
 }
@@ -67,24 +69,28 @@ namespace {
 // the OCIO config.
 // Also sets `settings` to the same, readable: "name value" items joined by "; ", so that a
 // refused resume or merge can say which differ (settings_difference).
-std::string render_fingerprint(const SceneDesc& scene, const RenderRequest& a, const std::string& ocio,
-                               std::string& settings) {
+std::string render_fingerprint(const SceneDesc& scene, const RenderRequest& a,
+                               const std::string& ocio, std::string& settings) {
   const RenderSettings& r = scene.render;
   std::ostringstream s;
   s.precision(17);
   s << "size " << r.width << "x" << r.height << "; spp " << r.spp << "; pass_spp " << r.pass_spp
     << "; independent_passes " << (r.independent_passes ? "true" : "false") << "; seed " << r.seed
-    << "; integrator " << name_of(r.integrator) << "; max_depth " << r.max_depth << "; treemaker_spp " << r.treemaker_spp
-    << "; noise_threshold " << r.noise_threshold << "; min_spp " << r.min_spp << "; transparent_sky "
-    << (scene.output.transparent_sky ? "true" : "false") << "; ids " << (scene.output.wants_ids() ? "kept" : "none")
-    << "; --time " << (a.overrides.time ? std::to_string(*a.overrides.time) : std::string("none"));
+    << "; integrator " << name_of(r.integrator) << "; max_depth " << r.max_depth
+    << "; treemaker_spp " << r.treemaker_spp << "; noise_threshold " << r.noise_threshold
+    << "; min_spp " << r.min_spp << "; transparent_sky "
+    << (scene.output.transparent_sky ? "true" : "false") << "; ids "
+    << (scene.output.wants_ids() ? "kept" : "none") << "; --time "
+    << (a.overrides.time ? std::to_string(*a.overrides.time) : std::string("none"));
   if (a.frame) s << "; frame " << *a.frame << "; clock " << scene.clock;
   std::vector<std::string> files = scene_inputs(scene);
   files.push_back(ocio);
   // The inputs by their place in the scene and their bytes, not by how their paths are spelt
   // (scene.toml and ./scene.toml are one render; the scene's own text names its inputs).
   for (std::size_t i = 0; i < files.size(); ++i) {
-    const std::string role = i == 0 ? "the scene file" : i + 1 == files.size() ? "the OCIO config" : "input " + file_name(files[i]);
+    const std::string role = i == 0                  ? "the scene file"
+                             : i + 1 == files.size() ? "the OCIO config"
+                                                     : "input " + file_name(files[i]);
     s << "; " << role << " " << fingerprint_hex(input_digest(files[i], role));
   }
   settings = s.str();
@@ -110,25 +116,33 @@ namespace {
 void relocate_installed_outputs(SceneDesc& scene, const RenderRequest& a) {
   char shared[PATH_MAX], folder[PATH_MAX];
   const std::size_t slash = scene.path.find_last_of('/');
-  const std::string scene_folder = slash == std::string::npos ? "." : scene.path.substr(0, slash + 1);
-  if (!::realpath(installed_data_path("").c_str(), shared) || !::realpath(scene_folder.c_str(), folder)) return;
+  const std::string scene_folder =
+      slash == std::string::npos ? "." : scene.path.substr(0, slash + 1);
+  if (!::realpath(installed_data_path("").c_str(), shared) ||
+      !::realpath(scene_folder.c_str(), folder))
+    return;
   const std::string root = std::string(shared) + "/";
   if (std::string(folder).rfind(root, 0) != 0) return;
   const std::string prefix = slash == std::string::npos ? "" : scene_folder;
-  for (std::string* out : {a.exr.empty() ? &scene.output.exr : nullptr, a.png.empty() ? &scene.output.png : nullptr}) {
+  for (std::string* out :
+       {a.exr.empty() ? &scene.output.exr : nullptr, a.png.empty() ? &scene.output.png : nullptr}) {
     if (!out || out->empty() || prefix.empty() || out->rfind(prefix, 0) != 0) continue;
     // Its place under the installed data ("out/default.exr" for scenes/../out/default.exr) is
     // its place under the current folder; one outside the data keeps only its name.
     const std::filesystem::path inside =
-        (std::filesystem::path(folder) / out->substr(prefix.size())).lexically_normal().lexically_relative(shared);
-    const std::string here = inside.empty() || *inside.begin() == ".." ? std::filesystem::path(*out).filename().string()
-                                                                         : inside.string();
-    std::fprintf(stderr, "arbor: %s is an installed scene; its output %s goes under the current folder: %s\n",
-                 scene.path.c_str(), out->c_str(), here.c_str());
+        (std::filesystem::path(folder) / out->substr(prefix.size()))
+            .lexically_normal()
+            .lexically_relative(shared);
+    const std::string here = inside.empty() || *inside.begin() == ".."
+                                 ? std::filesystem::path(*out).filename().string()
+                                 : inside.string();
+    std::fprintf(
+        stderr,
+        "arbor: %s is an installed scene; its output %s goes under the current folder: %s\n",
+        scene.path.c_str(), out->c_str(), here.c_str());
     *out = here;
   }
 }
-
 
 // The scene as this command renders it: loaded, its installed outputs moved under the current
 // folder, the overrides, -o/--png, the frame and the checkpoint interval applied; InputError
@@ -148,7 +162,8 @@ SceneDesc prepared_scene(const RenderRequest& a) {
   if (a.checkpoint_seconds) scene.output.checkpoint_seconds = *a.checkpoint_seconds;
   const std::string& exr = scene.output.exr;
   if (exr.empty() && scene.output.png.empty()) {
-    throw InputError({a.scene, 0, 0}, "nothing to write: give -o OUT.exr, --png OUT.png or an [output] table");
+    throw InputError({a.scene, 0, 0},
+                     "nothing to write: give -o OUT.exr, --png OUT.png or an [output] table");
   }
   if (!exr.empty() && !ends_with(exr, ".exr")) {
     throw InputError({}, "the EXR output must end in .exr: " + exr);
@@ -169,34 +184,44 @@ RunRange run_range(const SceneDesc& scene, const RenderRequest& a, const PassPla
   const RenderSettings& r = scene.render;
   RunRange run{0, plan.passes(), {0, 0, r.width, r.height}};
   if (!a.passes.empty()) {
-    const std::vector<int> v = parse_integers(a.passes, ':', 2, "--passes", "A:B (passes A to B-1)");
+    const std::vector<int> v =
+        parse_integers(a.passes, ':', 2, "--passes", "A:B (passes A to B-1)");
     if (v[0] >= v[1] || v[1] > plan.passes()) {
-      throw InputError({}, "--passes " + a.passes + ": the render has passes 0 to " + std::to_string(plan.passes()) +
-                               " (" + std::to_string(plan.spp) + " spp in passes of " + std::to_string(plan.pass_spp) +
+      throw InputError({}, "--passes " + a.passes + ": the render has passes 0 to " +
+                               std::to_string(plan.passes()) + " (" + std::to_string(plan.spp) +
+                               " spp in passes of " + std::to_string(plan.pass_spp) +
                                "), so A:B needs 0 <= A < B <= " + std::to_string(plan.passes()));
     }
     run.pass_begin = v[0];
     run.pass_end = v[1];
   }
   if (!a.crop.empty()) {
-    const std::vector<int> v = parse_integers(a.crop, ',', 4, "--crop", "X0,Y0,X1,Y1 (pixels, end exclusive)");
+    const std::vector<int> v =
+        parse_integers(a.crop, ',', 4, "--crop", "X0,Y0,X1,Y1 (pixels, end exclusive)");
     run.window = {v[0], v[1], v[2], v[3]};
-    if (run.window.width() <= 0 || run.window.height() <= 0 || run.window.x1 > r.width || run.window.y1 > r.height) {
-      throw InputError({}, "--crop " + a.crop + " is not a window of the " + std::to_string(r.width) + "x" +
-                               std::to_string(r.height) + " image (X0 < X1 <= width, Y0 < Y1 <= height)");
+    if (run.window.width() <= 0 || run.window.height() <= 0 || run.window.x1 > r.width ||
+        run.window.y1 > r.height) {
+      throw InputError({}, "--crop " + a.crop + " is not a window of the " +
+                               std::to_string(r.width) + "x" + std::to_string(r.height) +
+                               " image (X0 < X1 <= width, Y0 < Y1 <= height)");
     }
   }
   if (a.resume && scene.output.exr.empty()) {
-    throw InputError({}, "--resume needs an EXR output (-o OUT.exr or the scene's output.exr): its film state is kept beside it");
+    throw InputError({},
+                     "--resume needs an EXR output (-o OUT.exr or the scene's output.exr): its "
+                     "film state is kept beside it");
   }
   // A work unit is never written over the scene's own outputs: it names its part with -o.
   if ((!a.passes.empty() || !a.crop.empty()) && a.exr.empty()) {
-    throw InputError({}, std::string(!a.passes.empty() ? "--passes" : "--crop") +
-                             " renders a part of the image: name the part with -o PART.exr (the scene's own "
-                             "outputs are not overwritten by a part)");
+    throw InputError(
+        {}, std::string(!a.passes.empty() ? "--passes" : "--crop") +
+                " renders a part of the image: name the part with -o PART.exr (the scene's own "
+                "outputs are not overwritten by a part)");
   }
   if (run.pass_begin > 0 && r.noise_threshold > 0) {
-    throw InputError({}, "--passes " + a.passes + " starts after pass 0, but adaptive sampling "
+    throw InputError({},
+                     "--passes " + a.passes +
+                         " starts after pass 0, but adaptive sampling "
                          "(render.noise_threshold) decides each pass from the passes before it; "
                          "split an adaptive render by --crop instead");
   }
@@ -212,7 +237,8 @@ void check_outputs(const SceneDesc& scene) {
     refuse_overwriting("the EXR output's film state", state_path(exr), inputs, {exr});
   }
   if (!scene.output.png.empty()) {
-    refuse_overwriting("the PNG output", scene.output.png, inputs, {exr, exr.empty() ? "" : state_path(exr)});
+    refuse_overwriting("the PNG output", scene.output.png, inputs,
+                       {exr, exr.empty() ? "" : state_path(exr)});
   }
 }
 
@@ -236,11 +262,11 @@ FilmHeader film_header(const SceneDesc& scene, const RenderInput& input, const R
 
 // The film this run continues (--resume: the state beside the EXR, its totals copied into
 // `header`) or a new one; nullptr when a resume finds nothing left to do.
-std::unique_ptr<Film> open_film(const SceneDesc& scene, const RenderInput& input, const RenderRequest& a,
-                                const RunRange& run, FilmHeader& header) {
+std::unique_ptr<Film> open_film(const SceneDesc& scene, const RenderInput& input,
+                                const RenderRequest& a, const RunRange& run, FilmHeader& header) {
   if (!a.resume) {
-    return std::make_unique<Film>(run.window, integrator_aov_names(input).size(), run.pass_begin, run.pass_begin > 0,
-                                  scene.output.wants_ids());
+    return std::make_unique<Film>(run.window, integrator_aov_names(input).size(), run.pass_begin,
+                                  run.pass_begin > 0, scene.output.wants_ids());
   }
   const std::string& exr = scene.output.exr;
   const std::string state = state_path(exr);
@@ -249,27 +275,30 @@ std::unique_ptr<Film> open_film(const SceneDesc& scene, const RenderInput& input
       std::fprintf(stderr, "arbor: %s is already finished; nothing to resume\n", exr.c_str());
       return nullptr;
     }
-    throw InputError({state, 0, 0}, "--resume: there is no film state beside " + exr +
-                                        " (it is written when a render stops early, at checkpoints and "
-                                        "for --passes/--crop parts)");
+    throw InputError({state, 0, 0},
+                     "--resume: there is no film state beside " + exr +
+                         " (it is written when a render stops early, at checkpoints and "
+                         "for --passes/--crop parts)");
   }
   FilmFile saved = read_film_state(state);
   if (saved.header.fingerprint != header.fingerprint) {
     throw InputError({state, 0, 0}, "--resume: it was rendered from " + saved.header.scene +
                                         " with other settings or inputs (" +
-                                        settings_difference(saved.header.settings, header.settings, "in the state", "in this command") +
+                                        settings_difference(saved.header.settings, header.settings,
+                                                            "in the state", "in this command") +
                                         "); give the same scene, files and options");
   }
   if (saved.film->window() != run.window || saved.film->pass_begin() != run.pass_begin ||
       saved.header.pass_end != run.pass_end) {
-    throw InputError({state, 0, 0}, "--resume: it holds another --crop or --passes than this command asks for");
+    throw InputError({state, 0, 0},
+                     "--resume: it holds another --crop or --passes than this command asks for");
   }
   header.seconds = saved.header.seconds;
   header.nonfinite = saved.header.nonfinite;
   header.rays = saved.header.rays;
   if (saved.film->next_pass() == run.pass_end) {
-    std::fprintf(stderr, "arbor: %s already holds passes %d to %d; nothing to resume\n", exr.c_str(), run.pass_begin,
-                 run.pass_end - 1);
+    std::fprintf(stderr, "arbor: %s already holds passes %d to %d; nothing to resume\n",
+                 exr.c_str(), run.pass_begin, run.pass_end - 1);
     return nullptr;
   }
   return std::move(saved.film);
@@ -287,15 +316,17 @@ struct RunResult {
 // Builds the scene and renders the film's remaining passes, writing checkpoints and, at the end,
 // the outputs (unless no pass finished).
 RunResult build_and_render(const SceneDesc& scene, const RenderInput& input, const RenderRequest& a,
-                           const ColorPipeline& color, const PassPlan& plan, const RunRange& run, FilmHeader& header,
-                           Film& film) {
+                           const ColorPipeline& color, const PassPlan& plan, const RunRange& run,
+                           FilmHeader& header, Film& film) {
   const RenderSettings& r = scene.render;
   const bool treemaker = input.render.integrator == Integrator::Treemaker;
-  const std::uint64_t unit_passes = run.pass_begin > 0 ? static_cast<std::uint64_t>(run.pass_end - run.pass_begin) : 0;
+  const std::uint64_t unit_passes =
+      run.pass_begin > 0 ? static_cast<std::uint64_t>(run.pass_end - run.pass_begin) : 0;
   const EmbreeDevice device(r.threads > 0 ? "threads=" + std::to_string(r.threads) : "");
   Progress build_progress("build", 1);
-  const std::unique_ptr<const Scene> built = build_scene(scene, color.config_path(), &build_progress,
-                                                         geometry_budget(scene, a.force, usable_memory_bytes(), unit_passes));
+  const std::unique_ptr<const Scene> built =
+      build_scene(scene, color.config_path(), &build_progress,
+                  geometry_budget(scene, a.force, usable_memory_bytes(), unit_passes));
   const World world(*built, device);
   build_progress.finish();
   if (treemaker) header.treemaker_weights = treemaker_weights_text(*built);
@@ -327,8 +358,9 @@ RunResult build_and_render(const SceneDesc& scene, const RenderInput& input, con
   Progress progress("render", 1);
   stop_gracefully_on_signal(true);
   const ColorTransform to_output = color.to_output(scene.output.colorspace);
-  result.outcome = treemaker ? render_treemaker(input, world, sky, to_output, job, film, &progress, result.stats)
-                             : render_path(input, world, sky, to_output, job, film, &progress, result.stats);
+  result.outcome =
+      treemaker ? render_treemaker(input, world, sky, to_output, job, film, &progress, result.stats)
+                : render_path(input, world, sky, to_output, job, film, &progress, result.stats);
   progress.finish();
   header.seconds = seconds_before + result.stats.seconds;
   header.nonfinite += result.stats.nonfinite;
@@ -355,19 +387,23 @@ void report(const SceneDesc& scene, const PassPlan& plan, const RunRange& run, c
   if (scene.render.noise_threshold > 0.0) {
     double total = 0.0;
     for (std::size_t p = 0; p < window.pixels(); ++p) total += film.state(p).count;
-    std::snprintf(spp_text, sizeof spp_text, "a mean of %.1f spp (at most %d)", total / double(window.pixels()), done);
+    std::snprintf(spp_text, sizeof spp_text, "a mean of %.1f spp (at most %d)",
+                  total / double(window.pixels()), done);
   } else {
     std::snprintf(spp_text, sizeof spp_text, "%d spp", done);
   }
-  std::fprintf(stderr,
-               "arbor: rendered %dx%d at %s (passes %d to %d of %d) in %.2f s (%.3g samples/s, %.3g rays/s; "
-               "%zu trees from %zu prototypes, built in %.2f s)\n",
-               window.width(), window.height(), spp_text, run.pass_begin, film.next_pass() - 1, plan.passes(),
-               stats.seconds, double(stats.samples) / seconds, double(stats.rays) / seconds, result.instances,
-               result.prototypes, result.build_seconds);
+  std::fprintf(
+      stderr,
+      "arbor: rendered %dx%d at %s (passes %d to %d of %d) in %.2f s (%.3g samples/s, %.3g rays/s; "
+      "%zu trees from %zu prototypes, built in %.2f s)\n",
+      window.width(), window.height(), spp_text, run.pass_begin, film.next_pass() - 1,
+      plan.passes(), stats.seconds, double(stats.samples) / seconds, double(stats.rays) / seconds,
+      result.instances, result.prototypes, result.build_seconds);
   if (result.outcome.stopped != StopReason::None) {
-    std::fprintf(stderr, "arbor: stopped early (%s) after %d of %d passes; continue with --resume\n",
-                 name_of(result.outcome.stopped), film.next_pass() - run.pass_begin, run.pass_end - run.pass_begin);
+    std::fprintf(stderr,
+                 "arbor: stopped early (%s) after %d of %d passes; continue with --resume\n",
+                 name_of(result.outcome.stopped), film.next_pass() - run.pass_begin,
+                 run.pass_end - run.pass_begin);
   }
   if (stats.nonfinite > 0) {
     std::fprintf(stderr, "arbor: warning: %llu samples were NaN or infinite and were left out\n",
@@ -383,15 +419,19 @@ void report(const SceneDesc& scene, const PassPlan& plan, const RunRange& run, c
 }  // namespace
 
 CLI::App* add_render_command(CLI::App& app, RenderRequest& render) {
-  CLI::App* cmd = app.add_subcommand("render", "Render a scene file to EXR/PNG (path tracer, or TREE-MAKER's shading)");
+  CLI::App* cmd = app.add_subcommand(
+      "render", "Render a scene file to EXR/PNG (path tracer, or TREE-MAKER's shading)");
   cmd->add_option("SCENE", render.scene, "scene file (.toml)")->required();
   cmd->add_option("-o,--output", render.exr,
-                  "EXR to write: replaces the scene's [output] exr and png (a PNG is then written only with --png)");
+                  "EXR to write: replaces the scene's [output] exr and png (a PNG is then written "
+                  "only with --png)");
   cmd->add_option("--png", render.png, "PNG to write through the display view");
-  add_override_options(cmd, render.overrides, kSppOption | kSeedOption | kIntegratorOption | kTransparentOption,
+  add_override_options(cmd, render.overrides,
+                       kSppOption | kSeedOption | kIntegratorOption | kTransparentOption,
                        "samples per pixel of the integrator in use (overrides render.spp, or "
                        "render.treemaker_spp for treemaker)");
-  cmd->add_option("--threads", render.threads, "threads (0: all cores)")->check(CLI::Range(0, 1024));
+  cmd->add_option("--threads", render.threads, "threads (0: all cores)")
+      ->check(CLI::Range(0, 1024));
   cmd->add_option("--frame", render.frame,
                   "render frame N of the scene's [animation]: every tree at time N / fps, the "
                   "frame's own seed (unless animation.pin_seed), N in place of #### in the outputs")
@@ -402,17 +442,21 @@ CLI::App* add_render_command(CLI::App& app, RenderRequest& render) {
   cmd->add_flag("--resume", render.resume,
                 "continue the render from the film state beside its EXR (OUT.exr.state), to the "
                 "image an uninterrupted render gives");
-  cmd->add_option("--time-limit", render.time_limit,
-                  "seconds: stop after the last pass that fits (at least one pass is rendered; 0: no limit)")
+  cmd->add_option(
+         "--time-limit", render.time_limit,
+         "seconds: stop after the last pass that fits (at least one pass is rendered; 0: no limit)")
       ->check(finite_in(0.0, 1e9));
-  cmd->add_option("--checkpoint-seconds", render.checkpoint_seconds,
-                  "rewrite the outputs this often as passes finish (overrides output.checkpoint_seconds)")
+  cmd->add_option(
+         "--checkpoint-seconds", render.checkpoint_seconds,
+         "rewrite the outputs this often as passes finish (overrides output.checkpoint_seconds)")
       ->check(finite_in(0.0, 1e7));
-  cmd->add_option("--passes", render.passes, "A:B: render only passes A to B-1 (a work unit for arbor merge; needs -o)")
+  cmd->add_option("--passes", render.passes,
+                  "A:B: render only passes A to B-1 (a work unit for arbor merge; needs -o)")
       ->check(non_empty());
-  cmd->add_option("--crop", render.crop,
-                  "X0,Y0,X1,Y1: render only that window (pixels, end exclusive), each pixel as in the "
-                  "whole image (needs -o)")
+  cmd->add_option(
+         "--crop", render.crop,
+         "X0,Y0,X1,Y1: render only that window (pixels, end exclusive), each pixel as in the "
+         "whole image (needs -o)")
       ->check(non_empty());
   return cmd;
 }
@@ -435,8 +479,9 @@ int render_command(const RenderRequest& a) {
     if (!out.empty()) prepare_output_folder(out);
   }
   FilmHeader header = film_header(scene, input, a, color, plan, run);
-  check_render_memory(scene, a.force, usable_memory_bytes(),
-                      run.pass_begin > 0 ? static_cast<std::uint64_t>(run.pass_end - run.pass_begin) : 0);
+  check_render_memory(
+      scene, a.force, usable_memory_bytes(),
+      run.pass_begin > 0 ? static_cast<std::uint64_t>(run.pass_end - run.pass_begin) : 0);
   const std::unique_ptr<Film> film = open_film(scene, input, a, run, header);
   if (!film) return 0;
   const RunResult result = build_and_render(scene, input, a, color, plan, run, header, *film);

@@ -53,7 +53,8 @@ std::string mtl_text(const MeshLooks& looks, const std::string& obj_name) {
   out += "\nnewmtl leaf\n";
   put_rgb(out, "Kd", l.reflectance);
   put_rgb(out, "Tf", l.transmittance);
-  const double f0 = l.cuticle_ior > 1.0 ? std::pow((l.cuticle_ior - 1.0) / (l.cuticle_ior + 1.0), 2.0) : 0.0;
+  const double f0 =
+      l.cuticle_ior > 1.0 ? std::pow((l.cuticle_ior - 1.0) / (l.cuticle_ior + 1.0), 2.0) : 0.0;
   put_rgb(out, "Ks", {f0, f0, f0});
   if (f0 > 0.0) {
     const double alpha = std::max(l.cuticle_roughness * l.cuticle_roughness, 1e-3);
@@ -70,7 +71,8 @@ std::string mtl_text(const MeshLooks& looks, const std::string& obj_name) {
 }  // namespace
 
 std::string mtl_path_for(const std::string& obj_path) {
-  return (ends_with(obj_path, ".obj") ? obj_path.substr(0, obj_path.size() - 4) : obj_path) + ".mtl";
+  return (ends_with(obj_path, ".obj") ? obj_path.substr(0, obj_path.size() - 4) : obj_path) +
+         ".mtl";
 }
 
 void write_obj(const TreeMesh& mesh, const std::string& path, const MeshLooks& looks, UpAxis up) {
@@ -78,9 +80,9 @@ void write_obj(const TreeMesh& mesh, const std::string& path, const MeshLooks& l
   AtomicFile file(path);
   AtomicFile mtl_file(mtl);
   mtl_file.write(mtl_text(looks, file_name(path)));
-  std::string out = "# arbor tree mesh (" + looks.species + "): groups and materials bark and leaf, " +
-                    (up == UpAxis::Y ? "y" : "z") + " up, metres\nmtllib " + file_name(mtl) +
-                    "\no tree\n";
+  std::string out = "# arbor tree mesh (" + looks.species +
+                    "): groups and materials bark and leaf, " + (up == UpAxis::Y ? "y" : "z") +
+                    " up, metres\nmtllib " + file_name(mtl) + "\no tree\n";
   // Vertices are written just before the first face that uses them, and each corner names its
   // vertex by the shorter of its absolute index and its (negative) distance back from the last
   // vertex written: tessellated rings refer to their neighbours, so most corners take 2–3 digits.
@@ -91,15 +93,20 @@ void write_obj(const TreeMesh& mesh, const std::string& path, const MeshLooks& l
       const glm::vec3 n = oriented(mesh.normals[written], up);
       const glm::vec2& t = mesh.uvs[written];
       out += "v ";
-      put_fixed(out, p.x, kPositionDecimals); out += ' ';
-      put_fixed(out, p.y, kPositionDecimals); out += ' ';
+      put_fixed(out, p.x, kPositionDecimals);
+      out += ' ';
+      put_fixed(out, p.y, kPositionDecimals);
+      out += ' ';
       put_fixed(out, p.z, kPositionDecimals);
       out += "\nvt ";
-      put_fixed(out, t.x, kUnitDecimals); out += ' ';
+      put_fixed(out, t.x, kUnitDecimals);
+      out += ' ';
       put_fixed(out, t.y, kUnitDecimals);
       out += "\nvn ";
-      put_fixed(out, n.x, kUnitDecimals); out += ' ';
-      put_fixed(out, n.y, kUnitDecimals); out += ' ';
+      put_fixed(out, n.x, kUnitDecimals);
+      out += ' ';
+      put_fixed(out, n.y, kUnitDecimals);
+      out += ' ';
       put_fixed(out, n.z, kUnitDecimals);
       out += '\n';
       flush_if_large(out, file);
@@ -112,11 +119,13 @@ void write_obj(const TreeMesh& mesh, const std::string& path, const MeshLooks& l
     if (tri == mesh.bark_triangles) out += "g leaf\nusemtl leaf\n";
     out += 'f';
     for (int k = 0; k < 3; ++k) {
-      const std::uint32_t absolute = corner[k] + 1, back = static_cast<std::uint32_t>(written - corner[k]);
+      const std::uint32_t absolute = corner[k] + 1,
+                          back = static_cast<std::uint32_t>(written - corner[k]);
       const bool relative = digits(back) + 1 < digits(absolute);  // "-back" is shorter
       char index[16];
       index[0] = '-';
-      const char* end = std::to_chars(index + 1, index + sizeof index, relative ? back : absolute).ptr;
+      const char* end =
+          std::to_chars(index + 1, index + sizeof index, relative ? back : absolute).ptr;
       const std::string_view text(relative ? index : index + 1,
                                   static_cast<std::size_t>(end - (relative ? index : index + 1)));
       out += ' ';
@@ -149,7 +158,8 @@ void write_ply(const TreeMesh& mesh, const std::string& path, const MeshLooks& l
       "\nproperty float x\nproperty float y\nproperty float z\n"
       "property float nx\nproperty float ny\nproperty float nz\n"
       "property float s\nproperty float t\n"
-      "element face " + std::to_string(mesh.triangle_count()) +
+      "element face " +
+      std::to_string(mesh.triangle_count()) +
       "\nproperty list uchar int vertex_indices\nproperty uchar material\nend_header\n";
   file.write(header);
   static_assert(sizeof(float) == 4, "PLY floats are 32-bit");

@@ -25,7 +25,9 @@ void append_pbrt_shapes(const TreeGeometry& g, const std::string& bark_material,
   for (std::size_t i = 0; i < c.size(); ++i) {
     const glm::vec4 p0 = c.points[2 * i], p1 = c.points[2 * i + 1];
     const glm::vec4 b1 = p0 + c.tangents[2 * i] / 3.0f, b2 = p1 - c.tangents[2 * i + 1] / 3.0f;
-    out += "  Shape \"curve\" \"string basis\" \"bezier\" \"string type\" \"cylinder\" \"point3 P\" [ ";
+    out +=
+        "  Shape \"curve\" \"string basis\" \"bezier\" \"string type\" \"cylinder\" \"point3 P\" "
+        "[ ";
     for (const glm::vec4& q : {p0, b1, b2, p1}) {
       const glm::vec3 o = oriented(glm::vec3(q), up);
       put(out, o.x);
@@ -45,13 +47,17 @@ void append_pbrt_shapes(const TreeGeometry& g, const std::string& bark_material,
     const std::size_t count = static_cast<std::size_t>(d.width) * d.height;
     for (std::size_t v = 0; v < count; ++v) {
       const glm::vec3 p = oriented(gs.vertices[d.first_vertex + v], up);
-      put(out, p.x); put(out, p.y); put(out, p.z);
+      put(out, p.x);
+      put(out, p.y);
+      put(out, p.z);
       flush_if_large(out, file);
     }
     out += "]\n    \"normal N\" [ ";
     for (std::size_t v = 0; v < count; ++v) {
       const glm::vec3 n = oriented(gs.normals[d.first_vertex + v], up);
-      put(out, n.x); put(out, n.y); put(out, n.z);
+      put(out, n.x);
+      put(out, n.y);
+      put(out, n.z);
       flush_if_large(out, file);
     }
     out += "]\n    \"integer indices\" [ ";
@@ -70,12 +76,15 @@ void append_pbrt_shapes(const TreeGeometry& g, const std::string& bark_material,
     out += "AttributeBegin\n  " + leaf_material + "\n  Shape \"trianglemesh\" \"point3 P\" [ ";
     for (const glm::vec3& q : lm.positions) {
       const glm::vec3 p = oriented(q, up);
-      put(out, p.x); put(out, p.y); put(out, p.z);
+      put(out, p.x);
+      put(out, p.y);
+      put(out, p.z);
       flush_if_large(out, file);
     }
     out += "]\n    \"point2 uv\" [ ";
     for (const glm::vec2& t : lm.uvs) {
-      put(out, t.x); put(out, t.y);
+      put(out, t.x);
+      put(out, t.y);
       flush_if_large(out, file);
     }
     out += "]\n    \"integer indices\" [ ";
@@ -105,14 +114,16 @@ void write_pbrt(const TreeGeometry& g, const BarkLook& bark, const LeafLook& lea
                 const std::string& path, UpAxis up) {
   AtomicFile file(path);
   std::string out =
-      std::string("# arbor tree for pbrt-v4: Include this file inside the world block.\n"
-                  "# Units are metres, ") + (up == UpAxis::Y ? "y" : "z") +
+      std::string(
+          "# arbor tree for pbrt-v4: Include this file inside the world block.\n"
+          "# Units are metres, ") +
+      (up == UpAxis::Y ? "y" : "z") +
       " is up. Limbs are exact cubic curves; pbrt's diffusetransmission\n"
       "# has one reflectance for both faces: the mean of the leaf's front and back reflectance.\n";
-  append_pbrt_shapes(g, "Material \"diffuse\" " + pbrt_rgb("reflectance", bark.albedo),
-                     "Material " + pbrt_leaf_material(leaf.reflectance, leaf.back_reflectance,
-                                                      leaf.transmittance),
-                     up, out, file);
+  append_pbrt_shapes(
+      g, "Material \"diffuse\" " + pbrt_rgb("reflectance", bark.albedo),
+      "Material " + pbrt_leaf_material(leaf.reflectance, leaf.back_reflectance, leaf.transmittance),
+      up, out, file);
   file.write(out);
   file.commit();
 }

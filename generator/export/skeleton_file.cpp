@@ -27,9 +27,12 @@ void write_skeleton_file(const Skeleton& sk, const std::string& path) {
   out += "\n";
   auto point = [&](const SkeletonPoint& p) {
     out += "point " + std::to_string(next) + " ";
-    put(out, p.position.x); out += ' ';
-    put(out, p.position.y); out += ' ';
-    put(out, p.position.z); out += ' ';
+    put(out, p.position.x);
+    out += ' ';
+    put(out, p.position.y);
+    out += ' ';
+    put(out, p.position.z);
+    out += ' ';
     put(out, p.radius);
     out += '\n';
     return next++;
@@ -50,10 +53,13 @@ void write_skeleton_file(const Skeleton& sk, const std::string& path) {
       // Starts between two of the parent's points: on the segment holding its offset.
       const Stem& p = sk.stems[static_cast<size_t>(st.parent)];
       const double z = p.length > 0.0f ? st.parent_offset / p.length : 0.0;
-      const double f = std::clamp((z - p.z_start) / std::max(1e-9, 1.0 - double(p.z_start)), 0.0, 1.0) * (p.point_count - 1);
+      const double f =
+          std::clamp((z - p.z_start) / std::max(1e-9, 1.0 - double(p.z_start)), 0.0, 1.0) *
+          (p.point_count - 1);
       const auto j = static_cast<std::uint32_t>(std::min(std::floor(f), p.point_count - 2.0));
-      out += "branch " + std::to_string(ids[s][0]) + " on " + std::to_string(ids[static_cast<size_t>(st.parent)][j]) +
-             " " + std::to_string(ids[static_cast<size_t>(st.parent)][j + 1]) + " ";
+      out += "branch " + std::to_string(ids[s][0]) + " on " +
+             std::to_string(ids[static_cast<size_t>(st.parent)][j]) + " " +
+             std::to_string(ids[static_cast<size_t>(st.parent)][j + 1]) + " ";
       put(out, static_cast<float>(f - j));
       out += '\n';
     }
@@ -74,9 +80,12 @@ void write_skeleton_file(const Skeleton& sk, const std::string& path) {
     out += " start ";
     put(out, sk.points[st.first_point].radius);
     if (st.color != glm::vec3(1.0f)) {
-      out += " red "; put(out, st.color.x);
-      out += " green "; put(out, st.color.y);
-      out += " blue "; put(out, st.color.z);
+      out += " red ";
+      put(out, st.color.x);
+      out += " green ";
+      put(out, st.color.y);
+      out += " blue ";
+      put(out, st.color.z);
     }
     out += '\n';
   }
@@ -90,16 +99,25 @@ void write_skeleton_file(const Skeleton& sk, const std::string& path) {
     out += " " + std::to_string(l.shape) + "\n";
   }
   for (const LeafTriangle& t : sk.leaf_triangles) {
-    out += "leaftri " + std::to_string(ids[static_cast<size_t>(t.stem)][1]) + " " + std::to_string(t.leaf);
+    out += "leaftri " + std::to_string(ids[static_cast<size_t>(t.stem)][1]) + " " +
+           std::to_string(t.leaf);
     for (int k = 0; k < 3; ++k) {
-      for (int c = 0; c < 3; ++c) { out += ' '; put(out, t.v[k][c]); }
+      for (int c = 0; c < 3; ++c) {
+        out += ' ';
+        put(out, t.v[k][c]);
+      }
     }
-    for (int c = 0; c < 3; ++c) { out += ' '; put(out, t.color[c]); }
+    for (int c = 0; c < 3; ++c) {
+      out += ' ';
+      put(out, t.color[c]);
+    }
     out += '\n';
   }
   for (const LeafLine& l : sk.leaf_lines) {
-    out += "leafline " + std::to_string(ids[static_cast<size_t>(l.stem)][1]) + " " + std::to_string(l.leaf);
-    for (float v : {l.a.x, l.a.y, l.a.z, l.b.x, l.b.y, l.b.z, l.radius, l.color.x, l.color.y, l.color.z}) {
+    out += "leafline " + std::to_string(ids[static_cast<size_t>(l.stem)][1]) + " " +
+           std::to_string(l.leaf);
+    for (float v :
+         {l.a.x, l.a.y, l.a.z, l.b.x, l.b.y, l.b.z, l.radius, l.color.x, l.color.y, l.color.z}) {
       out += ' ';
       put(out, v);
     }

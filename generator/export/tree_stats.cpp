@@ -29,8 +29,8 @@ TreeStats compute_stats(const Skeleton& sk) {
   st.points = static_cast<long long>(sk.points.size());
   st.leaves = static_cast<long long>(sk.leaf_count());
   // The trunk's base (stems append their points after their children's, so not points[0]).
-  const glm::vec3 axis = sk.stems.empty() ? glm::vec3(0.0f)
-                                          : sk.points[sk.stems.front().first_point].position;
+  const glm::vec3 axis =
+      sk.stems.empty() ? glm::vec3(0.0f) : sk.points[sk.stems.front().first_point].position;
   double reach = 0.0, top = 0.0;
   auto visit = [&](const glm::vec3& p, double margin) {
     top = std::max(top, static_cast<double>(p.z) + margin);
@@ -39,7 +39,8 @@ TreeStats compute_stats(const Skeleton& sk) {
   for (const SkeletonPoint& p : sk.points) visit(p.position, p.radius);
   const auto& shapes = leaf_shapes();
   for (const Leaf& l : sk.leaves) {
-    st.leaf_triangles += static_cast<long long>(shapes[static_cast<size_t>(l.shape)].triangles.size());
+    st.leaf_triangles +=
+        static_cast<long long>(shapes[static_cast<size_t>(l.shape)].triangles.size());
     visit(l.position + l.axis * l.length, 0.5 * l.width);
   }
   st.leaf_triangles += static_cast<long long>(sk.leaf_triangles.size());
@@ -69,10 +70,14 @@ std::string stats_json(const TreeStats& st, const std::string& species, unsigned
   j.text("species", species);
   j.integer("seed", seed);
   j.integers("stems_per_level", st.stems_per_level);
-  j.integer("stems", st.stems()).integer("leaves", st.leaves).integer("curve_segments", st.curve_segments);
+  j.integer("stems", st.stems())
+      .integer("leaves", st.leaves)
+      .integer("curve_segments", st.curve_segments);
   j.integer("triangles", st.triangles).integer("leaf_triangles", st.leaf_triangles);
   j.integer("skeleton_segments", st.skeleton_segments).integer("points", st.points);
-  j.number("height", st.height, 6).number("crown_width", st.crown_width, 6).number("seconds", st.seconds, 6);
+  j.number("height", st.height, 6)
+      .number("crown_width", st.crown_width, 6)
+      .number("seconds", st.seconds, 6);
   if (st.has_geometry) {
     const GeometryStats& g = st.geometry;
     auto size = [&](const char* key, std::size_t v) { j.integer(key, static_cast<long long>(v)); };

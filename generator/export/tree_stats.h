@@ -24,7 +24,7 @@ struct TreeStats {
   GeometryStats geometry;
   double geometry_seconds = 0.0;
 
-  long long stems() const;   // all levels, clones included
+  long long stems() const;  // all levels, clones included
 };
 
 TreeStats compute_stats(const Skeleton& skeleton);

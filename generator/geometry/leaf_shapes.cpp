@@ -14,7 +14,6 @@ namespace arbor::gen {
 
 namespace {
 
-
 // Adds one star-shaped part: `radius(theta)` (theta from the +y axis, counter-clockwise) about
 // `centre`, scaled by `sx, sy` and rotated by `tilt` (radians).
 void add_part(LeafShape& shape, glm::dvec2 centre, double sx, double sy, double tilt, int samples,
@@ -62,9 +61,9 @@ LeafShape make_lobed(std::string_view name, int lobes, double floor, double powe
 LeafShape make_leaflets() {
   LeafShape s{"3 leaflets", {}, {}};
   auto oval = [](double) { return 0.5; };
-  add_part(s, {0.0, 0.68}, 0.34, 0.62, 0.0, 10, oval);            // terminal leaflet
-  add_part(s, {-0.24, 0.34}, 0.26, 0.5, 0.9, 10, oval);           // left leaflet
-  add_part(s, {0.24, 0.34}, 0.26, 0.5, -0.9, 10, oval);           // right leaflet
+  add_part(s, {0.0, 0.68}, 0.34, 0.62, 0.0, 10, oval);   // terminal leaflet
+  add_part(s, {-0.24, 0.34}, 0.26, 0.5, 0.9, 10, oval);  // left leaflet
+  add_part(s, {0.24, 0.34}, 0.26, 0.5, -0.9, 10, oval);  // right leaflet
   return s;
 }
 
@@ -104,7 +103,8 @@ LeafOutline outline_of(const LeafShape& shape) {
       LeafOutline::Part part;
       const std::uint32_t centre = tris[k][0];
       part.centre = shape.vertices[centre];
-      for (; k < tris.size() && tris[k][0] == centre; ++k) part.vertices.push_back(shape.vertices[tris[k][1]]);
+      for (; k < tris.size() && tris[k][0] == centre; ++k)
+        part.vertices.push_back(shape.vertices[tris[k][1]]);
       o.parts.push_back(part);
     }
   }

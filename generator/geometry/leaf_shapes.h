@@ -31,7 +31,7 @@ struct LeafOutline {
   struct Part {
     glm::vec2 centre{0.0f};
     std::vector<glm::vec2> vertices;  // counter-clockwise about the centre
-    std::vector<float> turn;          // each vertex's angle about the centre from the first's, [0, 2π)
+    std::vector<float> turn;  // each vertex's angle about the centre from the first's, [0, 2π)
     float inner = 0.0f, outer = 0.0f;  // every point nearer the centre is inside; farther, outside
   };
   std::vector<Part> parts;

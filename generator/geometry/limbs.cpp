@@ -38,8 +38,8 @@ std::uint64_t knot_key(std::int32_t stem, std::uint32_t point) {
 // Where a limb starts: a stem's point, and where it branches from.
 struct Start {
   KnotRef knot;
-  bool from_knot = false;   // branches at a knot of its parent (a branch point)
-  KnotRef origin;           // that knot, when from_knot
+  bool from_knot = false;  // branches at a knot of its parent (a branch point)
+  KnotRef origin;          // that knot, when from_knot
   std::int32_t parent_stem = -1;
   double parent_offset = 0.0;  // for mid-segment children
 };
@@ -63,13 +63,13 @@ Topology branch_topology(const Skeleton& sk) {
     const Stem& p = sk.stems[static_cast<size_t>(c.parent)];
     const std::uint32_t k = c.parent_point >= 0 ? static_cast<std::uint32_t>(c.parent_point)
                                                 : nearest_knot(p, c.parent_offset);
-    const double gap = glm::length(point_of(sk, static_cast<std::int32_t>(i), 0) -
-                                   point_of(sk, c.parent, k));
+    const double gap =
+        glm::length(point_of(sk, static_cast<std::int32_t>(i), 0) - point_of(sk, c.parent, k));
     if (k >= 1 && gap <= 1e-5 * std::max(1.0f, p.length)) {
       at_knot[knot_key(c.parent, k)].push_back(static_cast<std::int32_t>(i));
     } else {
-      topo.starts.push_back({{static_cast<std::int32_t>(i), 0}, false, {}, c.parent,
-                             c.parent_offset});
+      topo.starts.push_back(
+          {{static_cast<std::int32_t>(i), 0}, false, {}, c.parent, c.parent_offset});
     }
   }
   for (const auto& [key, children] : at_knot) {
@@ -254,8 +254,8 @@ std::vector<Limb> fit_limbs(const Skeleton& sk) {
       const double own_radius = sk.points[own.first_point + base.point].radius;
       limb.tension = branch_tension(own_radius, parent_radius);
       DVec3 parent_direction = parent.spline.derivative(origin_param);
-      parent_direction = glm::length(parent_direction) > 1e-12 ? glm::normalize(parent_direction)
-                                                               : first_chord;
+      parent_direction =
+          glm::length(parent_direction) > 1e-12 ? glm::normalize(parent_direction) : first_chord;
       start_derivative = limb.tension * parent_direction;  // Bloomenthal Fig. 5
       initial_normal = parent.normal_at(origin_param);
       start_arc = parent.arc_at(origin_param);

@@ -18,7 +18,6 @@ namespace arbor::gen {
 
 namespace {
 
-
 template <typename T>
 std::size_t bytes_of(const std::vector<T>& v) {
   return v.size() * sizeof(T);
@@ -118,7 +117,10 @@ void add_limb_curves(const Skeleton& sk, const Limb& limb, std::int32_t limb_ind
     c.tangents.emplace_back(glm::vec3(db), static_cast<float>(drb));
     CurveSegment seg;
     seg.limb = limb_index;
-    seg.color = sk.stems[static_cast<size_t>(limb.knots[std::min(limb.knots.size() - 1, static_cast<std::size_t>(1))].stem)].color;
+    seg.color =
+        sk.stems[static_cast<size_t>(
+                     limb.knots[std::min(limb.knots.size() - 1, static_cast<std::size_t>(1))].stem)]
+            .color;
     seg.arc0 = static_cast<float>(limb.arc_at(a));
     seg.arc1 = static_cast<float>(limb.arc_at(b));
     seg.normal0 = glm::vec3(frames[j].normal);
@@ -140,7 +142,8 @@ void add_limb_curves(const Skeleton& sk, const Limb& limb, std::int32_t limb_ind
 
 bool displaced(const Skeleton& sk, const Limb& limb, const GeometryOptions& o) {
   return o.displace_trunk && limb.level == 0 &&
-         (sk.trunk.flare > 0.0f || (sk.trunk.lobes > 0 && sk.trunk.lobe_depth > 0.0f) || o.buttresses > 0);
+         (sk.trunk.flare > 0.0f || (sk.trunk.lobes > 0 && sk.trunk.lobe_depth > 0.0f) ||
+          o.buttresses > 0);
 }
 
 // Root buttresses (Bloomenthal 1985, the base of a tree: "planar blobby" contours, after Blinn,
@@ -152,7 +155,8 @@ bool displaced(const Skeleton& sk, const Limb& limb, const GeometryOptions& o) {
 // own contour (flare and lobes): without roots exactly ρ0, with them never inside it, merging
 // smoothly into the trunk at H. Returns the contour's radius in direction θ: the outermost
 // crossing along the ray, so the ring stays star-shaped about the axis.
-double buttress_contour(const GeometryOptions& o, double base_radius, double h, double theta, double rho0) {
+double buttress_contour(const GeometryOptions& o, double base_radius, double h, double theta,
+                        double rho0) {
   const double height = o.buttress_height * base_radius;
   if (o.buttresses <= 0 || h >= height) return rho0;
   const double e = 1.0 - h / height;
@@ -206,13 +210,14 @@ void add_trunk_grid(const Skeleton& sk, const Limb& limb, std::int32_t limb_inde
   while (ts.back() < total && ts.size() < 32000) {
     const double t = ts.back();
     const double z = limb.z_at(sk, t);
-    const double r = std::max(limb.radius_at(sk, t), 0.25 * base_radius) *
-                     wp::flare_scale(sk.trunk.flare, z);
+    const double r =
+        std::max(limb.radius_at(sk, t), 0.25 * base_radius) * wp::flare_scale(sk.trunk.flare, z);
     const double step = o.grid_step * r * (z < 0.125 ? 0.5 : 1.0);
     ts.push_back(std::min(total, t + std::max(step, total * 1e-4)));
   }
-  const int sides = std::clamp(o.grid_sides > 0 ? o.grid_sides : std::max({64, 16 * sk.trunk.lobes, 32 * o.buttresses}),
-                               8, 4096);
+  const int sides = std::clamp(
+      o.grid_sides > 0 ? o.grid_sides : std::max({64, 16 * sk.trunk.lobes, 32 * o.buttresses}), 8,
+      4096);
   const std::vector<FrameSample> frames =
       rotation_minimizing_frames(spline, ts, limb.knot_normals.front());
   GridSet& gs = g.grids;
@@ -239,7 +244,9 @@ void add_trunk_grid(const Skeleton& sk, const Limb& limb, std::int32_t limb_inde
   }
   // Shading normals of the displaced surface from its own finite differences, facing outward.
   const std::size_t w = grid.width, h = grid.height, first = grid.first_vertex;
-  auto at = [&](std::size_t i, std::size_t j) { return glm::dvec3(gs.vertices[first + i * w + j]); };
+  auto at = [&](std::size_t i, std::size_t j) {
+    return glm::dvec3(gs.vertices[first + i * w + j]);
+  };
   for (std::size_t i = 0; i < h; ++i) {
     for (std::size_t j = 0; j < w; ++j) {
       const std::size_t jl = j == 0 ? w - 2 : j - 1, jr = j + 1 == w ? 1 : j + 1;
@@ -283,7 +290,8 @@ void split_at(LeafTemplate& t, float c) {
   for (const auto& tri : t.triangles) {
     std::vector<std::uint32_t> left, right;
     for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = tri[static_cast<size_t>(k)], b = tri[static_cast<size_t>((k + 1) % 3)];
+      const std::uint32_t a = tri[static_cast<size_t>(k)],
+                          b = tri[static_cast<size_t>((k + 1) % 3)];
       const glm::vec3 pa = t.vertices[a], pb = t.vertices[b];
       (pa.x <= c ? left : right).push_back(a);
       if ((pa.x < c && pb.x > c) || (pa.x > c && pb.x < c)) {
@@ -335,7 +343,8 @@ void add_leaves(const Skeleton& sk, const GeometryOptions& o, TreeGeometry& g) {
         x = (x < 0.0f ? -1.0f : 1.0f) * (hinge + beyond * std::cos(angle));
         lift = beyond * std::sin(angle);
       }
-      return leaf.position + leaf.axis * (y * leaf.length) + across * (x * leaf.width) + leaf.normal * (lift * leaf.width);
+      return leaf.position + leaf.axis * (y * leaf.length) + across * (x * leaf.width) +
+             leaf.normal * (lift * leaf.width);
     };
     std::vector<float> bounds{outline.lo.x};
     if (hinged) {
@@ -352,7 +361,8 @@ void add_leaves(const Skeleton& sk, const GeometryOptions& o, TreeGeometry& g) {
       c.x1 = bounds[k + 1];
       c.y0 = outline.lo.y;
       c.y1 = outline.hi.y;
-      cards.corners.insert(cards.corners.end(), {place(c.x0, c.y0), place(c.x1, c.y0), place(c.x1, c.y1), place(c.x0, c.y1)});
+      cards.corners.insert(cards.corners.end(), {place(c.x0, c.y0), place(c.x1, c.y0),
+                                                 place(c.x1, c.y1), place(c.x0, c.y1)});
       cards.cards.push_back(c);
     }
   }
@@ -387,7 +397,8 @@ void add_leaf_lines(const Skeleton& sk, TreeGeometry& g) {
     seg.limb = -1;
     seg.arc0 = 0.0f;
     seg.arc1 = glm::length(d);
-    const glm::vec3 n = glm::normalize(glm::cross(d, std::fabs(d.z) < 0.9f * glm::length(d) ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0)));
+    const glm::vec3 n = glm::normalize(glm::cross(
+        d, std::fabs(d.z) < 0.9f * glm::length(d) ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0)));
     seg.normal0 = seg.normal1 = n;
     seg.color = l.color;
     c.segments.push_back(seg);
@@ -506,7 +517,8 @@ namespace {
 // Bilinear interpolation of a per-vertex attribute over a grid at Embree's grid-wide (u, v).
 template <typename T>
 T grid_lerp(const std::vector<T>& values, const DisplacedGrid& d, float u, float v) {
-  const float x = std::clamp(u, 0.0f, 1.0f) * (d.width - 1), y = std::clamp(v, 0.0f, 1.0f) * (d.height - 1);
+  const float x = std::clamp(u, 0.0f, 1.0f) * (d.width - 1),
+              y = std::clamp(v, 0.0f, 1.0f) * (d.height - 1);
   const auto i = std::min(static_cast<std::uint32_t>(x), d.width - 2u);
   const auto j = std::min(static_cast<std::uint32_t>(y), d.height - 2u);
   const float fx = x - i, fy = y - j;
@@ -550,7 +562,8 @@ LeafMesh leaf_triangles(const TreeGeometry& geometry) {
       while (c + 1 < end && v.x > lc.cards[c].x1) ++c;
       const LeafCard& card = lc.cards[c];
       const glm::vec3* q = &lc.corners[4 * c];
-      const float u = (v.x - card.x0) / (card.x1 - card.x0), w = (v.y - card.y0) / (card.y1 - card.y0);
+      const float u = (v.x - card.x0) / (card.x1 - card.x0),
+                  w = (v.y - card.y0) / (card.y1 - card.y0);
       m.positions.push_back(q[0] + (q[1] - q[0]) * u + (q[3] - q[0]) * w);
       m.uvs.push_back(t.uvs[k]);
     }
@@ -568,8 +581,10 @@ LeafMesh leaf_triangles(const TreeGeometry& geometry) {
   m.positions.insert(m.positions.end(), free.positions.begin(), free.positions.end());
   m.uvs.insert(m.uvs.end(), free.uvs.begin(), free.uvs.end());
   for (std::uint32_t k : free.indices) m.indices.push_back(first + k);
-  m.front_material.insert(m.front_material.end(), free.front_material.begin(), free.front_material.end());
-  m.back_material.insert(m.back_material.end(), free.back_material.begin(), free.back_material.end());
+  m.front_material.insert(m.front_material.end(), free.front_material.begin(),
+                          free.front_material.end());
+  m.back_material.insert(m.back_material.end(), free.back_material.begin(),
+                         free.back_material.end());
   m.leaf.insert(m.leaf.end(), free.leaf.begin(), free.leaf.end());
   m.color.insert(m.color.end(), free.color.begin(), free.color.end());
   return m;

@@ -16,12 +16,16 @@
 
 namespace arbor::gen {
 
-enum MaterialId : std::uint16_t { kMaterialBark = 0, kMaterialLeafFront = 1, kMaterialLeafBack = 2 };
+enum MaterialId : std::uint16_t {
+  kMaterialBark = 0,
+  kMaterialLeafFront = 1,
+  kMaterialLeafBack = 2
+};
 
 // Metadata of one curve segment.
 struct CurveSegment {
   std::int32_t limb = 0;
-  float arc0 = 0.0f, arc1 = 0.0f;   // bark arc length (m) at u = 0 and u = 1
+  float arc0 = 0.0f, arc1 = 0.0f;          // bark arc length (m) at u = 0 and u = 1
   glm::vec3 normal0{0.0f}, normal1{0.0f};  // rotation-minimising frame normal at the ends
   std::uint16_t material = kMaterialBark;
   glm::vec3 color{1.0f};  // multiplies the material's albedo (TREE-MAKER colours)
@@ -35,8 +39,8 @@ struct CurveSet {
   std::vector<CurveSegment> segments;
 
   std::size_t size() const { return segments.size(); }
-  glm::vec4 position(std::size_t i, float u) const;    // (x, y, z, radius)
-  glm::vec4 derivative(std::size_t i, float u) const;  // d/du of (x, y, z, radius)
+  glm::vec4 position(std::size_t i, float u) const;           // (x, y, z, radius)
+  glm::vec4 derivative(std::size_t i, float u) const;         // d/du of (x, y, z, radius)
   glm::vec4 second_derivative(std::size_t i, float u) const;  // d²/du² of (x, y, z, radius)
 };
 
@@ -61,7 +65,7 @@ struct GridSet {
 struct LeafMesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec2> uvs;
-  std::vector<std::uint32_t> indices;  // three per triangle
+  std::vector<std::uint32_t> indices;                        // three per triangle
   std::vector<std::uint16_t> front_material, back_material;  // per triangle
   std::vector<std::int32_t> leaf;                            // per triangle: Skeleton leaf index
   std::vector<glm::vec3> color;  // per triangle: multiplies R and T (1 unless the model colours)
@@ -73,8 +77,8 @@ struct LeafMesh {
 // and 12 to 80 triangles of its triangulation. Card i's corners are corners[4i .. 4i+3]: leaf
 // points (x0, y0), (x1, y0), (x1, y1), (x0, y1) — Embree's quad, u across, v along.
 struct LeafCard {
-  std::int32_t leaf = 0;     // Skeleton leaf index
-  std::uint16_t shape = 0;   // leaf_shapes() index
+  std::int32_t leaf = 0;                 // Skeleton leaf index
+  std::uint16_t shape = 0;               // leaf_shapes() index
   float x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // the rectangle in leaf coordinates
   // The leaf point at quad coordinates (u, v).
   glm::vec2 leaf_point(float u, float v) const { return {x0 + u * (x1 - x0), y0 + v * (y1 - y0)}; }
@@ -89,7 +93,7 @@ struct LeafCards {
 struct GeometryStats {
   std::size_t limbs = 0;
   std::size_t curve_segments = 0;
-  std::size_t tension_raised_limbs = 0;      // start tension raised to keep radius < curvature radius
+  std::size_t tension_raised_limbs = 0;  // start tension raised to keep radius < curvature radius
   std::size_t radius_adjusted_segments = 0;  // where radius ≥ radius of curvature was reduced
   std::size_t grids = 0, grid_vertices = 0, grid_triangles = 0;
   std::size_t leaf_triangles = 0;  // free-form (TREE-MAKER) leaf triangles
@@ -109,13 +113,13 @@ struct TreeGeometry {
 enum class LeafStyle { Flat, Hinged };
 
 struct GeometryOptions {
-  bool displace_trunk = true;   // trunks with Flare or Lobes become displaced grids
-  double grid_step = 0.25;      // axial step of the trunk grid, × the local radius
-  int grid_sides = 0;           // around the trunk; 0: max(64, 16 × Lobes)
+  bool displace_trunk = true;  // trunks with Flare or Lobes become displaced grids
+  double grid_step = 0.25;     // axial step of the trunk grid, × the local radius
+  int grid_sides = 0;          // around the trunk; 0: max(64, 16 × Lobes)
   LeafStyle leaf_style = LeafStyle::Flat;
-  double hinge_angle = 20.0;    // degrees each side panel folds up (Bloomenthal §10)
+  double hinge_angle = 20.0;          // degrees each side panel folds up (Bloomenthal §10)
   double hinge_position = 1.0 / 6.0;  // hinges at x = ±this, across a leaf of unit width
-  int buttresses = 0;           // root buttresses at the trunk's base (RootLook)
+  int buttresses = 0;                 // root buttresses at the trunk's base (RootLook)
   double buttress_height = 3.0, buttress_spread = 2.0;  // × the trunk's base radius
 };
 

@@ -11,7 +11,6 @@ namespace arbor::gen {
 
 namespace {
 
-
 int sides_for(float radius) {
   return std::clamp(static_cast<int>(std::ceil(2.0 * kPi * radius / 0.01)), 5, 24);
 }
@@ -58,7 +57,8 @@ void add_curve_segment(const CurveSet& curves, std::size_t i, double tolerance, 
       mesh.uvs.emplace_back(static_cast<float>(j) / sides, seg.arc0 + (seg.arc1 - seg.arc0) * u);
     }
   }
-  stitch_rings(mesh, first, static_cast<std::uint32_t>(n + 1), static_cast<std::uint32_t>(sides + 1));
+  stitch_rings(mesh, first, static_cast<std::uint32_t>(n + 1),
+               static_cast<std::uint32_t>(sides + 1));
 }
 
 void add_grid(const GridSet& grids, const DisplacedGrid& g, TreeMesh& mesh) {

@@ -19,7 +19,6 @@
 
 #include "app/cli.h"
 
-
 TEST(ArborCli, VersionAndHelp) {
   const CliRun v = run_arbor("--version");
   EXPECT_EQ(v.code, 0);
@@ -36,7 +35,8 @@ TEST(ArborCli, VersionAndHelp) {
   EXPECT_NE(top.out.find("Compare image A against reference B"), std::string::npos) << top.out;
   const CliRun c = run_arbor("compare --help");
   EXPECT_EQ(c.code, 0);
-  for (const char* opt : {"--heatmap", "--side-by-side", "--json", "--reference-test", "--fit-treemaker"}) {
+  for (const char* opt :
+       {"--heatmap", "--side-by-side", "--json", "--reference-test", "--fit-treemaker"}) {
     EXPECT_NE(c.out.find(opt), std::string::npos) << opt << " in " << c.out;
   }
   const CliRun r = run_arbor("render --help");
@@ -68,9 +68,10 @@ TEST(ArborCli, GrowWritesPbrtWithCurves) {
 }
 
 TEST(ArborCli, EveryShippedExampleOfEveryFormatGrowsWithStatistics) {
-  for (const char* name : {"quaking_aspen.toml", "fractal_broadleaf.toml", "lsystem_bush.lsys",
-                           "dogwood.tmpl", "young_pine.tmpl", "weeping_cherry.tmpl", "young_tree.skel",
-                           "lsystem_2d_branching.lsys", "fractal_basic.toml", "saguaro_cactus.toml"}) {
+  for (const char* name :
+       {"quaking_aspen.toml", "fractal_broadleaf.toml", "lsystem_bush.lsys", "dogwood.tmpl",
+        "young_pine.tmpl", "weeping_cherry.tmpl", "young_tree.skel", "lsystem_2d_branching.lsys",
+        "fractal_basic.toml", "saguaro_cactus.toml"}) {
     const CliRun r = run_arbor("grow " + species(name) + " --stats --json");
     ASSERT_EQ(r.code, 0) << name << ": " << r.err;
     for (const char* key : {"\"stems_per_level\"", "\"leaves\"", "\"curve_segments\"", "\"height\"",
@@ -81,10 +82,18 @@ TEST(ArborCli, EveryShippedExampleOfEveryFormatGrowsWithStatistics) {
 }
 
 TEST(ArborCli, SameSeedSameOutput) {
-  // The same name in two folders: the OBJs (which name their .mtl) and .mtls are equal byte for byte.
-  const std::string a = ::testing::TempDir() + "same_seed_a/", b = ::testing::TempDir() + "same_seed_b/";
-  ASSERT_EQ(run_arbor("grow " + species("black_tupelo.toml") + " --quality 0.2 --seed 8 -o " + a + "t.obj").code, 0);
-  ASSERT_EQ(run_arbor("grow " + species("black_tupelo.toml") + " --quality 0.2 --seed 8 -o " + b + "t.obj").code, 0);
+  // The same name in two folders: the OBJs (which name their .mtl) and .mtls are equal byte for
+  // byte.
+  const std::string a = ::testing::TempDir() + "same_seed_a/",
+                    b = ::testing::TempDir() + "same_seed_b/";
+  ASSERT_EQ(run_arbor("grow " + species("black_tupelo.toml") + " --quality 0.2 --seed 8 -o " + a +
+                      "t.obj")
+                .code,
+            0);
+  ASSERT_EQ(run_arbor("grow " + species("black_tupelo.toml") + " --quality 0.2 --seed 8 -o " + b +
+                      "t.obj")
+                .code,
+            0);
   const std::string first = slurp(a + "t.obj");
   EXPECT_TRUE(first == slurp(b + "t.obj"));  // not EXPECT_EQ: no diff of 250 MB texts
   EXPECT_GT(first.size(), 1000u);
@@ -100,17 +109,20 @@ TEST(ArborCli, BadInputExitsTwoWithPosition) {
   const std::string bad = write_temp("bad.toml", "model = \"weber-penn\"\n\nShape = 12\n");
   const CliRun r = run_arbor("grow " + bad + " --stats");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find(bad + ":3:9: error: Shape = 12 is out of range"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(bad + ":3:9: error: Shape = 12 is out of range"), std::string::npos)
+      << r.err;
 
   const CliRun missing = run_arbor("grow /no/such/tree.toml --stats");
   EXPECT_EQ(missing.code, 2);
-  EXPECT_NE(missing.err.find("/no/such/tree.toml: error: species does not exist"), std::string::npos) << missing.err;
+  EXPECT_NE(missing.err.find("/no/such/tree.toml: error: species does not exist"),
+            std::string::npos)
+      << missing.err;
   // Nothing to do is an error, not a silent success.
   const CliRun idle = run_arbor("grow " + species("quaking_aspen.toml"));
   EXPECT_EQ(idle.code, 2);
   EXPECT_NE(idle.err.find("arbor: error: grow has nothing to do"), std::string::npos) << idle.err;
 
-  EXPECT_EQ(run_arbor("grow").code, 2);                                     // missing argument
+  EXPECT_EQ(run_arbor("grow").code, 2);  // missing argument
   EXPECT_EQ(run_arbor("grow " + species("quaking_aspen.toml") + " --bogus").code, 2);
   EXPECT_EQ(run_arbor("grow " + species("quaking_aspen.toml") + " --quality 0").code, 2);
   EXPECT_EQ(run_arbor("grow " + species("quaking_aspen.toml") + " --seed -3").code, 2);
@@ -121,7 +133,8 @@ TEST(ArborCli, BadInputExitsTwoWithPosition) {
                                 ::testing::TempDir() + "never.skel");
   EXPECT_EQ(skel.code, 2);
   EXPECT_NE(skel.err.find("--up y: a skeleton file is arbor's own input and always z-up"),
-            std::string::npos) << skel.err;
+            std::string::npos)
+      << skel.err;
   EXPECT_FALSE(exists(::testing::TempDir() + "never.skel"));
 }
 
@@ -154,7 +167,8 @@ TEST(ArborCli, GrowUpYWritesYUpMeshesWithTheirMaterials) {
   EXPECT_EQ(top_y, top_z);
   EXPECT_NE(slurp(dir + "y.obj").find("mtllib y.mtl\n"), std::string::npos);
   EXPECT_NE(slurp(dir + "y.mtl").find("newmtl bark\nKd "), std::string::npos);
-  const CliRun ply = run_arbor("grow " + species("young_tree.skel") + " -o " + dir + "y.ply --up y");
+  const CliRun ply =
+      run_arbor("grow " + species("young_tree.skel") + " -o " + dir + "y.ply --up y");
   ASSERT_EQ(ply.code, 0) << ply.err;
   EXPECT_NE(slurp(dir + "y.ply").find("y up, metres"), std::string::npos);
 }
@@ -187,7 +201,8 @@ TEST(ArborCli, AbsurdTreesAreRefusedUnlessForced) {
 TEST(ArborCli, FailedWriteExitsOneAndLeavesNoFile) {
   // A folder that cannot be made: a file stands where it would be.
   const std::string blocker = write_temp("blocker.txt", "a file, not a folder\n");
-  const CliRun r = run_arbor("grow " + species("quaking_aspen.toml") + " -o " + blocker + "/dir/tree.obj");
+  const CliRun r =
+      run_arbor("grow " + species("quaking_aspen.toml") + " -o " + blocker + "/dir/tree.obj");
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("cannot write " + blocker + "/dir/tree.obj"), std::string::npos) << r.err;
   EXPECT_FALSE(exists(blocker + "/dir/tree.obj"));
@@ -200,12 +215,14 @@ TEST(ArborCli, CompareMetricsJsonAndImages) {
   const std::string side = ::testing::TempDir() + "cmp_side.png";
   std::remove(heat.c_str());
   std::remove(side.c_str());
-  const CliRun r = run_arbor("compare " + a + " " + b + " --json --heatmap " + heat + " --side-by-side " + side);
+  const CliRun r =
+      run_arbor("compare " + a + " " + b + " --json --heatmap " + heat + " --side-by-side " + side);
   EXPECT_EQ(r.code, 0) << r.err;
   auto value = [&](const std::string& key) {
     const auto at = r.out.find("\"" + key + "\": ");
     EXPECT_NE(at, std::string::npos) << key << " in " << r.out;
-    return at == std::string::npos ? -1.0 : std::strtod(r.out.c_str() + at + key.size() + 4, nullptr);
+    return at == std::string::npos ? -1.0
+                                   : std::strtod(r.out.c_str() + at + key.size() + 4, nullptr);
   };
   EXPECT_NEAR(value("rmse"), 0.1, 1e-6);
   EXPECT_NEAR(value("mean_abs"), 0.1, 1e-6);
@@ -222,13 +239,17 @@ TEST(ArborCli, CompareMetricsJsonAndImages) {
   // An unknown view is refused before either picture is written.
   std::remove(heat.c_str());
   std::remove(side.c_str());
-  const CliRun bad = run_arbor("compare " + a + " " + b + " --heatmap " + heat + " --side-by-side " + side +
-                           " --view 'No Such View'");
+  const CliRun bad = run_arbor("compare " + a + " " + b + " --heatmap " + heat +
+                               " --side-by-side " + side + " --view 'No Such View'");
   EXPECT_EQ(bad.code, 2) << bad.err;
   EXPECT_NE(bad.err.find("No Such View"), std::string::npos) << bad.err;
   // It says what the config offers.
-  EXPECT_NE(bad.err.find("--view \"No Such View\" is not a view of display \"sRGB\""), std::string::npos) << bad.err;
-  EXPECT_NE(bad.err.find("it has \"ACES 1.0 SDR-video\", \"Un-tone-mapped\", \"Raw\""), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("--view \"No Such View\" is not a view of display \"sRGB\""),
+            std::string::npos)
+      << bad.err;
+  EXPECT_NE(bad.err.find("it has \"ACES 1.0 SDR-video\", \"Un-tone-mapped\", \"Raw\""),
+            std::string::npos)
+      << bad.err;
   EXPECT_FALSE(exists(heat));
   EXPECT_FALSE(exists(side));
 
@@ -244,7 +265,7 @@ TEST(ArborCli, CompareReferenceTestExitCodes) {
   const std::string close = write_exr("rt_close.exr", 16, 16, 0.5002f, 1e-4f);
   // 0.35 sigma a pixel, every pixel passes; but 5.7 sigma in the image mean: fails, pooled.
   const std::string shifted = write_exr("rt_shifted.exr", 16, 16, 0.505f, 1e-4f);
-  const std::string far = write_exr("rt_far.exr", 16, 16, 0.6f, 1e-4f);        // 7 sigma
+  const std::string far = write_exr("rt_far.exr", 16, 16, 0.6f, 1e-4f);  // 7 sigma
   const CliRun pass = run_arbor("compare " + close + " " + ref + " --reference-test --json");
   EXPECT_EQ(pass.code, 0) << pass.out << pass.err;
   EXPECT_NE(pass.out.find("\"z_test_pass_fraction\": 1"), std::string::npos) << pass.out;
@@ -252,7 +273,8 @@ TEST(ArborCli, CompareReferenceTestExitCodes) {
   const CliRun pooled = run_arbor("compare " + shifted + " " + ref + " --reference-test");
   EXPECT_EQ(pooled.code, 1) << pooled.out << pooled.err;
   EXPECT_NE(pooled.out.find("pixels: 100.000 % of 256 pass"), std::string::npos) << pooled.out;
-  EXPECT_NE(pooled.out.find("image mean: z = 5.66 5.66 5.66 (|z| <= 3.14: alpha 0.005): FAIL"), std::string::npos)
+  EXPECT_NE(pooled.out.find("image mean: z = 5.66 5.66 5.66 (|z| <= 3.14: alpha 0.005): FAIL"),
+            std::string::npos)
       << pooled.out;
   const CliRun fail = run_arbor("compare " + far + " " + ref + " --reference-test");
   EXPECT_EQ(fail.code, 1) << fail.out << fail.err;
@@ -264,7 +286,8 @@ TEST(ArborCli, CompareReferenceTestExitCodes) {
   EXPECT_NE(novar.err.find(plain + ": error: has no variance"), std::string::npos) << novar.err;
   EXPECT_EQ(run_arbor("compare " + close + " " + ref + " --heatmap " + ref).code, 2);
   EXPECT_EQ(run_arbor("compare " + close + " /no/such.exr").code, 2);
-  const CliRun small = run_arbor("compare " + close + " " + write_exr("rt_small.exr", 8, 8, 0.5f, 1e-4f));
+  const CliRun small =
+      run_arbor("compare " + close + " " + write_exr("rt_small.exr", 8, 8, 0.5f, 1e-4f));
   EXPECT_EQ(small.code, 2);
   EXPECT_NE(small.err.find("same size"), std::string::npos) << small.err;
 }
@@ -277,9 +300,11 @@ TEST(ArborCli, TreemakerRenderWritesTermsThatAddUpToTheBeauty) {
       "tm.toml",
       "[render]\nwidth = 40\nheight = 30\nspp = 4\ntreemaker_spp = 3\nintegrator = \"treemaker\"\n"
       "[camera]\nposition = [10.0, -14.0, 3.0]\nlook_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" +
-      std::string(ARBOR_SOURCE_DIR) + "/species/black_tupelo.toml\"\n"
-      "[tree.treemaker]\nambient = 0.2\nlambert = 0.5\nheight = 0.3\nradius = 0.1\nangle = 0.25\n"
-      "[output]\naovs = [\"treemaker\"]\npixel_type = \"float\"\n");
+          std::string(ARBOR_SOURCE_DIR) +
+          "/species/black_tupelo.toml\"\n"
+          "[tree.treemaker]\nambient = 0.2\nlambert = 0.5\nheight = 0.3\nradius = 0.1\nangle = "
+          "0.25\n"
+          "[output]\naovs = [\"treemaker\"]\npixel_type = \"float\"\n");
   const CliRun one = run_arbor("render " + scene + " --threads 1 -o " + dir + "tm1.exr");
   ASSERT_EQ(one.code, 0) << one.err;
   EXPECT_NE(one.err.find("at 3 spp"), std::string::npos) << one.err;
@@ -315,7 +340,8 @@ TEST(ArborCli, TreemakerRenderWritesTermsThatAddUpToTheBeauty) {
     for (int c = 0; c < 3; ++c) {
       const std::string rgb(1, "RGB"[c]);
       float sum = px[channel("tm_rest." + rgb)];
-      for (int i = 0; i < 5; ++i) sum += w[i] * px[channel(std::string("tm_") + terms[i] + "." + rgb)];
+      for (int i = 0; i < 5; ++i)
+        sum += w[i] * px[channel(std::string("tm_") + terms[i] + "." + rgb)];
       EXPECT_NEAR(px[c], sum, 1e-5f + 1e-5f * px[c]) << "pixel " << p << " channel " << c;
     }
   }
@@ -324,8 +350,9 @@ TEST(ArborCli, TreemakerRenderWritesTermsThatAddUpToTheBeauty) {
   const CliRun path = run_arbor("render " + scene + " --integrator path -o " + dir + "tm_path.exr");
   EXPECT_EQ(path.code, 2);
   EXPECT_NE(path.err.find(scene + ":19:9: error: output.aovs lists \"treemaker\", which only the "
-                                   "treemaker integrator writes"),
-            std::string::npos) << path.err;
+                                  "treemaker integrator writes"),
+            std::string::npos)
+      << path.err;
   EXPECT_FALSE(exists(dir + "tm_path.exr"));
 }
 
@@ -337,13 +364,17 @@ TEST(ArborCli, FitTreemakerRecoversTheWeightsOfAnotherRender) {
       "[render]\nwidth = 48\nheight = 36\ntreemaker_spp = 2\nintegrator = \"treemaker\"\n"
       "[camera]\nposition = [10.0, -14.0, 3.0]\nlook_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" +
       std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml\"\n";
-  const std::string with_aovs = write_temp("fit_a.toml", head + "[output]\naovs = [\"treemaker\"]\npixel_type = \"float\"\n");
+  const std::string with_aovs =
+      write_temp("fit_a.toml", head + "[output]\naovs = [\"treemaker\"]\npixel_type = \"float\"\n");
   const std::string target = write_temp(
-      "fit_b.toml", head + "[tree.treemaker]\nambient = 0.05\nlambert = 0.3\nheight = 0.0\nradius = 0.25\n"
-                           "angle = 0.15\n[output]\npixel_type = \"float\"\n");
+      "fit_b.toml",
+      head +
+          "[tree.treemaker]\nambient = 0.05\nlambert = 0.3\nheight = 0.0\nradius = 0.25\n"
+          "angle = 0.15\n[output]\npixel_type = \"float\"\n");
   ASSERT_EQ(run_arbor("render " + with_aovs + " -o " + dir + "fit_a.exr").code, 0);
   ASSERT_EQ(run_arbor("render " + target + " -o " + dir + "fit_b.exr").code, 0);
-  for (const std::string& order : {dir + "fit_b.exr " + dir + "fit_a.exr", dir + "fit_a.exr " + dir + "fit_b.exr"}) {
+  for (const std::string& order :
+       {dir + "fit_b.exr " + dir + "fit_a.exr", dir + "fit_a.exr " + dir + "fit_b.exr"}) {
     const CliRun r = run_arbor("compare " + order + " --fit-treemaker --json");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("\"exact\": \"" + dir + "fit_b.exr\""), std::string::npos) << r.out;
@@ -360,15 +391,21 @@ TEST(ArborCli, FitTreemakerRecoversTheWeightsOfAnotherRender) {
     const auto fit = r.out.find("\"treemaker_fit\"");
     ASSERT_NE(fit, std::string::npos);
     EXPECT_LT(std::atof(r.out.c_str() + r.out.find("\"rmse\": ", fit) + 8), 1e-5) << r.out;
-    EXPECT_NE(r.out.find("\"render_weights\": \"ambient=0.1 lambert=0.4 height=0.2 radius=0.2 angle=0.1\""),
-              std::string::npos) << r.out;
+    EXPECT_NE(
+        r.out.find(
+            "\"render_weights\": \"ambient=0.1 lambert=0.4 height=0.2 radius=0.2 angle=0.1\""),
+        std::string::npos)
+        << r.out;
   }
-  const CliRun text = run_arbor("compare " + dir + "fit_b.exr " + dir + "fit_a.exr --fit-treemaker");
+  const CliRun text =
+      run_arbor("compare " + dir + "fit_b.exr " + dir + "fit_a.exr --fit-treemaker");
   EXPECT_NE(text.out.find("[tree.treemaker]"), std::string::npos) << text.out;
-  const CliRun neither = run_arbor("compare " + dir + "fit_b.exr " + dir + "fit_b.exr --fit-treemaker");
+  const CliRun neither =
+      run_arbor("compare " + dir + "fit_b.exr " + dir + "fit_b.exr --fit-treemaker");
   EXPECT_EQ(neither.code, 2);
   EXPECT_NE(neither.err.find("neither image has them"), std::string::npos) << neither.err;
-  const CliRun both = run_arbor("compare " + dir + "fit_a.exr " + dir + "fit_a.exr --fit-treemaker");
+  const CliRun both =
+      run_arbor("compare " + dir + "fit_a.exr " + dir + "fit_a.exr --fit-treemaker");
   EXPECT_EQ(both.code, 2);
   EXPECT_NE(both.err.find("both images have them"), std::string::npos) << both.err;
 }
@@ -378,9 +415,10 @@ TEST(ArborCli, RenderedExrPixelsAreIdenticalAtOneAndTwoThreads) {
   const std::string scene = write_temp(
       "threads.toml",
       "[render]\nwidth = 40\nheight = 30\nspp = 4\n[camera]\nposition = [10.0, -14.0, 3.0]\n"
-      "look_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) +
-      "/species/black_tupelo.toml\"\n[output]\naovs = [\"albedo\", \"normal\", "
-      "\"depth\", \"variance\"]\npixel_type = \"float\"\n");
+      "look_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" +
+          std::string(ARBOR_SOURCE_DIR) +
+          "/species/black_tupelo.toml\"\n[output]\naovs = [\"albedo\", \"normal\", "
+          "\"depth\", \"variance\"]\npixel_type = \"float\"\n");
   ASSERT_EQ(run_arbor("render " + scene + " --threads 1 -o " + dir + "one.exr").code, 0);
   ASSERT_EQ(run_arbor("render " + scene + " --threads 2 -o " + dir + "two.exr").code, 0);
   OIIO::ImageBuf one(dir + "one.exr"), two(dir + "two.exr");
@@ -391,7 +429,8 @@ TEST(ArborCli, RenderedExrPixelsAreIdenticalAtOneAndTwoThreads) {
   one.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, a.data());
   two.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, b.data());
   EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
-  EXPECT_EQ(one.spec().get_string_attribute("arbor:colorspace"), "Linear Rec.709 (sRGB)");  // the default (issue 25)
+  EXPECT_EQ(one.spec().get_string_attribute("arbor:colorspace"),
+            "Linear Rec.709 (sRGB)");  // the default (issue 25)
   EXPECT_EQ(one.spec().get_int_attribute("arbor:spp"), 4);
 }
 
@@ -399,11 +438,13 @@ TEST(ArborCli, RenderRejectsBadScenesWithPosition) {
   const std::string bad = write_temp("bad_scene.toml", "[render]\nwidth = 64\nspp = 0\n");
   const CliRun r = run_arbor("render " + bad + " -o out.exr");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find(bad + ":3:7: error: render.spp = 0 is out of range"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(bad + ":3:7: error: render.spp = 0 is out of range"), std::string::npos)
+      << r.err;
   const std::string unknown = write_temp("unknown_key.toml", "[camera]\nfov = 40\nzoom = 2\n");
   const CliRun u = run_arbor("render " + unknown + " -o out.exr");
   EXPECT_EQ(u.code, 2);
-  EXPECT_NE(u.err.find(unknown + ":3:1: error: unknown key 'zoom' in [camera]"), std::string::npos) << u.err;
+  EXPECT_NE(u.err.find(unknown + ":3:1: error: unknown key 'zoom' in [camera]"), std::string::npos)
+      << u.err;
   const CliRun missing = run_arbor("render /no/such/scene.toml -o out.exr");
   EXPECT_EQ(missing.code, 2);
 }
@@ -411,14 +452,15 @@ TEST(ArborCli, RenderRejectsBadScenesWithPosition) {
 TEST(ArborCli, ExportWritesAPbrtSceneAndRefusesBadOutputs) {
   const std::string dir = ::testing::TempDir() + "cli_export/";
   const std::string scene = write_temp(
-      "export_scene.toml",
-      "[render]\nwidth = 24\nheight = 16\nspp = 2\n[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) +
-      "/species/young_tree.skel\"\n");
+      "export_scene.toml", "[render]\nwidth = 24\nheight = 16\nspp = 2\n[[tree]]\nspecies = \"" +
+                               std::string(ARBOR_SOURCE_DIR) + "/species/young_tree.skel\"\n");
   std::remove((dir + "s.pbrt").c_str());
   std::remove((dir + "s.sky.exr").c_str());
-  const CliRun r = run_arbor("export " + scene + " -o " + dir + "s.pbrt --spp 7 --sky-resolution 32");
+  const CliRun r =
+      run_arbor("export " + scene + " -o " + dir + "s.pbrt --spp 7 --sky-resolution 32");
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.err.find("wrote " + dir + "s.pbrt, " + dir + "s.sky.exr"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("wrote " + dir + "s.pbrt, " + dir + "s.sky.exr"), std::string::npos)
+      << r.err;
   const std::string text = slurp(dir + "s.pbrt");
   EXPECT_NE(text.find("Sampler \"zsobol\" \"integer pixelsamples\" 7"), std::string::npos);
   EXPECT_NE(text.find("\"string filename\" \"s.sky.exr\""), std::string::npos);
@@ -429,8 +471,8 @@ TEST(ArborCli, ExportWritesAPbrtSceneAndRefusesBadOutputs) {
   EXPECT_NE(ext.err.find("must end in .pbrt"), std::string::npos) << ext.err;
   // The sky beside the output would be the scene's environment map: refused, nothing written.
   const std::string envmap = write_temp("export_env.sky.exr", "stands for an image");
-  const std::string with_map = write_temp(
-      "export_env.toml", "[sky]\nmodel = \"envmap\"\npath = \"" + envmap + "\"\n");
+  const std::string with_map =
+      write_temp("export_env.toml", "[sky]\nmodel = \"envmap\"\npath = \"" + envmap + "\"\n");
   const std::string out = envmap.substr(0, envmap.size() - 8) + ".pbrt";
   const CliRun clash = run_arbor("export " + with_map + " -o " + out);
   EXPECT_EQ(clash.code, 2);
@@ -442,8 +484,11 @@ TEST(ArborCli, ExportWritesAPbrtSceneAndRefusesBadOutputs) {
   EXPECT_FALSE(exists(dir + "t.pbrt"));
   // A frame of an animation: the wind scene at frame 12 differs from frame 0 (the willow sways).
   const std::string wind = std::string(ARBOR_SOURCE_DIR) + "/scenes/wind.toml";
-  ASSERT_EQ(run_arbor("export " + wind + " --frame 0 --sky-resolution 16 -o " + dir + "w0.pbrt").code, 0);
-  ASSERT_EQ(run_arbor("export " + wind + " --frame 12 --sky-resolution 16 -o " + dir + "w12.pbrt").code, 0);
+  ASSERT_EQ(
+      run_arbor("export " + wind + " --frame 0 --sky-resolution 16 -o " + dir + "w0.pbrt").code, 0);
+  ASSERT_EQ(
+      run_arbor("export " + wind + " --frame 12 --sky-resolution 16 -o " + dir + "w12.pbrt").code,
+      0);
   EXPECT_NE(slurp(dir + "w0.pbrt"), slurp(dir + "w12.pbrt"));
   EXPECT_EQ(run_arbor("export " + wind + " --frame 48 -o " + dir + "w48.pbrt").code, 2);
   const CliRun h = run_arbor("export --help");
@@ -456,9 +501,10 @@ TEST(ArborCli, RenderWritesExrAndPngAndNothingOnFailure) {
   const std::string scene = write_temp(
       "tiny.toml",
       "[render]\nwidth = 24\nheight = 16\nspp = 2\n[camera]\nposition = [10.0, -14.0, 3.0]\n"
-      "look_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) +
-      "/species/quaking_aspen.toml\"\n");
-  const CliRun r = run_arbor("render " + scene + " -o " + dir + "tiny.exr --png " + dir + "tiny.png");
+      "look_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" +
+          std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml\"\n");
+  const CliRun r =
+      run_arbor("render " + scene + " -o " + dir + "tiny.exr --png " + dir + "tiny.png");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(exists(dir + "tiny.exr"));
   EXPECT_TRUE(exists(dir + "tiny.png"));
@@ -470,15 +516,17 @@ TEST(ArborCli, RenderWritesExrAndPngAndNothingOnFailure) {
   EXPECT_FALSE(exists(dir + "tiny.png/sub/tiny.exr"));
 }
 
-// Issue 15: a display-encoded PNG and a scene-linear EXR are refused together; like with like works.
+// Issue 15: a display-encoded PNG and a scene-linear EXR are refused together; like with like
+// works.
 TEST(ArborCli, CompareRefusesAPngAgainstAnExr) {
   const std::string dir = ::testing::TempDir();
   const std::string scene = write_temp(
       "cmp_kinds.toml",
       "[render]\nwidth = 12\nheight = 8\nspp = 2\n[camera]\nposition = [10.0, -14.0, 3.0]\n"
-      "look_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) +
-      "/species/quaking_aspen.toml\"\n");
-  ASSERT_EQ(run_arbor("render " + scene + " -o " + dir + "kinds.exr --png " + dir + "kinds.png").code, 0);
+      "look_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" +
+          std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml\"\n");
+  ASSERT_EQ(
+      run_arbor("render " + scene + " -o " + dir + "kinds.exr --png " + dir + "kinds.png").code, 0);
   const CliRun mixed = run_arbor("compare " + dir + "kinds.png " + dir + "kinds.exr");
   EXPECT_EQ(mixed.code, 2);
   EXPECT_NE(mixed.err.find("display-encoded"), std::string::npos) << mixed.err;
@@ -497,9 +545,9 @@ TEST(ArborCli, MinusOReplacesTheScenesOutputsAndMissingFoldersAreMade) {
   const std::string scene = write_temp(
       "outputs.toml",
       "[render]\nwidth = 16\nheight = 12\nspp = 2\n[camera]\nposition = [10.0, -14.0, 3.0]\n"
-      "look_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) +
-      "/species/quaking_aspen.toml\"\n[output]\nexr = \"" + dir + "named.exr\"\npng = \"" + dir +
-      "named.png\"\naovs = [\"albedo\"]\n");
+      "look_at = [0.0, 0.0, 5.0]\n[[tree]]\nspecies = \"" +
+          std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml\"\n[output]\nexr = \"" +
+          dir + "named.exr\"\npng = \"" + dir + "named.png\"\naovs = [\"albedo\"]\n");
   const CliRun a = run_arbor("render " + scene + " -o " + dir + "fresh/deeper/a.exr");
   ASSERT_EQ(a.code, 0) << a.err;
   EXPECT_TRUE(exists(dir + "fresh/deeper/a.exr"));
@@ -538,7 +586,7 @@ TEST(ArborCli, OcioNamesTheConfigOfTheRun) {
       "ocio_scene.toml",
       "[render]\nwidth = 12\nheight = 8\nspp = 2\n[camera]\nposition = [10.0, -14.0, 3.0]\n"
       "look_at = [0.0, 0.0, 5.0]\n[output]\ncolorspace = \"ACEScg\"\n[[tree]]\nspecies = \"" +
-      std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml\"\n");
+          std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml\"\n");
   const std::string args = "render " + scene + " -o " + dir + "ocio.exr --png " + dir + "ocio.png";
   std::remove((dir + "ocio.exr").c_str());  // left by an earlier run
   const CliRun missing = run_arbor_with("OCIO=/no/such/config.ocio", args);
@@ -552,7 +600,8 @@ TEST(ArborCli, OcioNamesTheConfigOfTheRun) {
   OIIO::ImageBuf with_copy(dir + "ocio.exr");
   ASSERT_EQ(run_arbor_with("OCIO=", args).code, 0);  // empty: arbor's own
   OIIO::ImageBuf with_own(dir + "ocio.exr");
-  ASSERT_TRUE(with_copy.read(0, 0, true, OIIO::TypeDesc::FLOAT) && with_own.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+  ASSERT_TRUE(with_copy.read(0, 0, true, OIIO::TypeDesc::FLOAT) &&
+              with_own.read(0, 0, true, OIIO::TypeDesc::FLOAT));
   EXPECT_EQ(OIIO::ImageBufAlgo::compare(with_copy, with_own, 0.0f, 0.0f).nfail, 0u);
 
   std::string renamed = shipped;
@@ -562,6 +611,9 @@ TEST(ArborCli, OcioNamesTheConfigOfTheRun) {
   const std::string other = write_temp("ocio_other.ocio", renamed);
   const CliRun refused = run_arbor_with("OCIO=" + other, args);
   EXPECT_EQ(refused.code, 2);
-  EXPECT_NE(refused.err.find(scene + ":9:14: error: output.colorspace \"ACEScg\" is not in the OCIO config " + other),
-            std::string::npos) << refused.err;
+  EXPECT_NE(
+      refused.err.find(
+          scene + ":9:14: error: output.colorspace \"ACEScg\" is not in the OCIO config " + other),
+      std::string::npos)
+      << refused.err;
 }

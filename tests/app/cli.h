@@ -14,8 +14,8 @@
 namespace {
 
 struct CliRun {
-  int code = -1;    // the exit code; -1 when the process died
-  int signal = 0;   // the signal that ended it, if one did
+  int code = -1;   // the exit code; -1 when the process died
+  int signal = 0;  // the signal that ended it, if one did
   std::string out, err;
 };
 
@@ -34,8 +34,8 @@ inline CliRun run_arbor_with(const std::string& shell_prefix, const std::string&
   const std::string stem = ::testing::TempDir() + "cli_" +
                            ::testing::UnitTest::GetInstance()->current_test_info()->name();
   const std::string out = stem + ".out", err = stem + ".err";
-  const std::string cmd =
-      shell_prefix + " " + launcher + " " + std::string(ARBOR_BINARY) + " " + args + " >" + out + " 2>" + err;
+  const std::string cmd = shell_prefix + " " + launcher + " " + std::string(ARBOR_BINARY) + " " +
+                          args + " >" + out + " 2>" + err;
   const int status = std::system(cmd.c_str());
   CliRun r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -65,7 +65,8 @@ inline std::string write_exr(const char* name, int w, int h, float value, float 
   if (nch == 6) spec.channelnames = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
   OIIO::ImageBuf buf(spec);
   const float px[6] = {value, value, value, variance, variance, variance};
-  for (int y = 0; y < h; ++y) for (int x = 0; x < w; ++x) buf.setpixel(x, y, px);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) buf.setpixel(x, y, px);
   EXPECT_TRUE(buf.write(path));
   return path;
 }

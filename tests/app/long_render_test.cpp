@@ -18,7 +18,9 @@
 #include "temp_files.h"
 using arbor::testing::files_in;
 namespace {
-std::string fresh_folder(const std::string& name) { return arbor::testing::fresh_folder("long_" + name); }
+std::string fresh_folder(const std::string& name) {
+  return arbor::testing::fresh_folder("long_" + name);
+}
 }  // namespace
 
 #include "app/cli.h"
@@ -29,12 +31,14 @@ namespace {
 // depends on the passes, float pixels.
 std::string scene_file(const std::string& dir, int spp, const std::string& extra = "") {
   const std::string path = dir + "/scene.toml";
-  std::ofstream(path) << "[render]\nwidth = 32\nheight = 24\nspp = " << spp
-                      << "\npass_spp = 4\nseed = 5\nmax_depth = 4\n" << extra
-                      << "[camera]\nposition = [10.0, -14.0, 3.0]\nlook_at = [0.0, 0.0, 4.0]\n"
-                         "[[tree]]\nspecies = \""
-                      << ARBOR_SOURCE_DIR << "/species/lsystem_weed.lsys\"\nseed = 2\n"
-                      << "[output]\naovs = [\"variance\", \"samples\", \"albedo\"]\npixel_type = \"float\"\n";
+  std::ofstream(path)
+      << "[render]\nwidth = 32\nheight = 24\nspp = " << spp
+      << "\npass_spp = 4\nseed = 5\nmax_depth = 4\n"
+      << extra
+      << "[camera]\nposition = [10.0, -14.0, 3.0]\nlook_at = [0.0, 0.0, 4.0]\n"
+         "[[tree]]\nspecies = \""
+      << ARBOR_SOURCE_DIR << "/species/lsystem_weed.lsys\"\nseed = 2\n"
+      << "[output]\naovs = [\"variance\", \"samples\", \"albedo\"]\npixel_type = \"float\"\n";
   return path;
 }
 
@@ -77,7 +81,8 @@ pid_t start_arbor(const std::string& dir, const std::vector<std::string>& args) 
 
 // Waits until `path` exists (up to 60 s).
 bool wait_for(const std::string& path) {
-  for (int i = 0; i < 6000 && !exists(path); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  for (int i = 0; i < 6000 && !exists(path); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
   return exists(path);
 }
 
@@ -100,8 +105,8 @@ TEST(LongRender, ASignalStopsAfterThePassAndResumeFinishesItExactly) {
   for (const int sig : {SIGINT, SIGTERM}) {
     const std::string dir = fresh_folder("signal_" + std::to_string(sig));
     const std::string scene = scene_file(dir, 1024);
-    const pid_t child = start_arbor(dir, {"render", scene, "-o", "out.exr", "--png", "out.png",
-                                          "--checkpoint-seconds", "0.2"});
+    const pid_t child = start_arbor(
+        dir, {"render", scene, "-o", "out.exr", "--png", "out.png", "--checkpoint-seconds", "0.2"});
     // The first checkpoint shows that passes are being rendered; then the signal.
     ASSERT_TRUE(wait_for(dir + "/out.exr.state"));
     kill(child, sig);
@@ -109,7 +114,8 @@ TEST(LongRender, ASignalStopsAfterThePassAndResumeFinishesItExactly) {
     waitpid(child, &status, 0);
     ASSERT_TRUE(WIFEXITED(status)) << "died by signal " << WTERMSIG(status);
     EXPECT_EQ(WEXITSTATUS(status), 128 + sig);
-    EXPECT_EQ(files_in(dir), (std::vector<std::string>{"err.txt", "out.exr", "out.exr.state", "out.png", "scene.toml"}));
+    EXPECT_EQ(files_in(dir), (std::vector<std::string>{"err.txt", "out.exr", "out.exr.state",
+                                                       "out.png", "scene.toml"}));
     const Exr part = read_exr(dir + "/out.exr");
     EXPECT_EQ(part.spec.get_int_attribute("arbor:incomplete"), 1);
     EXPECT_EQ(part.spec.get_string_attribute("arbor:stopped"), "interrupted");
@@ -119,11 +125,13 @@ TEST(LongRender, ASignalStopsAfterThePassAndResumeFinishesItExactly) {
     EXPECT_EQ(part.spec.get_int_attribute("arbor:spp"), 4 * passes);
     EXPECT_NE(slurp(dir + "/err.txt").find("continue with --resume"), std::string::npos);
 
-    const CliRun resumed = run_arbor("render " + scene + " -o " + dir + "/out.exr --png " + dir + "/out.png --resume");
+    const CliRun resumed =
+        run_arbor("render " + scene + " -o " + dir + "/out.exr --png " + dir + "/out.png --resume");
     ASSERT_EQ(resumed.code, 0) << resumed.err;
     EXPECT_FALSE(exists(dir + "/out.exr.state"));
     const Exr done = read_exr(dir + "/out.exr");
-    EXPECT_TRUE(same_pixels(done, reference)) << "the resumed render differs from the uninterrupted one";
+    EXPECT_TRUE(same_pixels(done, reference))
+        << "the resumed render differs from the uninterrupted one";
     EXPECT_EQ(done.spec.get_int_attribute("arbor:incomplete", 0), 0);
     EXPECT_EQ(done.spec.get_int_attribute("arbor:spp"), 1024);
     // Resuming a finished render does nothing and says so.
@@ -140,15 +148,19 @@ TEST(LongRender, ResumeRefusesOtherSettings) {
   const CliRun part = run_arbor("render " + scene + " -o " + dir + "/out.exr --passes 0:4");
   ASSERT_EQ(part.code, 0) << part.err;
   ASSERT_TRUE(exists(dir + "/out.exr.state"));
-  const CliRun seed = run_arbor("render " + scene + " -o " + dir + "/out.exr --passes 0:4 --seed 6 --resume");
+  const CliRun seed =
+      run_arbor("render " + scene + " -o " + dir + "/out.exr --passes 0:4 --seed 6 --resume");
   EXPECT_EQ(seed.code, 2) << seed.err;
-  EXPECT_NE(seed.err.find("other settings or inputs (seed 5 in the state, 6 in this command)"), std::string::npos)
+  EXPECT_NE(seed.err.find("other settings or inputs (seed 5 in the state, 6 in this command)"),
+            std::string::npos)
       << seed.err;
   // A changed input is named too.
   std::ofstream(scene, std::ios::app) << "# a comment changes the scene's bytes\n";
-  const CliRun edited = run_arbor("render " + scene + " -o " + dir + "/out.exr --passes 0:4 --resume");
+  const CliRun edited =
+      run_arbor("render " + scene + " -o " + dir + "/out.exr --passes 0:4 --resume");
   EXPECT_EQ(edited.code, 2) << edited.err;
-  EXPECT_NE(edited.err.find("(the scene file has other contents)"), std::string::npos) << edited.err;
+  EXPECT_NE(edited.err.find("(the scene file has other contents)"), std::string::npos)
+      << edited.err;
   const CliRun none = run_arbor("render " + scene + " -o " + dir + "/none.exr --resume");
   EXPECT_EQ(none.code, 2) << none.err;
   EXPECT_NE(none.err.find("no film state"), std::string::npos) << none.err;
@@ -164,7 +176,8 @@ TEST(LongRender, TimeLimitStopsInTimeAndResumes) {
   const std::string scene = scene_file(dir, 4096);
   const auto start = std::chrono::steady_clock::now();
   const CliRun limited = run_arbor("render " + scene + " -o " + dir + "/out.exr --time-limit 1");
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_EQ(limited.code, 0) << limited.err;
   const Exr part = read_exr(dir + "/out.exr");
   EXPECT_EQ(part.spec.get_string_attribute("arbor:stopped"), "time limit");
@@ -176,7 +189,8 @@ TEST(LongRender, TimeLimitStopsInTimeAndResumes) {
   // longer than predicted, so the render may end somewhat past the limit, never far.
   EXPECT_LE(part.spec.get_float_attribute("arbor:render_seconds"), 2.0f);
   EXPECT_LT(seconds, 30.0);  // build and start-up included; the render alone is at most 1 s
-  const CliRun resumed = run_arbor("render " + scene + " -o " + dir + "/out.exr --resume --spp 4096");
+  const CliRun resumed =
+      run_arbor("render " + scene + " -o " + dir + "/out.exr --resume --spp 4096");
   ASSERT_EQ(resumed.code, 0) << resumed.err;
   const CliRun whole = run_arbor("render " + scene + " -o " + dir + "/whole.exr");
   ASSERT_EQ(whole.code, 0) << whole.err;
@@ -188,7 +202,8 @@ TEST(LongRender, TimeLimitStopsInTimeAndResumes) {
 TEST(LongRender, CheckpointsSurviveKill9) {
   const std::string dir = fresh_folder("kill9");
   const std::string scene = scene_file(dir, 8192);
-  const pid_t child = start_arbor(dir, {"render", scene, "-o", "out.exr", "--checkpoint-seconds", "0.1"});
+  const pid_t child =
+      start_arbor(dir, {"render", scene, "-o", "out.exr", "--checkpoint-seconds", "0.1"});
   ASSERT_TRUE(wait_for(dir + "/out.exr.state"));
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   kill(child, SIGKILL);
@@ -226,7 +241,8 @@ TEST(LongRender, PassRangesAndCropsMergeToTheSingleRender) {
   // Passes: three ranges, given out of order.
   const std::string p0 = render("p0.exr", "--passes 0:5"), p1 = render("p1.exr", "--passes 5:11"),
                     p2 = render("p2.exr", "--passes 11:16");
-  const CliRun merged = run_arbor("merge -o " + dir + "/passes.exr --png " + dir + "/passes.png " + p2 + " " + p0 + " " + p1);
+  const CliRun merged = run_arbor("merge -o " + dir + "/passes.exr --png " + dir + "/passes.png " +
+                                  p2 + " " + p0 + " " + p1);
   ASSERT_EQ(merged.code, 0) << merged.err;
   EXPECT_NE(merged.err.find("(the whole render)"), std::string::npos) << merged.err;
   EXPECT_TRUE(same_pixels(read_exr(dir + "/passes.exr"), reference));
@@ -246,19 +262,27 @@ TEST(LongRender, PassRangesAndCropsMergeToTheSingleRender) {
   EXPECT_EQ(crop.spec.width, 13);
   EXPECT_EQ(crop.spec.full_width, 32);
   EXPECT_EQ(crop.spec.get_string_attribute("arbor:crop"), "0,0,13,24");
-  ASSERT_EQ(run_arbor("merge -o " + dir + "/crops.exr " + right_b + " " + left + " " + right_a).code, 0);
+  ASSERT_EQ(
+      run_arbor("merge -o " + dir + "/crops.exr " + right_b + " " + left + " " + right_a).code, 0);
   EXPECT_TRUE(same_pixels(read_exr(dir + "/crops.exr"), reference));
 
   // Refused: an overlap, a gap, a part of another render.
-  const CliRun overlap = run_arbor("merge -o " + dir + "/bad.exr " + p0 + " " + render("p4.exr", "--passes 4:16"));
+  const CliRun overlap =
+      run_arbor("merge -o " + dir + "/bad.exr " + p0 + " " + render("p4.exr", "--passes 4:16"));
   EXPECT_EQ(overlap.code, 2) << overlap.err;
-  EXPECT_NE(overlap.err.find("overlaps " + p0 + ": both hold pass 4 of pixel (0, 0)"), std::string::npos) << overlap.err;
+  EXPECT_NE(overlap.err.find("overlaps " + p0 + ": both hold pass 4 of pixel (0, 0)"),
+            std::string::npos)
+      << overlap.err;
   const CliRun gap = run_arbor("merge -o " + dir + "/bad.exr " + p0 + " " + p2);
   EXPECT_EQ(gap.code, 2) << gap.err;
-  EXPECT_NE(gap.err.find("leaves a gap: no part holds passes 5 to 10 of pixel (0, 0)"), std::string::npos) << gap.err;
-  const CliRun hole = run_arbor("merge -o " + dir + "/bad.exr " + left + " " + render("r.exr", "--crop 14,0,32,24"));
+  EXPECT_NE(gap.err.find("leaves a gap: no part holds passes 5 to 10 of pixel (0, 0)"),
+            std::string::npos)
+      << gap.err;
+  const CliRun hole = run_arbor("merge -o " + dir + "/bad.exr " + left + " " +
+                                render("r.exr", "--crop 14,0,32,24"));
   EXPECT_EQ(hole.code, 2) << hole.err;
-  EXPECT_NE(hole.err.find("of pixel (13, 0), which lies in no part's window"), std::string::npos) << hole.err;
+  EXPECT_NE(hole.err.find("of pixel (13, 0), which lies in no part's window"), std::string::npos)
+      << hole.err;
   const CliRun other = run_arbor("merge -o " + dir + "/bad.exr " + p0 + " " +
                                  render("seed.exr", "--passes 5:16 --seed 9"));
   EXPECT_EQ(other.code, 2) << other.err;
@@ -280,14 +304,17 @@ TEST(LongRender, IndependentPassesReachTheExrAndMergeExactly) {
   ASSERT_EQ(whole.code, 0) << whole.err;
   const Exr a = read_exr(dir + "/sequence.exr"), b = read_exr(dir + "/whole.exr");
   EXPECT_EQ(a.spec.get_int_attribute("arbor:independent_passes", -1), 0);
-  EXPECT_NE(a.spec.get_string_attribute("arbor:variance").find("one sequence (an upper bound"), std::string::npos);
+  EXPECT_NE(a.spec.get_string_attribute("arbor:variance").find("one sequence (an upper bound"),
+            std::string::npos);
   EXPECT_EQ(b.spec.get_int_attribute("arbor:independent_passes", -1), 1);
-  EXPECT_NE(b.spec.get_string_attribute("arbor:variance").find("across independent passes"), std::string::npos);
+  EXPECT_NE(b.spec.get_string_attribute("arbor:variance").find("across independent passes"),
+            std::string::npos);
   EXPECT_FALSE(same_pixels(a, b));
   const CliRun p0 = run_arbor("render " + scene + " -o " + dir + "/p0.exr --passes 0:2");
   const CliRun p1 = run_arbor("render " + scene + " -o " + dir + "/p1.exr --passes 2:4");
   ASSERT_EQ(p0.code + p1.code, 0) << p0.err << p1.err;
-  ASSERT_EQ(run_arbor("merge -o " + dir + "/merged.exr " + dir + "/p1.exr " + dir + "/p0.exr").code, 0);
+  ASSERT_EQ(run_arbor("merge -o " + dir + "/merged.exr " + dir + "/p1.exr " + dir + "/p0.exr").code,
+            0);
   EXPECT_TRUE(same_pixels(read_exr(dir + "/merged.exr"), b));
 }
 
@@ -302,14 +329,16 @@ TEST(LongRender, ABrokenFilmStateIsRefused) {
   std::ofstream(state, std::ios::binary) << bytes.substr(0, bytes.size() - 100);
   const CliRun cut = run_arbor("render " + scene + " -o " + dir + "/out.exr --passes 0:4 --resume");
   EXPECT_EQ(cut.code, 2) << cut.err;
-  EXPECT_NE(cut.err.find(state + ": error: is not a film state arbor can read: its size (" +
-                         std::to_string(bytes.size() - 100) + " bytes) is not what its header describes"),
-            std::string::npos)
+  EXPECT_NE(
+      cut.err.find(state + ": error: is not a film state arbor can read: its size (" +
+                   std::to_string(bytes.size() - 100) + " bytes) is not what its header describes"),
+      std::string::npos)
       << cut.err;
   std::ofstream(state, std::ios::binary) << "arbor film state 1\nfingerprint x\nsize -3 4\nend\n";
   const CliRun bad = run_arbor("merge -o " + dir + "/m.exr " + dir + "/out.exr");
   EXPECT_EQ(bad.code, 2) << bad.err;
-  EXPECT_NE(bad.err.find(state + ": error: is not a film state arbor can read"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find(state + ": error: is not a film state arbor can read"), std::string::npos)
+      << bad.err;
   EXPECT_EQ(slurp(dir + "/out.exr"), exr);
   EXPECT_FALSE(exists(dir + "/m.exr"));
 }

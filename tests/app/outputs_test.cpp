@@ -17,11 +17,18 @@ namespace {
 
 // Two aspens and the ground, the sky above them.
 std::string outputs_scene(const char* name, const std::string& output) {
-  return write_temp(name, "[render]\nwidth = 48\nheight = 36\nspp = 16\npass_spp = 4\n"
-                          "[camera]\nposition = [0.0, -14.0, 3.0]\nlook_at = [0.0, 0.0, 4.0]\nfov = 50.0\n"
-                          "[[tree]]\nspecies = \"" + species("quaking_aspen.toml") + "\"\n"
-                          "[[tree]]\nspecies = \"" + species("quaking_aspen.toml") + "\"\nposition = [3.0, 3.0, 0.0]\n"
-                          "[ground]\nenabled = true\n[output]\n" + output);
+  return write_temp(
+      name,
+      "[render]\nwidth = 48\nheight = 36\nspp = 16\npass_spp = 4\n"
+      "[camera]\nposition = [0.0, -14.0, 3.0]\nlook_at = [0.0, 0.0, 4.0]\nfov = 50.0\n"
+      "[[tree]]\nspecies = \"" +
+          species("quaking_aspen.toml") +
+          "\"\n"
+          "[[tree]]\nspecies = \"" +
+          species("quaking_aspen.toml") +
+          "\"\nposition = [3.0, 3.0, 0.0]\n"
+          "[ground]\nenabled = true\n[output]\n" +
+          output);
 }
 
 struct Exr {
@@ -87,10 +94,16 @@ float id_of_hex(const std::string& hex) {
 
 TEST(Outputs, OiioReadsBackTheColourSpaceAndChromaticities) {
   const std::string dir = ::testing::TempDir();
-  struct Case { const char* space; const char* interop; float red_x; };
-  for (const Case c : {Case{"ACEScg", "lin_ap1_scene", 0.713f}, Case{"ACES2065-1", "lin_ap0_scene", 0.7347f},
-                       Case{"Linear Rec.709 (sRGB)", "lin_rec709_scene", 0.64f}}) {
-    const std::string scene = outputs_scene("tags.toml", std::string("colorspace = \"") + c.space + "\"\n");
+  struct Case {
+    const char* space;
+    const char* interop;
+    float red_x;
+  };
+  for (const Case c :
+       {Case{"ACEScg", "lin_ap1_scene", 0.713f}, Case{"ACES2065-1", "lin_ap0_scene", 0.7347f},
+        Case{"Linear Rec.709 (sRGB)", "lin_rec709_scene", 0.64f}}) {
+    const std::string scene =
+        outputs_scene("tags.toml", std::string("colorspace = \"") + c.space + "\"\n");
     const std::string out = dir + "tags.exr";
     ASSERT_EQ(run_arbor("render " + scene + " --spp 1 -o " + out).code, 0);
     const Exr e = read_exr(out);
@@ -100,10 +113,12 @@ TEST(Outputs, OiioReadsBackTheColourSpaceAndChromaticities) {
     ASSERT_TRUE(chroma) << c.space;
     EXPECT_NEAR(chroma->get_float(0), c.red_x, 1e-6) << c.space;
     // An ACES container only for ACES2065-1 RGBA without AOVs.
-    EXPECT_EQ(e.spec.get_int_attribute("acesImageContainerFlag", 0), std::string(c.space) == "ACES2065-1" ? 1 : 0);
+    EXPECT_EQ(e.spec.get_int_attribute("acesImageContainerFlag", 0),
+              std::string(c.space) == "ACES2065-1" ? 1 : 0);
   }
   // A space arbor does not know by name still gets its chromaticities, measured through the config.
-  const std::string scene = outputs_scene("tags2.toml", "colorspace = \"lin_rec709\"\naovs = [\"depth\"]\n");
+  const std::string scene =
+      outputs_scene("tags2.toml", "colorspace = \"lin_rec709\"\naovs = [\"depth\"]\n");
   ASSERT_EQ(run_arbor("render " + scene + " --spp 1 -o " + dir + "tags2.exr").code, 0);
   const Exr e = read_exr(dir + "tags2.exr");
   EXPECT_EQ(e.spec.get_string_attribute("oiio:ColorSpace"), "lin_rec709");
@@ -113,15 +128,18 @@ TEST(Outputs, OiioReadsBackTheColourSpaceAndChromaticities) {
 
 TEST(Outputs, TransparentSkyIsPremultipliedRgbaAndIdsDecodeToTheSameObjects) {
   const std::string dir = ::testing::TempDir();
-  const std::string scene = outputs_scene(
-      "ids.toml", "aovs = [\"object_id\", \"material_id\", \"crypto_object\", \"crypto_material\"]\npixel_type = \"float\"\n");
+  const std::string scene =
+      outputs_scene("ids.toml",
+                    "aovs = [\"object_id\", \"material_id\", \"crypto_object\", "
+                    "\"crypto_material\"]\npixel_type = \"float\"\n");
   ASSERT_EQ(run_arbor("render " + scene + " -o " + dir + "opaque.exr").code, 0);
   const CliRun r = run_arbor("render " + scene + " --transparent -o " + dir + "clear.exr");
   ASSERT_EQ(r.code, 0) << r.err;
   const Exr opaque = read_exr(dir + "opaque.exr"), clear = read_exr(dir + "clear.exr");
   ASSERT_EQ(clear.spec.get_int_attribute("arbor:transparent_sky"), 1);
   const int w = clear.spec.width, h = clear.spec.height;
-  const std::map<std::string, std::string> objects = parse_flat_json(clear.spec.get_string_attribute("arbor:object_ids"));
+  const std::map<std::string, std::string> objects =
+      parse_flat_json(clear.spec.get_string_attribute("arbor:object_ids"));
   ASSERT_EQ(objects.size(), 3u);
   ASSERT_EQ(objects.at("quaking_aspen.0"), "1");
   ASSERT_EQ(objects.at("quaking_aspen.1"), "2");
@@ -130,7 +148,8 @@ TEST(Outputs, TransparentSkyIsPremultipliedRgbaAndIdsDecodeToTheSameObjects) {
   std::map<std::string, std::string> object_manifest, material_manifest;
   for (const OIIO::ParamValue& p : clear.spec.extra_attribs) {
     const std::string name = p.name().string();
-    if (name.rfind("cryptomatte/", 0) != 0 || name.size() < 20 || name.substr(19) != "/name") continue;
+    if (name.rfind("cryptomatte/", 0) != 0 || name.size() < 20 || name.substr(19) != "/name")
+      continue;
     const std::string key = name.substr(0, 19);
     const std::string layer = clear.spec.get_string_attribute(name);
     EXPECT_EQ(clear.spec.get_string_attribute(key + "/hash"), "MurmurHash3_32");
@@ -164,7 +183,8 @@ TEST(Outputs, TransparentSkyIsPremultipliedRgbaAndIdsDecodeToTheSameObjects) {
         if (m > best) best = m, best_name = name;
       }
       float materials_sum = 0.0f;
-      for (const auto& [name, hex] : material_manifest) materials_sum += matte(clear, "crypto_material", id_of_hex(hex), x, y);
+      for (const auto& [name, hex] : material_manifest)
+        materials_sum += matte(clear, "crypto_material", id_of_hex(hex), x, y);
       EXPECT_NEAR(objects_sum, a, 1e-5) << x << "," << y;
       EXPECT_NEAR(materials_sum, a, 1e-5) << x << "," << y;
       // object_id is the object whose matte is largest.
@@ -190,7 +210,9 @@ TEST(Outputs, TransparentSkyIsPremultipliedRgbaAndIdsDecodeToTheSameObjects) {
   for (const char* tree : {"quaking_aspen.0", "quaking_aspen.1", "ground"}) {
     float most = 0.0f;
     for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) most = std::max(most, matte(clear, "crypto_object", id_of_hex(object_manifest.at(tree)), x, y));
+      for (int x = 0; x < w; ++x)
+        most = std::max(most,
+                        matte(clear, "crypto_object", id_of_hex(object_manifest.at(tree)), x, y));
     EXPECT_GT(most, 0.9f) << tree;
   }
 }
@@ -198,22 +220,34 @@ TEST(Outputs, TransparentSkyIsPremultipliedRgbaAndIdsDecodeToTheSameObjects) {
 TEST(Outputs, IdsAndAlphaMergeBitIdentically) {
   const std::string dir = ::testing::TempDir();
   const std::string scene = outputs_scene(
-      "merge_ids.toml", "aovs = [\"object_id\", \"crypto_object\", \"crypto_material\"]\npixel_type = \"float\"\n");
+      "merge_ids.toml",
+      "aovs = [\"object_id\", \"crypto_object\", \"crypto_material\"]\npixel_type = \"float\"\n");
   ASSERT_EQ(run_arbor("render " + scene + " --transparent -o " + dir + "whole.exr").code, 0);
   // Two windows, the second in two pass groups.
-  ASSERT_EQ(run_arbor("render " + scene + " --transparent --crop 0,0,48,20 -o " + dir + "p0.exr").code, 0);
-  ASSERT_EQ(run_arbor("render " + scene + " --transparent --crop 0,20,48,36 --passes 0:2 -o " + dir + "p1.exr").code, 0);
-  ASSERT_EQ(run_arbor("render " + scene + " --transparent --crop 0,20,48,36 --passes 2:4 -o " + dir + "p2.exr").code, 0);
-  const CliRun m = run_arbor("merge -o " + dir + "merged.exr " + dir + "p2.exr " + dir + "p0.exr " + dir + "p1.exr");
+  ASSERT_EQ(
+      run_arbor("render " + scene + " --transparent --crop 0,0,48,20 -o " + dir + "p0.exr").code,
+      0);
+  ASSERT_EQ(run_arbor("render " + scene + " --transparent --crop 0,20,48,36 --passes 0:2 -o " +
+                      dir + "p1.exr")
+                .code,
+            0);
+  ASSERT_EQ(run_arbor("render " + scene + " --transparent --crop 0,20,48,36 --passes 2:4 -o " +
+                      dir + "p2.exr")
+                .code,
+            0);
+  const CliRun m = run_arbor("merge -o " + dir + "merged.exr " + dir + "p2.exr " + dir + "p0.exr " +
+                             dir + "p1.exr");
   ASSERT_EQ(m.code, 0) << m.err;
   const Exr a = read_exr(dir + "whole.exr"), b = read_exr(dir + "merged.exr");
   ASSERT_EQ(a.spec.nchannels, b.spec.nchannels);
   ASSERT_EQ(a.px.size(), b.px.size());
   EXPECT_EQ(std::memcmp(a.px.data(), b.px.data(), a.px.size() * sizeof(float)), 0);
-  EXPECT_EQ(a.spec.get_string_attribute("arbor:object_ids"), b.spec.get_string_attribute("arbor:object_ids"));
+  EXPECT_EQ(a.spec.get_string_attribute("arbor:object_ids"),
+            b.spec.get_string_attribute("arbor:object_ids"));
   // A part rendered without --transparent is another render.
   ASSERT_EQ(run_arbor("render " + scene + " --crop 0,0,48,20 -o " + dir + "q0.exr").code, 0);
-  const CliRun refused = run_arbor("merge -o " + dir + "mixed.exr " + dir + "q0.exr " + dir + "p1.exr " + dir + "p2.exr");
+  const CliRun refused = run_arbor("merge -o " + dir + "mixed.exr " + dir + "q0.exr " + dir +
+                                   "p1.exr " + dir + "p2.exr");
   EXPECT_EQ(refused.code, 2) << refused.err;
   EXPECT_NE(refused.err.find("not a part of the same render"), std::string::npos) << refused.err;
 }

@@ -17,10 +17,15 @@
 namespace {
 
 std::string plan_scene(const char* name, const std::string& extra = "") {
-  return write_temp(name, "[render]\nwidth = 40\nheight = 30\nspp = 16\npass_spp = 4\n"
-                          "[camera]\nposition = [0.0, -14.0, 3.0]\nlook_at = [0.0, 0.0, 4.0]\nfov = 50.0\n"
-                          "[[tree]]\nspecies = \"" + species("quaking_aspen.toml") + "\"\n"
-                          "[ground]\nenabled = true\n" + extra);
+  return write_temp(
+      name,
+      "[render]\nwidth = 40\nheight = 30\nspp = 16\npass_spp = 4\n"
+      "[camera]\nposition = [0.0, -14.0, 3.0]\nlook_at = [0.0, 0.0, 4.0]\nfov = 50.0\n"
+      "[[tree]]\nspecies = \"" +
+          species("quaking_aspen.toml") +
+          "\"\n"
+          "[ground]\nenabled = true\n" +
+          extra);
 }
 
 std::vector<std::string> lines(const std::string& text) {
@@ -52,16 +57,19 @@ TEST(Plan, UnitsInAnyOrderMergeIntoTheSingleRenderBitForBit) {
   const std::string dir = ::testing::TempDir() + "plan_still/";
   std::system(("rm -rf " + dir).c_str());
   const std::string scene = plan_scene("plan_still.toml");
-  const CliRun plan = run_arbor("plan " + scene + " --tiles 2x2 --pass-groups 2 --seed 5 -o " + dir + "out.exr");
+  const CliRun plan =
+      run_arbor("plan " + scene + " --tiles 2x2 --pass-groups 2 --seed 5 -o " + dir + "out.exr");
   ASSERT_EQ(plan.code, 0) << plan.err;
   std::vector<std::string> commands = lines(plan.out);
   ASSERT_EQ(commands.size(), 9u);  // 2 × 2 tiles × 2 pass groups, then the merge
   const std::string merge = commands.back();
   commands.pop_back();
   for (const std::string& c : commands) {
-    EXPECT_EQ(c.rfind(std::string(ARBOR_BINARY) + " render " + scene + " --seed 5 --crop ", 0), 0u) << c;
+    EXPECT_EQ(c.rfind(std::string(ARBOR_BINARY) + " render " + scene + " --seed 5 --crop ", 0), 0u)
+        << c;
   }
-  EXPECT_EQ(merge.rfind(std::string(ARBOR_BINARY) + " merge -o " + dir + "out.exr ", 0), 0u) << merge;
+  EXPECT_EQ(merge.rfind(std::string(ARBOR_BINARY) + " merge -o " + dir + "out.exr ", 0), 0u)
+      << merge;
   // Any order: shuffled, from another working directory.
   std::mt19937 rng(7);
   std::shuffle(commands.begin(), commands.end(), rng);
@@ -69,16 +77,19 @@ TEST(Plan, UnitsInAnyOrderMergeIntoTheSingleRenderBitForBit) {
   ASSERT_EQ(run_line(merge), 0) << merge;
   ASSERT_EQ(run_arbor("render " + scene + " --seed 5 -o " + dir + "single.exr").code, 0);
   int channels = 0;
-  const std::vector<float> merged = pixels(dir + "out.exr", &channels), single = pixels(dir + "single.exr");
+  const std::vector<float> merged = pixels(dir + "out.exr", &channels),
+                           single = pixels(dir + "single.exr");
   ASSERT_EQ(merged.size(), 40u * 30u * static_cast<unsigned>(channels));
   ASSERT_EQ(merged.size(), single.size());
   EXPECT_EQ(std::memcmp(merged.data(), single.data(), merged.size() * sizeof(float)), 0);
 
   // The same plan as JSON: every unit with its tile, window, passes, output and argv.
-  const CliRun json = run_arbor("plan " + scene + " --tiles 2x2 --pass-groups 2 --seed 5 -o " + dir + "out.exr --json");
+  const CliRun json = run_arbor("plan " + scene + " --tiles 2x2 --pass-groups 2 --seed 5 -o " +
+                                dir + "out.exr --json");
   ASSERT_EQ(json.code, 0) << json.err;
   EXPECT_NE(json.out.find("\"units\": ["), std::string::npos);
-  EXPECT_NE(json.out.find("\"crop\": [20, 15, 40, 30], \"passes\": [2, 4]"), std::string::npos) << json.out;
+  EXPECT_NE(json.out.find("\"crop\": [20, 15, 40, 30], \"passes\": [2, 4]"), std::string::npos)
+      << json.out;
   EXPECT_NE(json.out.find("\"shell\": " + std::string("\"") + merge + "\""), std::string::npos);
 }
 
@@ -86,7 +97,8 @@ TEST(Plan, MergeNamesEveryMissingAndStoppedUnit) {
   const std::string dir = ::testing::TempDir() + "plan_faults/";
   std::system(("rm -rf " + dir).c_str());
   const std::string scene = plan_scene("plan_faults.toml");
-  const CliRun plan = run_arbor("plan " + scene + " --tiles 3x1 --pass-groups 1 -o " + dir + "out.exr");
+  const CliRun plan =
+      run_arbor("plan " + scene + " --tiles 3x1 --pass-groups 1 -o " + dir + "out.exr");
   ASSERT_EQ(plan.code, 0) << plan.err;
   const std::vector<std::string> commands = lines(plan.out);
   ASSERT_EQ(commands.size(), 4u);
@@ -94,12 +106,15 @@ TEST(Plan, MergeNamesEveryMissingAndStoppedUnit) {
   // unit 2 never runs.
   ASSERT_EQ(run_line(commands[0]), 0);
   ASSERT_EQ(run_line(commands[1] + " --time-limit 0.000001"), 0);
-  const std::string part1 = dir + "out.parts/tile-1-0.passes-0-4.exr", part2 = dir + "out.parts/tile-2-0.passes-0-4.exr";
+  const std::string part1 = dir + "out.parts/tile-1-0.passes-0-4.exr",
+                    part2 = dir + "out.parts/tile-2-0.passes-0-4.exr";
   const CliRun merge = run_arbor(commands[3].substr(commands[3].find(" merge ") + 1));
   EXPECT_EQ(merge.code, 2);
   EXPECT_NE(merge.err.find("2 of the 3 parts cannot be merged"), std::string::npos) << merge.err;
   EXPECT_NE(merge.err.find("missing: " + part2), std::string::npos) << merge.err;
-  EXPECT_NE(merge.err.find("incomplete: " + part1 + " (holds pass 0 of its passes 0 to 3)"), std::string::npos) << merge.err;
+  EXPECT_NE(merge.err.find("incomplete: " + part1 + " (holds pass 0 of its passes 0 to 3)"),
+            std::string::npos)
+      << merge.err;
   EXPECT_FALSE(exists(dir + "out.exr"));
   // Re-running only those two completes the job.
   ASSERT_EQ(run_line(commands[1]), 0);
@@ -112,8 +127,10 @@ TEST(Plan, FramesRenderTheAnimationsClockAndMergeOnePerFrame) {
   const std::string dir = ::testing::TempDir() + "plan_frames/";
   std::system(("rm -rf " + dir).c_str());
   // One seed for every frame: what differs between frames is the clock (the aspen's sway).
-  const std::string scene = plan_scene("plan_frames.toml", "[animation]\nframes = 4\nfps = 2.0\npin_seed = true\n");
-  const CliRun plan = run_arbor("plan " + scene + " --tiles 1x2 --frames 1:3 --spp 4 -o " + dir + "f.####.exr");
+  const std::string scene =
+      plan_scene("plan_frames.toml", "[animation]\nframes = 4\nfps = 2.0\npin_seed = true\n");
+  const CliRun plan =
+      run_arbor("plan " + scene + " --tiles 1x2 --frames 1:3 --spp 4 -o " + dir + "f.####.exr");
   ASSERT_EQ(plan.code, 0) << plan.err;
   const std::vector<std::string> commands = lines(plan.out);
   ASSERT_EQ(commands.size(), 6u);  // 2 frames × 2 tiles, then 2 merges
@@ -123,7 +140,8 @@ TEST(Plan, FramesRenderTheAnimationsClockAndMergeOnePerFrame) {
   EXPECT_NE(commands[5].find("merge -o " + dir + "f.0002.exr"), std::string::npos) << commands[5];
   for (const std::string& c : commands) ASSERT_EQ(run_line(c), 0) << c;
   // Frame 2 merged = frame 2 rendered alone; frame 1 differs (another clock).
-  ASSERT_EQ(run_arbor("render " + scene + " --frame 2 --spp 4 -o " + dir + "alone.####.exr").code, 0);
+  ASSERT_EQ(run_arbor("render " + scene + " --frame 2 --spp 4 -o " + dir + "alone.####.exr").code,
+            0);
   const std::vector<float> f1 = pixels(dir + "f.0001.exr"), f2 = pixels(dir + "f.0002.exr"),
                            alone = pixels(dir + "alone.0002.exr");
   ASSERT_EQ(f2.size(), alone.size());
@@ -146,5 +164,6 @@ TEST(Plan, FramesRenderTheAnimationsClockAndMergeOnePerFrame) {
   EXPECT_NE(no_frame.err.find("give --frame N"), std::string::npos) << no_frame.err;
   const CliRun outside = run_arbor("render " + scene + " --frame 4 -o " + dir + "h.exr");
   EXPECT_EQ(outside.code, 2);
-  EXPECT_NE(outside.err.find("outside the animation's frames 0 to 3"), std::string::npos) << outside.err;
+  EXPECT_NE(outside.err.find("outside the animation's frames 0 to 3"), std::string::npos)
+      << outside.err;
 }

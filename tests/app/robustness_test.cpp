@@ -14,7 +14,9 @@
 // Named before app/cli.h declares its function run_arbor(), which hides the namespace.
 using arbor::testing::files_in;
 namespace {
-std::string fresh_folder(const std::string& name) { return arbor::testing::fresh_folder("robust_" + name); }
+std::string fresh_folder(const std::string& name) {
+  return arbor::testing::fresh_folder("robust_" + name);
+}
 }  // namespace
 
 #include "app/cli.h"
@@ -46,7 +48,8 @@ TEST(Robustness, FailedPngWriteKeepsTheOldFile) {
   const std::string a = noisy_exr(dir + "/a.exr", 1), b = noisy_exr(dir + "/b.exr", 2);
   const std::string heat = dir + "/heat.png";
   write_temp("robust_png_limit/heat.png", "the old picture");
-  const CliRun r = run_arbor_with("trap '' XFSZ; ulimit -f 8;", "compare " + a + " " + b + " --heatmap " + heat);
+  const CliRun r =
+      run_arbor_with("trap '' XFSZ; ulimit -f 8;", "compare " + a + " " + b + " --heatmap " + heat);
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_NE(r.err.find("cannot write " + heat), std::string::npos) << r.err;
   EXPECT_EQ(slurp(heat), "the old picture");
@@ -62,7 +65,8 @@ TEST(Robustness, OutputsNeverOverwriteInputsHoweverSpelled) {
   const std::string a = noisy_exr(dir + "/a.exr", 1), b = noisy_exr(dir + "/b.exr", 2);
   ASSERT_EQ(symlink("a.exr", (dir + "/link.exr").c_str()), 0);
   const std::string before = slurp(a);
-  for (const std::string& out : {dir + "/./a.exr", dir + "/../robust_overwrite/a.exr", dir + "/link.exr"}) {
+  for (const std::string& out :
+       {dir + "/./a.exr", dir + "/../robust_overwrite/a.exr", dir + "/link.exr"}) {
     const CliRun r = run_arbor("compare " + a + " " + b + " --heatmap " + out);
     EXPECT_EQ(r.code, 2) << out;
     EXPECT_NE(r.err.find("would overwrite the input"), std::string::npos) << r.err;
@@ -71,8 +75,8 @@ TEST(Robustness, OutputsNeverOverwriteInputsHoweverSpelled) {
   }
   EXPECT_EQ(slurp(a), before);
   // Both pictures to one file is refused too.
-  const CliRun both = run_arbor("compare " + a + " " + b + " --heatmap " + dir + "/x.png --side-by-side " +
-                            dir + "/./x.png");
+  const CliRun both = run_arbor("compare " + a + " " + b + " --heatmap " + dir +
+                                "/x.png --side-by-side " + dir + "/./x.png");
   EXPECT_EQ(both.code, 2) << both.err;
   // A render whose output is one of the scene's inputs (here its environment map).
   const std::string scene = write_temp(
@@ -84,7 +88,8 @@ TEST(Robustness, OutputsNeverOverwriteInputsHoweverSpelled) {
   EXPECT_EQ(slurp(a), before);
   // grow -o onto its own species file.
   const std::string sp = dir + "/tree.skel";
-  ASSERT_EQ(std::system(("cp " + std::string(ARBOR_SOURCE_DIR) + "/species/*.skel " + sp).c_str()), 0);
+  ASSERT_EQ(std::system(("cp " + std::string(ARBOR_SOURCE_DIR) + "/species/*.skel " + sp).c_str()),
+            0);
   const std::string skel = slurp(sp);
   const CliRun g = run_arbor("grow " + sp + " -o " + dir + "/./tree.skel");
   EXPECT_EQ(g.code, 2) << g.err;
@@ -113,18 +118,22 @@ TEST(Robustness, CommandLineNumbersAreCheckedStrictly) {
   const std::string skel = species("young_tree.skel");
   const std::string scene = std::string(ARBOR_SOURCE_DIR) + "/scenes/default.toml";
   for (const std::string& args :
-       {"grow " + skel + " --seed 18446744073709551616", "grow " + skel + " --seed 99999999999999999999999",
-        "grow " + skel + " --seed -1", "grow " + skel + " --seed 1e3", "grow " + skel + " --time nan",
-        "grow " + skel + " --time inf", "grow " + skel + " --time 1e308", "grow " + skel + " --quality nan",
-        "grow " + skel + " --quality 0", "render " + scene + " --time nan -o x.exr",
-        "render " + scene + " --time inf -o x.exr", "render " + scene + " --time 1e308 -o x.exr",
-        "render " + scene + " --seed 18446744073709551616 -o x.exr", "render " + scene + " --spp 0 -o x.exr",
-        "render " + scene + " --width -5 -o x.exr", "render " + scene + " --threads nan -o x.exr"}) {
+       {"grow " + skel + " --seed 18446744073709551616",
+        "grow " + skel + " --seed 99999999999999999999999", "grow " + skel + " --seed -1",
+        "grow " + skel + " --seed 1e3", "grow " + skel + " --time nan",
+        "grow " + skel + " --time inf", "grow " + skel + " --time 1e308",
+        "grow " + skel + " --quality nan", "grow " + skel + " --quality 0",
+        "render " + scene + " --time nan -o x.exr", "render " + scene + " --time inf -o x.exr",
+        "render " + scene + " --time 1e308 -o x.exr",
+        "render " + scene + " --seed 18446744073709551616 -o x.exr",
+        "render " + scene + " --spp 0 -o x.exr", "render " + scene + " --width -5 -o x.exr",
+        "render " + scene + " --threads nan -o x.exr"}) {
     const CliRun r = run_arbor(args);
     EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
   }
   // The largest seed is a seed like any other, and it differs from its neighbour.
-  const CliRun top = run_arbor("grow " + species("lsystem_weed.lsys") + " --seed 18446744073709551615 --stats --json");
+  const CliRun top = run_arbor("grow " + species("lsystem_weed.lsys") +
+                               " --seed 18446744073709551615 --stats --json");
   EXPECT_EQ(top.code, 0) << top.err;
   EXPECT_NE(top.out.find("\"seed\": 18446744073709551615"), std::string::npos) << top.out;
 }
@@ -133,10 +142,12 @@ TEST(Robustness, CommandLineNumbersAreCheckedStrictly) {
 // --force), instead of exhausting the machine's memory. (The largest forest, which fits in this
 // machine's 24 GB but not in the report's 8 GB, is tested with that limit in render_budget_test.)
 TEST(Robustness, AbsurdRendersAreRefusedUpFront) {
-  const std::string image = write_temp("robust_image.toml", "[render]\nwidth = 16384\nheight = 16384\nspp = 1\n");
+  const std::string image =
+      write_temp("robust_image.toml", "[render]\nwidth = 16384\nheight = 16384\nspp = 1\n");
   const CliRun big = run_arbor("render " + image + " -o " + ::testing::TempDir() + "big.exr");
   EXPECT_EQ(big.code, 2) << big.err;
-  EXPECT_NE(big.err.find(image + ": error: the render would need about"), std::string::npos) << big.err;
+  EXPECT_NE(big.err.find(image + ": error: the render would need about"), std::string::npos)
+      << big.err;
   EXPECT_NE(big.err.find("16384x16384"), std::string::npos) << big.err;
   EXPECT_NE(big.err.find("--force"), std::string::npos) << big.err;
   EXPECT_FALSE(exists(::testing::TempDir() + "big.exr"));
@@ -155,8 +166,8 @@ TEST(Robustness, AnInterruptedRenderLeavesNothingBehind) {
       signal(SIGINT, SIG_DFL);
       if (chdir(dir.c_str()) != 0) _exit(3);
       if (!freopen("/dev/null", "w", stderr)) _exit(3);
-      execl(ARBOR_BINARY, ARBOR_BINARY, "render", scene.c_str(), "--spp", "4096", "-o", "out.exr", "--png",
-            "out.png", static_cast<char*>(nullptr));
+      execl(ARBOR_BINARY, ARBOR_BINARY, "render", scene.c_str(), "--spp", "4096", "-o", "out.exr",
+            "--png", "out.png", static_cast<char*>(nullptr));
       _exit(3);
     }
     sleep(1);

@@ -23,7 +23,9 @@
 namespace arbor {
 namespace {
 
-std::string fresh_folder(const std::string& name) { return testing::fresh_folder("atomic_" + name); }
+std::string fresh_folder(const std::string& name) {
+  return testing::fresh_folder("atomic_" + name);
+}
 using testing::files_in;
 
 std::string read(const std::string& path) {
@@ -97,7 +99,8 @@ TEST(AtomicFile, TemporariesOfKilledWritersAreRemovedByTheNextWriter) {
   char host[256] = {};
   ASSERT_EQ(gethostname(host, sizeof host - 1), 0);
   std::string tag;
-  for (const char* c = host; *c && *c != '.'; ++c) tag += std::isalnum(static_cast<unsigned char>(*c)) || *c == '-' ? *c : '-';
+  for (const char* c = host; *c && *c != '.'; ++c)
+    tag += std::isalnum(static_cast<unsigned char>(*c)) || *c == '-' ? *c : '-';
   // A process that has ended (its pid is free), one that lives (our parent), and a writer on
   // another machine sharing the folder.
   const pid_t child = fork();
@@ -106,7 +109,8 @@ TEST(AtomicFile, TemporariesOfKilledWritersAreRemovedByTheNextWriter) {
   const std::string dead = dir + "/.out.exr.tmp-" + tag + "-" + std::to_string(child) + ".exr";
   const std::string alive = dir + "/.out.exr.tmp-" + tag + "-" + std::to_string(getppid()) + ".exr";
   const std::string elsewhere = dir + "/.out.exr.tmp-otherhost-" + std::to_string(child) + ".exr";
-  const std::string other_file = dir + "/.other.exr.tmp-" + tag + "-" + std::to_string(child) + ".exr";
+  const std::string other_file =
+      dir + "/.other.exr.tmp-" + tag + "-" + std::to_string(child) + ".exr";
   for (const std::string& f : {dead, alive, elsewhere, other_file}) std::ofstream(f) << "partial";
   AtomicFile file(dir + "/out.exr");
   file.write("whole");

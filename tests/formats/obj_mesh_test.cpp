@@ -24,10 +24,11 @@ void expect_error(const std::string& text, int line, int column, const std::stri
 const char* const kQuad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
 
 TEST(ObjMesh, ReadsFacesGroupsAndMaterials) {
-  const ObjMesh m = parse_obj(std::string("# a quad and a triangle\nmtllib x.mtl\n") + kQuad +
-                                  "vt 0 0\nvt 1 0 0\nvn 0 0 1\ng floor\ns off\nf 1/1/1 2/2/1 3//1 4\n"
-                                  "usemtl bark\nf -4 -3 -1\n",
-                              "m.obj");
+  const ObjMesh m =
+      parse_obj(std::string("# a quad and a triangle\nmtllib x.mtl\n") + kQuad +
+                    "vt 0 0\nvt 1 0 0\nvn 0 0 1\ng floor\ns off\nf 1/1/1 2/2/1 3//1 4\n"
+                    "usemtl bark\nf -4 -3 -1\n",
+                "m.obj");
   ASSERT_EQ(m.positions.size(), 4u);
   EXPECT_EQ(m.positions[2], glm::vec3(1, 1, 0));
   ASSERT_EQ(m.indices, (std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3, 0, 1, 3}));
@@ -70,7 +71,8 @@ TEST(ObjMesh, BadNumbersAndIndicesAreRefusedWithTheirPosition) {
   expect_error(q + "f 1 2 -5\n", 5, 7, "only 4 are defined");
   expect_error(q + "f 1 2 12345678901234567890\n", 5, 7, "not a vertex index");
   expect_error(q + "f 1 2 3x\n", 5, 7, "not a vertex index");
-  expect_error(q + "vt 0 0\nf 1/1 2/2 3/1\n", 6, 9, "refers to texture coordinate 2, but the file defines 1");
+  expect_error(q + "vt 0 0\nf 1/1 2/2 3/1\n", 6, 9,
+               "refers to texture coordinate 2, but the file defines 1");
   expect_error(q + "vn 0 0 1\nf 1//1 2//1 3//-2\n", 6, 16, "refers to normal -2");
   expect_error(q + "f 1/1/1/1 2 3\n", 5, 3, "more than v/vt/vn");
   expect_error(q + "f 1 2\n", 5, 1, "at least three vertices");
@@ -96,15 +98,17 @@ TEST(ObjMesh, HugePolygonsAreFannedInLinearTime) {
 // What arbor exports, arbor reads back: the same vertices and triangles.
 TEST(ObjMesh, ReadsArborsOwnExport) {
   const gen::Species s = gen::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/dogwood.tmpl");
-  const gen::TreeMesh tree = gen::tessellate(
-      gen::build_tree_geometry(gen::grow_tree(s, gen::GrowOptions{}), gen::geometry_options_for(s)));
+  const gen::TreeMesh tree = gen::tessellate(gen::build_tree_geometry(
+      gen::grow_tree(s, gen::GrowOptions{}), gen::geometry_options_for(s)));
   const std::string path = ::testing::TempDir() + "export_roundtrip.obj";
   gen::write_obj(tree, path, {s.name, s.bark, s.leaf});
   const ObjMesh m = load_obj(path);
   ASSERT_EQ(m.positions.size(), tree.positions.size());
   EXPECT_EQ(m.indices, tree.indices);
   for (std::size_t i = 0; i < m.positions.size(); ++i) {
-    ASSERT_NEAR(m.positions[i].x, tree.positions[i].x, 1e-5f * (1.0f + std::fabs(tree.positions[i].x))) << i;
+    ASSERT_NEAR(m.positions[i].x, tree.positions[i].x,
+                1e-5f * (1.0f + std::fabs(tree.positions[i].x)))
+        << i;
   }
   EXPECT_EQ(m.parts.front().group, "bark");
   EXPECT_EQ(m.parts.back().group, "leaf");

@@ -13,7 +13,8 @@ namespace arbor::trace {
 namespace {
 
 void expect_error(const std::string& text, int line, int column, const std::string& fragment) {
-  testing::expect_input_error([&] { parse_scene(text, "dir/s.toml"); }, "dir/s.toml", line, column, fragment);
+  testing::expect_input_error([&] { parse_scene(text, "dir/s.toml"); }, "dir/s.toml", line, column,
+                              fragment);
 }
 
 }  // namespace
@@ -84,7 +85,8 @@ display = "sRGB"
 view = "Un-tone-mapped"
 aovs = ["albedo", "variance"]
 pixel_type = "float"
-)", "dir/s.toml");
+)",
+                                  "dir/s.toml");
   EXPECT_EQ(s.render.width, 320);
   EXPECT_EQ(s.render.seed, 9u);
   EXPECT_DOUBLE_EQ(s.camera.focus_distance, 4.0);
@@ -108,7 +110,8 @@ pixel_type = "float"
 }
 
 TEST(SceneFile, FocusDistanceDefaultsToTheLookAtPoint) {
-  const SceneDesc s = parse_scene("[camera]\nposition = [0.0, 0.0, 0.0]\nlook_at = [3.0, 4.0, 0.0]\n", "s.toml");
+  const SceneDesc s =
+      parse_scene("[camera]\nposition = [0.0, 0.0, 0.0]\nlook_at = [3.0, 4.0, 0.0]\n", "s.toml");
   EXPECT_DOUBLE_EQ(s.camera.focus_distance, 5.0);
 }
 
@@ -127,7 +130,8 @@ species = "b.toml"
 lambert = 1.5
 [output]
 aovs = ["treemaker", "albedo"]
-)", "dir/s.toml");
+)",
+                                  "dir/s.toml");
   EXPECT_EQ(s.render.integrator, Integrator::Treemaker);
   EXPECT_EQ(s.render.treemaker_spp, 2);
   EXPECT_EQ(s.render.spp, 64);  // the path integrator's count is separate
@@ -140,7 +144,8 @@ aovs = ["treemaker", "albedo"]
                "unknown key 'shadow' in [tree.treemaker]");
   expect_error("[[tree]]\nspecies = \"a.toml\"\n[tree.treemaker]\nheight = -0.1\n", 4, 10,
                "tree.treemaker.height = -0.100000 is out of range [0.000000, 10.000000]");
-  expect_error("[[forest]]\nspecies = \"a.toml\"\n[forest.treemaker]\nradius = nan\n", 4, 10, "finite");
+  expect_error("[[forest]]\nspecies = \"a.toml\"\n[forest.treemaker]\nradius = nan\n", 4, 10,
+               "finite");
   expect_error("[render]\ntreemaker_spp = 0\n", 2, 17, "render.treemaker_spp");
 }
 
@@ -148,7 +153,8 @@ TEST(SceneFile, UnknownKeysAndTablesAreErrors) {
   expect_error("[camera]\nzoom = 2\n", 2, 1, "unknown key 'zoom' in [camera]");
   expect_error("[lights]\n", 1, 2, "unknown table or key 'lights'");
   expect_error("[[tree]]\nspecies = \"a.toml\"\ncolour = 1\n", 3, 1, "unknown key 'colour'");
-  expect_error("[[tree]]\nspecies = \"a.toml\"\n[tree.bark]\nshine = 1\n", 4, 1, "unknown key 'shine' in [tree.bark]");
+  expect_error("[[tree]]\nspecies = \"a.toml\"\n[tree.bark]\nshine = 1\n", 4, 1,
+               "unknown key 'shine' in [tree.bark]");
 }
 
 TEST(SceneFile, ValuesAreRangeAndTypeChecked) {
@@ -164,7 +170,8 @@ TEST(SceneFile, ValuesAreRangeAndTypeChecked) {
   expect_error("[ground]\npatch_cover = 1.5\n", 2, 15, "ground.patch_cover");
   expect_error("[ground]\npatch_scale = 0\n", 2, 15, "ground.patch_scale");
   expect_error("[ground]\npatch_albedo = [0.1, 0.1]\n", 2, 16, "ground.patch_albedo");
-  expect_error("[[tree]]\nspecies = \"a.toml\"\n[tree.leaf]\ncuticle_ior = 0.5\n", 4, 15, "tree.leaf.cuticle_ior");
+  expect_error("[[tree]]\nspecies = \"a.toml\"\n[tree.leaf]\ncuticle_ior = 0.5\n", 4, 15,
+               "tree.leaf.cuticle_ior");
   expect_error("[[forest]]\nspecies = \"a.toml\"\n[forest.leaf]\ncuticle_roughness = -0.1\n", 4, 21,
                "forest.leaf.cuticle_roughness");
   expect_error("[output]\naovs = [\"albedo\", \"motion\"]\n", 2, 19, "output.aovs");
@@ -173,10 +180,15 @@ TEST(SceneFile, ValuesAreRangeAndTypeChecked) {
 TEST(SceneFile, StructuralRulesAreChecked) {
   expect_error("[sky]\nmodel = \"envmap\"\n", 1, 1, "needs sky.path");
   expect_error("[[tree]]\nseed = 3\n", 1, 1, "needs a species");
-  expect_error("[[forest]]\nspecies = \"a.toml\"\narea = [[5.0, 5.0], [-5.0, -5.0]]\n", 3, 8, "smaller corner");
-  expect_error("[[forest]]\nspecies = \"a.toml\"\ncount = 2\nvariants = 3\n", 1, 1, "must not exceed");
-  expect_error("[[mesh]]\npath = \"m.obj\"\n[mesh.material.x]\nkind = \"leaf\"\nreflectance = [0.6, 0.6, 0.6]\n"
-               "transmittance = [0.6, 0.6, 0.6]\n", 3, 1, "at most 1");
+  expect_error("[[forest]]\nspecies = \"a.toml\"\narea = [[5.0, 5.0], [-5.0, -5.0]]\n", 3, 8,
+               "smaller corner");
+  expect_error("[[forest]]\nspecies = \"a.toml\"\ncount = 2\nvariants = 3\n", 1, 1,
+               "must not exceed");
+  expect_error(
+      "[[mesh]]\npath = \"m.obj\"\n[mesh.material.x]\nkind = \"leaf\"\nreflectance = [0.6, 0.6, "
+      "0.6]\n"
+      "transmittance = [0.6, 0.6, 0.6]\n",
+      3, 1, "at most 1");
   expect_error("tree = 3\n", 1, 8, "array of tables");
   expect_error("[render\n", 1, 8, "");
 }
@@ -190,9 +202,11 @@ namespace arbor::trace {
 TEST(SceneFile, CameraAndOutputErrorsAreFoundWithTheirKey) {
   expect_error("[camera]\nposition = [1.0, 2.0, 3.0]\nlook_at = [1.0, 2.0, 3.0]\n", 3, 11,
                "camera.look_at must differ from camera.position");
-  expect_error("[camera]\nposition = [0.0, 0.0, 6.0]\n", 2, 12, "must differ");  // the default look_at
-  expect_error("[camera]\nposition = [0.0, 0.0, 1.0]\nlook_at = [0.0, 0.0, 5.0]\nup = [0.0, 0.0, 2.0]\n", 4,
-               6, "camera.up must not be parallel");
+  expect_error("[camera]\nposition = [0.0, 0.0, 6.0]\n", 2, 12,
+               "must differ");  // the default look_at
+  expect_error(
+      "[camera]\nposition = [0.0, 0.0, 1.0]\nlook_at = [0.0, 0.0, 5.0]\nup = [0.0, 0.0, 2.0]\n", 4,
+      6, "camera.up must not be parallel");
   expect_error("[camera]\nup = [0.0, 0.0, 0.0]\n", 2, 6, "camera.up must not be parallel");
   expect_error("[output]\nexr = \"out/a.png\"\n", 2, 7, "output.exr must name a .exr file");
   expect_error("[output]\npng = \"out/a.exr\"\n", 2, 7, "output.png must name a .png file");

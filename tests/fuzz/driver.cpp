@@ -66,13 +66,70 @@ struct Random {
 };
 
 // Tokens that reach the parsers' edges: structure, extreme numbers, separators.
-const char* const kTokens[] = {
-    "[", "]", "[[", "]]", "{", "}", "(", ")", "=", ";", ":", ",", "\"", "'", "<", ">", "/>", "</",
-    "#", "\n", " ", "\t", "\0", "nan", "inf", "-inf", "1e308", "1e309", "-1", "0", "-0", "0.0",
-    "4294967296", "18446744073709551616", "99999999999999999999999", "1e-320", ".", "..", "-",
-    "f", "v", "vt", "vn", "f 1 2 3", "point", "connect", "branch", "stem", "leaf", "on", "true",
-    "false", "[[tree]]", "[[forest]]", "[output]", "[camera]", "species = ", "model = \"fractal\"",
-    "<param name='Levels' value='3'/>", "iterations", "level=", "number=", "A:", "B(2):"};
+const char* const kTokens[] = {"[",
+                               "]",
+                               "[[",
+                               "]]",
+                               "{",
+                               "}",
+                               "(",
+                               ")",
+                               "=",
+                               ";",
+                               ":",
+                               ",",
+                               "\"",
+                               "'",
+                               "<",
+                               ">",
+                               "/>",
+                               "</",
+                               "#",
+                               "\n",
+                               " ",
+                               "\t",
+                               "\0",
+                               "nan",
+                               "inf",
+                               "-inf",
+                               "1e308",
+                               "1e309",
+                               "-1",
+                               "0",
+                               "-0",
+                               "0.0",
+                               "4294967296",
+                               "18446744073709551616",
+                               "99999999999999999999999",
+                               "1e-320",
+                               ".",
+                               "..",
+                               "-",
+                               "f",
+                               "v",
+                               "vt",
+                               "vn",
+                               "f 1 2 3",
+                               "point",
+                               "connect",
+                               "branch",
+                               "stem",
+                               "leaf",
+                               "on",
+                               "true",
+                               "false",
+                               "[[tree]]",
+                               "[[forest]]",
+                               "[output]",
+                               "[camera]",
+                               "species = ",
+                               "model = \"fractal\"",
+                               "<param name='Levels' value='3'/>",
+                               "iterations",
+                               "level=",
+                               "number=",
+                               "A:",
+                               "B(2):"};
 
 std::string mutate(const std::vector<std::string>& corpus, Random& rng) {
   std::string s = corpus[rng.below(corpus.size())];
@@ -103,7 +160,8 @@ std::string mutate(const std::vector<std::string>& corpus, Random& rng) {
         const std::size_t d = s.find_first_of("0123456789", at);
         if (d == std::string::npos) break;
         const std::size_t e = s.find_first_not_of("0123456789.", d);
-        const char* extremes[] = {"nan", "1e309", "-1", "0", "99999999999999999999999", "1e-320", "4294967295"};
+        const char* extremes[] = {"nan",    "1e309",     "-1", "0", "99999999999999999999999",
+                                  "1e-320", "4294967295"};
         s.replace(d, (e == std::string::npos ? s.size() : e) - d, extremes[rng.below(7)]);
         break;
       }
@@ -161,7 +219,8 @@ bool run_one(const std::string& input) {
     LLVMFuzzerTestOneInput(reinterpret_cast<const std::uint8_t*>(input.data()), input.size());
   } catch (const std::exception& e) {
     save_current();
-    std::fprintf(stderr, "fuzz: an exception escaped the target (%s); saved as %s\n", e.what(), g_finding_path);
+    std::fprintf(stderr, "fuzz: an exception escaped the target (%s); saved as %s\n", e.what(),
+                 g_finding_path);
     return false;
   } catch (...) {
     save_current();
@@ -183,24 +242,30 @@ int main(int argc, char** argv) {
   name = name.substr(name.find_last_of('/') + 1);
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--seconds" && i + 1 < argc) seconds = std::atof(argv[++i]);
-    else if (a == "--seed" && i + 1 < argc) seed = std::strtoull(argv[++i], nullptr, 10);
-    else if (a == "--timeout" && i + 1 < argc) timeout = static_cast<unsigned>(std::atoi(argv[++i]));
-    else add_path(a, corpus);
+    if (a == "--seconds" && i + 1 < argc)
+      seconds = std::atof(argv[++i]);
+    else if (a == "--seed" && i + 1 < argc)
+      seed = std::strtoull(argv[++i], nullptr, 10);
+    else if (a == "--timeout" && i + 1 < argc)
+      timeout = static_cast<unsigned>(std::atoi(argv[++i]));
+    else
+      add_path(a, corpus);
   }
   if (corpus.empty()) {
-    std::fprintf(stderr, "usage: %s [--seconds S] [--seed K] [--timeout T] CORPUS...\n", name.c_str());
+    std::fprintf(stderr, "usage: %s [--seconds S] [--seed K] [--timeout T] CORPUS...\n",
+                 name.c_str());
     return 2;
   }
   std::snprintf(g_finding_path, sizeof g_finding_path, "fuzz-%s-finding", name.c_str());
-  for (const int sig : {SIGSEGV, SIGABRT, SIGBUS, SIGFPE, SIGILL, SIGALRM}) signal(sig, on_fatal_signal);
+  for (const int sig : {SIGSEGV, SIGABRT, SIGBUS, SIGFPE, SIGILL, SIGALRM})
+    signal(sig, on_fatal_signal);
   // The stack of a crash by overflow needs a stack of its own to run the handler on.
   static char alternate[1 << 16];
   stack_t ss{};
   ss.ss_sp = alternate;
   ss.ss_size = sizeof alternate;
   sigaltstack(&ss, nullptr);
-  struct sigaction sa{};
+  struct sigaction sa {};
   sa.sa_handler = on_fatal_signal;
   sa.sa_flags = SA_ONSTACK;
   sigaction(SIGSEGV, &sa, nullptr);
@@ -213,7 +278,9 @@ int main(int argc, char** argv) {
     if (!run_one(input)) return 1;
     ++runs;
   }
-  const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  const auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
   while (elapsed() < seconds) {
     const std::string input = mutate(corpus, rng);
     alarm(timeout);
@@ -221,7 +288,8 @@ int main(int argc, char** argv) {
     ++runs;
   }
   alarm(0);
-  std::printf("fuzz %s: %llu executions in %.1f s (%zu corpus files, seed %llu), no findings\n", name.c_str(),
-              static_cast<unsigned long long>(runs), elapsed(), corpus.size(), static_cast<unsigned long long>(seed));
+  std::printf("fuzz %s: %llu executions in %.1f s (%zu corpus files, seed %llu), no findings\n",
+              name.c_str(), static_cast<unsigned long long>(runs), elapsed(), corpus.size(),
+              static_cast<unsigned long long>(seed));
   return 0;
 }

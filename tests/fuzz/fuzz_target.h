@@ -28,7 +28,9 @@ inline void require(bool ok, const char* what) {
   }
 }
 
-inline bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+inline bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 inline bool finite(const glm::vec4& v) { return finite(glm::vec3(v)) && std::isfinite(v.w); }
 
 // A grown or read tree must be valid, and small ones must turn into finite geometry.
@@ -56,13 +58,13 @@ inline void grow_and_check(const gen::Species& species) {
 }  // namespace arbor::fuzz
 
 // Defines the libFuzzer entry point around BODY, which reads `text`.
-#define ARBOR_FUZZ_TARGET(BODY)                                                  \
+#define ARBOR_FUZZ_TARGET(BODY)                                                       \
   extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) { \
-    const std::string text(reinterpret_cast<const char*>(data), size);          \
-    try {                                                                        \
-      BODY                                                                       \
-    } catch (const ::arbor::InputError&) {                                       \
-    } catch (const ::arbor::RuntimeFailure&) {                                   \
-    }                                                                            \
-    return 0;                                                                    \
+    const std::string text(reinterpret_cast<const char*>(data), size);                \
+    try {                                                                             \
+      BODY                                                                            \
+    } catch (const ::arbor::InputError&) {                                            \
+    } catch (const ::arbor::RuntimeFailure&) {                                        \
+    }                                                                                 \
+    return 0;                                                                         \
   }

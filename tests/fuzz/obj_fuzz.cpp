@@ -4,7 +4,9 @@
 
 ARBOR_FUZZ_TARGET({
   const arbor::trace::ObjMesh m = arbor::trace::parse_obj(text, "fuzz.obj");
-  for (const std::uint32_t i : m.indices) arbor::fuzz::require(i < m.positions.size(), "indices name vertices");
-  for (const glm::vec3& p : m.positions) arbor::fuzz::require(arbor::fuzz::finite(p), "positions are finite");
+  for (const std::uint32_t i : m.indices)
+    arbor::fuzz::require(i < m.positions.size(), "indices name vertices");
+  for (const glm::vec3& p : m.positions)
+    arbor::fuzz::require(arbor::fuzz::finite(p), "positions are finite");
   arbor::fuzz::require(m.part.size() * 3 == m.indices.size(), "one part per triangle");
 })

@@ -1,4 +1,5 @@
-// Fuzz target: scene files (TOML), read and validated (the OCIO names are checked later, by imaging/).
+// Fuzz target: scene files (TOML), read and validated (the OCIO names are checked later, by
+// imaging/).
 #include "fuzz_target.h"
 #include "formats/scene_desc.h"
 

@@ -54,7 +54,8 @@ TEST(Fractal, GrowthIsLogarithmicAsTheThesisStates) {
   EXPECT_DOUBLE_EQ(fractal_growth(0.0, 4.0), 0.0);
   EXPECT_DOUBLE_EQ(fractal_growth(1.0, 4.0), 0.25);
   // Continuous and increasing.
-  for (double a = 0.1; a < 30.0; a += 0.1) EXPECT_LT(fractal_growth(a, 4.0), fractal_growth(a + 0.1, 4.0));
+  for (double a = 0.1; a < 30.0; a += 0.1)
+    EXPECT_LT(fractal_growth(a, 4.0), fractal_growth(a + 0.1, 4.0));
 }
 
 TEST(Fractal, BasicModelIsExactlySelfSimilar) {
@@ -70,10 +71,12 @@ TEST(Fractal, BasicModelIsExactlySelfSimilar) {
     if (s.parent < 0) continue;
     const Stem& p = sk.stems[static_cast<size_t>(s.parent)];
     EXPECT_EQ(s.parent_point, static_cast<int>(p.point_count) - 1);
-    const double angle = std::acos(glm::dot(direction(sk, s), direction(sk, p))) * 180.0 / 3.14159265358979;
+    const double angle =
+        std::acos(glm::dot(direction(sk, s), direction(sk, p))) * 180.0 / 3.14159265358979;
     EXPECT_NEAR(angle, 30.0, 1e-3);
     EXPECT_NEAR(s.length, 0.5 * p.length, 1e-5);
-    EXPECT_NEAR(sk.points[s.first_point].radius, sk.points[p.first_point + p.point_count - 1].radius, 1e-6);
+    EXPECT_NEAR(sk.points[s.first_point].radius,
+                sk.points[p.first_point + p.point_count - 1].radius, 1e-6);
   }
 }
 
@@ -149,7 +152,8 @@ TEST(Fractal, ConeWidensAsChildrenGrow) {
   p.cone_widening = 0.5;
   auto child_angle = [&](double t) {
     const Skeleton sk = grow(p, t);
-    return std::acos(glm::dot(direction(sk, sk.stems[1]), direction(sk, sk.stems[0]))) * 180.0 / 3.14159265358979;
+    return std::acos(glm::dot(direction(sk, sk.stems[1]), direction(sk, sk.stems[0]))) * 180.0 /
+           3.14159265358979;
   };
   EXPECT_LT(child_angle(5.0), child_angle(50.0));
   EXPECT_NEAR(child_angle(1e5), 30.0, 0.01);
@@ -199,7 +203,8 @@ namespace arbor::gen {
 // Found by fuzzing (tests/fuzz/regressions/): size ratio 0.05 over seven levels makes twigs of
 // 39 nm, whose splines are NaN in float; such a tree is refused, naming its file.
 TEST(Fractal, TwigsShorterThanAMicrometreAreRefused) {
-  const std::string path = std::string(ARBOR_SOURCE_DIR) + "/tests/fuzz/regressions/fractal_tiny_twigs.toml";
+  const std::string path =
+      std::string(ARBOR_SOURCE_DIR) + "/tests/fuzz/regressions/fractal_tiny_twigs.toml";
   const Species s = load_species(path);
   try {
     grow_tree(s, GrowOptions{});

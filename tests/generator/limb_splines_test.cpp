@@ -16,13 +16,12 @@ namespace arbor::gen {
 namespace {
 
 std::vector<DVec3> wiggly_points() {
-  return {{0, 0, 0}, {0.3, 0.1, 1.0}, {0.2, 0.5, 2.2}, {-0.4, 0.6, 2.9}, {-0.5, 0.2, 4.5},
-          {0.1, -0.3, 5.0}};
+  return {{0, 0, 0},        {0.3, 0.1, 1.0},  {0.2, 0.5, 2.2},
+          {-0.4, 0.6, 2.9}, {-0.5, 0.2, 4.5}, {0.1, -0.3, 5.0}};
 }
 
 Skeleton grow_species(const char* name, std::uint64_t seed = 1) {
-  const Species s =
-      load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + name + ".toml");
+  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + name + ".toml");
   GrowOptions o;
   o.seed = seed;
   o.quality = 0.2;
@@ -50,11 +49,10 @@ TEST(CubicSpline, IsC2AtInteriorKnotsAndClampedAtTheEnds) {
   EXPECT_LT(glm::length(s.derivative(s.params.back()) - end), 1e-12);
   for (std::size_t i = 1; i + 1 < pts.size(); ++i) {
     const double t = s.params[i], e = 1e-9;
-    EXPECT_LT(glm::length(s.position(t - e) - s.position(t + e)), 1e-7);        // C0
-    EXPECT_LT(glm::length(s.derivative(t - e) - s.derivative(t + e)), 1e-6);    // C1
-    EXPECT_LT(glm::length(s.second_derivative_at_knot(i, -1) -
-                          s.second_derivative_at_knot(i, +1)),
-              1e-9);                                                             // C2
+    EXPECT_LT(glm::length(s.position(t - e) - s.position(t + e)), 1e-7);      // C0
+    EXPECT_LT(glm::length(s.derivative(t - e) - s.derivative(t + e)), 1e-6);  // C1
+    EXPECT_LT(glm::length(s.second_derivative_at_knot(i, -1) - s.second_derivative_at_knot(i, +1)),
+              1e-9);  // C2
   }
 }
 
@@ -113,7 +111,8 @@ TEST(Limbs, DominantContinuationIsOneC2Spline) {
     for (std::size_t i = 1; i + 1 < l.knots.size(); ++i) {
       const double scale = glm::length(l.spline.second_derivative_at_knot(i, -1)) + 1.0;
       EXPECT_LT(glm::length(l.spline.second_derivative_at_knot(i, -1) -
-                            l.spline.second_derivative_at_knot(i, +1)) / scale,
+                            l.spline.second_derivative_at_knot(i, +1)) /
+                    scale,
                 1e-6);
     }
   }
@@ -124,12 +123,14 @@ TEST(Limbs, EveryStemPointIsOnSomeLimbAndLimbsInterpolateThem) {
   const Skeleton sk = grow_species("weeping_willow");
   const std::vector<Limb> limbs = fit_limbs(sk);
   std::vector<std::vector<bool>> covered(sk.stems.size());
-  for (std::size_t s = 0; s < sk.stems.size(); ++s) covered[s].assign(sk.stems[s].point_count, false);
+  for (std::size_t s = 0; s < sk.stems.size(); ++s)
+    covered[s].assign(sk.stems[s].point_count, false);
   for (const Limb& l : limbs) {
     for (std::size_t i = 0; i < l.knots.size(); ++i) {
       const KnotRef k = l.knots[i];
       covered[static_cast<size_t>(k.stem)][k.point] = true;
-      const glm::vec3 p = sk.points[sk.stems[static_cast<size_t>(k.stem)].first_point + k.point].position;
+      const glm::vec3 p =
+          sk.points[sk.stems[static_cast<size_t>(k.stem)].first_point + k.point].position;
       ASSERT_LT(glm::length(l.spline.position(l.spline.params[i]) - DVec3(p)), 1e-5);
     }
   }

@@ -20,7 +20,8 @@ namespace arbor::gen {
 namespace {
 
 void expect_error(const std::string& text, int line, int column, const std::string& fragment) {
-  testing::expect_input_error([&] { parse_lsystem(text, "t.lsys"); }, "t.lsys", line, column, fragment);
+  testing::expect_input_error([&] { parse_lsystem(text, "t.lsys"); }, "t.lsys", line, column,
+                              fragment);
 }
 
 Skeleton grow(const std::string& text, std::uint64_t seed = 1) {
@@ -33,7 +34,8 @@ Skeleton grow(const std::string& text, std::uint64_t seed = 1) {
 
 TEST(LSystem, ParsesTheGrammar) {
   const LSystem s = parse_lsystem(
-      "# comment\niterations = 3;\nangle = 30;\nA: f [-s(0.6)C] f(2) +(10) <>v^ h(2)u(0.5)l(1) r(0.5) B;\n"
+      "# comment\niterations = 3;\nangle = 30;\nA: f [-s(0.6)C] f(2) +(10) <>v^ h(2)u(0.5)l(1) "
+      "r(0.5) B;\n"
       "B(2): f;\nB(1): f f;\nC: f;\n",
       "t.lsys");
   EXPECT_EQ(s.iterations, 3);
@@ -122,13 +124,16 @@ TEST(LSystem, SameSeedSameTreeAndRandomnessVaries) {
   const std::string text = "iterations = 4;\nrandomness = 0.2;\nA: f[+A][-A];\n";
   const Skeleton a = grow(text, 3), b = grow(text, 3), c = grow(text, 4);
   ASSERT_EQ(a.points.size(), b.points.size());
-  EXPECT_EQ(std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(SkeletonPoint)), 0);
-  EXPECT_NE(std::memcmp(a.points.data(), c.points.data(), a.points.size() * sizeof(SkeletonPoint)), 0);
+  EXPECT_EQ(std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(SkeletonPoint)),
+            0);
+  EXPECT_NE(std::memcmp(a.points.data(), c.points.data(), a.points.size() * sizeof(SkeletonPoint)),
+            0);
 }
 
 TEST(LSystem, RuleWeightsChooseAlternativesInProportion) {
   // B(3): f and B(1): f f — the first is chosen about 3 times in 4.
-  const LSystem s = parse_lsystem("iterations = 1;\nA: f[B][B][B][B][B][B][B][B];\nB(3): f;\nB(1): f f;\n", "t");
+  const LSystem s =
+      parse_lsystem("iterations = 1;\nA: f[B][B][B][B][B][B][B][B];\nB(3): f;\nB(1): f f;\n", "t");
   long long one = 0, two = 0;
   for (std::uint64_t seed = 0; seed < 200; ++seed) {
     LSystemOptions o;
@@ -192,8 +197,8 @@ namespace arbor::gen {
 TEST(LSystem, DeepNestingIsRefusedAndTheDeepestAllowedGrows) {
   const std::string deep = "A: f" + std::string(50000, '[') + "f" + std::string(50000, ']') + ";\n";
   expect_error(deep, 1, 105, "nested more than 100 deep");
-  const std::string limit = "iterations = 64;\nA: f" + std::string(100, '[') + "f A" +
-                            std::string(100, ']') + ";\n";
+  const std::string limit =
+      "iterations = 64;\nA: f" + std::string(100, '[') + "f A" + std::string(100, ']') + ";\n";
   const Skeleton sk = grow(limit);
   EXPECT_EQ(validate(sk), "");
   EXPECT_EQ(sk.stems.size(), 66u);  // the trunk and one branch per depth 0..64
@@ -216,10 +221,12 @@ namespace arbor::gen {
 // Found by fuzzing: s(1e23) sent the turtle past float range (NaN and inf geometry), and a
 // move of length 0 made a limb segment with no direction.
 TEST(LSystem, MovesOutOfRangeOrOfNoLengthAreRefusedAtTheAction) {
-  auto expect_grow_error = [](const std::string& text, int line, int column, const std::string& fragment) {
+  auto expect_grow_error = [](const std::string& text, int line, int column,
+                              const std::string& fragment) {
     testing::expect_input_error([&] { grow(text); }, "t.lsys", line, column, fragment);
   };
-  expect_grow_error("A: f s(99999999999999999999999) f;\n", 1, 33, "more than 1000 km from the root");
+  expect_grow_error("A: f s(99999999999999999999999) f;\n", 1, 33,
+                    "more than 1000 km from the root");
   expect_grow_error("iterations = 64;\nA: s(3) f A;\n", 2, 9, "more than 1000 km");
   expect_grow_error("A: f f(0);\n", 1, 6, "limb segments must be at least 1 micrometre");
   expect_grow_error("iterations = 40;\nA: f s(0.5) A;\n", 2, 4, "at least 1 micrometre");

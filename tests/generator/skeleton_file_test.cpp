@@ -21,13 +21,15 @@ namespace arbor::gen {
 namespace {
 
 void expect_error(const std::string& text, int line, int column, const std::string& fragment) {
-  testing::expect_input_error([&] { parse_skeleton_file(text, "t.skel"); }, "t.skel", line, column, fragment);
+  testing::expect_input_error([&] { parse_skeleton_file(text, "t.skel"); }, "t.skel", line, column,
+                              fragment);
 }
 
 // Bytewise equality of two arrays (memcmp on empty vectors would pass null pointers).
 template <typename T>
 bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
 std::string slurp(const std::string& path) {
@@ -59,11 +61,15 @@ TEST(SkeletonFile, ReadsPointsAndConnections) {
 
 TEST(SkeletonFile, ViolationsNameThePointAndLine) {
   const std::string pts = "point 0 0 0 0 0.1\npoint 1 0 0 1 0.1\npoint 2 0 1 1 0.1\n";
-  expect_error(pts + "connect 0 1\nconnect 0 2\nconnect 1 2\n", 6, 11, "point 2 already has an incoming limb (from point 0)");
-  expect_error(pts + "connect 0 1\n", 3, 1, "exactly one root");               // point 2 is a second root
-  expect_error(pts + "connect 0 1\nconnect 1 2\nconnect 2 0\n", 1, 1, "exactly one root");  // a cycle: no root
+  expect_error(pts + "connect 0 1\nconnect 0 2\nconnect 1 2\n", 6, 11,
+               "point 2 already has an incoming limb (from point 0)");
+  expect_error(pts + "connect 0 1\n", 3, 1, "exactly one root");  // point 2 is a second root
+  expect_error(pts + "connect 0 1\nconnect 1 2\nconnect 2 0\n", 1, 1,
+               "exactly one root");  // a cycle: no root
   // A loop off to the side: every point has one incoming limb, but 3 and 4 never reach the root.
-  expect_error(pts + "point 3 5 5 5\npoint 4 5 5 6\nconnect 0 1\nconnect 1 2\nconnect 3 4\nconnect 4 3\n", 4, 1, "point 3 is not connected to the root");
+  expect_error(
+      pts + "point 3 5 5 5\npoint 4 5 5 6\nconnect 0 1\nconnect 1 2\nconnect 3 4\nconnect 4 3\n", 4,
+      1, "point 3 is not connected to the root");
   expect_error(pts + "connect 0 7\n", 4, 11, "point 7 is not defined");
   expect_error(pts + "point 1 3 3 3\n", 4, 7, "point 1 is defined twice (first on line 2)");
   expect_error("point 0 0 0 zero\n", 1, 13, "'zero' is not a number");
@@ -78,7 +84,8 @@ TEST(SkeletonFile, ViolationsNameThePointAndLine) {
 
 TEST(SkeletonFile, UnconnectedPointsAreErrors) {
   // Point 3 hangs on nothing: with one root and one incoming limb each, it can only be a root.
-  expect_error("point 0 0 0 0 0.1\npoint 1 0 0 1 0.1\npoint 3 2 2 2 0.1\nconnect 0 1\n", 3, 1, "exactly one root");
+  expect_error("point 0 0 0 0 0.1\npoint 1 0 0 1 0.1\npoint 3 2 2 2 0.1\nconnect 0 1\n", 3, 1,
+               "exactly one root");
 }
 
 TEST(SkeletonFile, RoundTripsAnyModelExactly) {
@@ -96,7 +103,8 @@ TEST(SkeletonFile, RoundTripsAnyModelExactly) {
     ASSERT_EQ(back.leaves.size(), original.leaves.size()) << name;
     for (std::size_t i = 0; i < original.stems.size(); ++i) {
       ASSERT_EQ(back.stems[i].parent, original.stems[i].parent) << name << " stem " << i;
-      ASSERT_EQ(back.stems[i].parent_point, original.stems[i].parent_point) << name << " stem " << i;
+      ASSERT_EQ(back.stems[i].parent_point, original.stems[i].parent_point)
+          << name << " stem " << i;
       ASSERT_EQ(back.stems[i].level, original.stems[i].level) << name;
     }
     const TreeGeometry a = build_tree_geometry(original), b = build_tree_geometry(back);
@@ -141,7 +149,8 @@ TEST(SkeletonFile, ManyChildrenOfOnePointAreRead) {
   }
   // Branch records on the trunk's segment take the same path.
   for (int k = 0; k < 1000; ++k) {
-    const std::string c = std::to_string(children + 2 + 2 * k), d = std::to_string(children + 3 + 2 * k);
+    const std::string c = std::to_string(children + 2 + 2 * k),
+                      d = std::to_string(children + 3 + 2 * k);
     text += "point " + c + " 0 0 5 0.001\npoint " + d + " 2 2 " + std::to_string(k) + " 0.001\n";
     text += "branch " + c + " on 0 1 0.5\nconnect " + c + " " + d + "\n";
   }
@@ -167,7 +176,8 @@ TEST(SkeletonFile, CoordinatesBeyondAThousandKilometresAreRefused) {
   expect_error("point 0 0 0 0\npoint 1 0 99999999999999999999999 1.5\nconnect 0 1\n", 2, 11,
                "out of range [-1e6, 1e6]");
   expect_error("point 0 0 0 0 2e6\n", 1, 15, "out of range");
-  expect_error("point 0 0 0 0\npoint 1 0 0 0.0000001\nconnect 0 1\n", 3, 1, "closer than 1 micrometre");
+  expect_error("point 0 0 0 0\npoint 1 0 0 0.0000001\nconnect 0 1\n", 3, 1,
+               "closer than 1 micrometre");
 }
 
 }  // namespace arbor::gen

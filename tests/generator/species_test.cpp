@@ -22,7 +22,8 @@ const char* const kMinimal = "model = \"weber-penn\"\n";
 
 // Expects parsing `text` to fail at line:column with a message containing `fragment`.
 void expect_toml_error(const std::string& text, int line, int column, const std::string& fragment) {
-  testing::expect_input_error([&] { parse_species_toml(text, "t.toml"); }, "t.toml", line, column, fragment);
+  testing::expect_input_error([&] { parse_species_toml(text, "t.toml"); }, "t.toml", line, column,
+                              fragment);
 }
 
 void expect_xml_error(const std::string& text, int line, const std::string& fragment) {
@@ -59,8 +60,9 @@ TEST(SpeciesToml, ShippedSpeciesLoad) {
 TEST(SpeciesToml, ShippedWeberPennSpeciesSwayInTheirBreezeExceptTheCactus) {
   // Issue 14: --time must change the shipped trees. Half a second moves some limb of each by a
   // centimetre or more; the Saguaro has no wind.
-  for (const char* name : {"quaking_aspen", "black_tupelo", "weeping_willow", "ca_black_oak", "sassafras",
-                           "lombardy_poplar", "black_spruce", "balsam_fir", "queen_palm", "saguaro_cactus"}) {
+  for (const char* name :
+       {"quaking_aspen", "black_tupelo", "weeping_willow", "ca_black_oak", "sassafras",
+        "lombardy_poplar", "black_spruce", "balsam_fir", "queen_palm", "saguaro_cactus"}) {
     const Species sp = load_species(species_dir() + name + ".toml");
     GrowOptions now, later;
     later.time = 0.5;
@@ -118,14 +120,12 @@ TEST(SpeciesToml, OutOfRangeAndNonFiniteValuesAreErrors) {
   expect_toml_error(std::string(kMinimal) + "Ratio = inf\n", 2, 9, "finite");
   expect_toml_error(std::string(kMinimal) + "[level.2]\nTaper = 3.5\n", 3, 9, "2Taper = 3.5");
   expect_toml_error(std::string(kMinimal) + "[level.1]\nCurveRes = 0\n", 3, 12, "1CurveRes");
-  expect_toml_error(std::string(kMinimal) + "[bark]\nalbedo = [0.5, 1.5, 0.5]\n", 3, 16,
-                    "[0, 1]");
+  expect_toml_error(std::string(kMinimal) + "[bark]\nalbedo = [0.5, 1.5, 0.5]\n", 3, 16, "[0, 1]");
 }
 
 TEST(SpeciesToml, LevelRulesAreChecked) {
   expect_toml_error(std::string(kMinimal) + "[level.4]\nLength = 1\n", 2, 8, "levels are 0");
-  expect_toml_error(std::string(kMinimal) + "[level.1]\nBaseSplits = 2\n", 3, 1,
-                    "trunk parameter");
+  expect_toml_error(std::string(kMinimal) + "[level.1]\nBaseSplits = 2\n", 3, 1, "trunk parameter");
   expect_toml_error(std::string(kMinimal) + "[level.0]\nDownAngle = 20\n", 3, 1,
                     "no meaning for the trunk");
 }
@@ -143,30 +143,33 @@ TEST(SpeciesToml, LeafHingeAngleIsReadAndBounded) {
 }
 
 TEST(SpeciesToml, LeafCuticleIsReadAndBoundedWithAGlossyDefault) {
-  const Species s =
-      parse_species_toml(std::string(kMinimal) + "[leaf]\ncuticle_ior = 1.5\ncuticle_roughness = 0.25\n", "c");
+  const Species s = parse_species_toml(
+      std::string(kMinimal) + "[leaf]\ncuticle_ior = 1.5\ncuticle_roughness = 0.25\n", "c");
   EXPECT_DOUBLE_EQ(s.leaf.cuticle_ior, 1.5);
   EXPECT_DOUBLE_EQ(s.leaf.cuticle_roughness, 0.25);
   const Species d = parse_species_toml(kMinimal, "c");
   EXPECT_DOUBLE_EQ(d.leaf.cuticle_ior, 1.45);  // wax, docs/species-format.md
   EXPECT_DOUBLE_EQ(d.leaf.cuticle_roughness, 0.5);
-  EXPECT_NO_THROW(parse_species_toml(std::string(kMinimal) + "[leaf]\ncuticle_ior = 1.0\n", "c"));  // matte
+  EXPECT_NO_THROW(
+      parse_species_toml(std::string(kMinimal) + "[leaf]\ncuticle_ior = 1.0\n", "c"));  // matte
   expect_toml_error(std::string(kMinimal) + "[leaf]\ncuticle_ior = 0.9\n", 3, 15, "[1, 3]");
   expect_toml_error(std::string(kMinimal) + "[leaf]\ncuticle_roughness = 1.2\n", 3, 21, "[0, 1]");
   expect_toml_error(std::string(kMinimal) + "[leaf]\ncuticle_roughness = nan\n", 3, 21, "finite");
 }
 
 TEST(SpeciesToml, RootButtressesAreReadAndBounded) {
-  const Species s =
-      parse_species_toml(std::string(kMinimal) + "[roots]\nbuttresses = 5\nheight = 4\nspread = 1.5\n", "r");
+  const Species s = parse_species_toml(
+      std::string(kMinimal) + "[roots]\nbuttresses = 5\nheight = 4\nspread = 1.5\n", "r");
   EXPECT_EQ(s.roots.buttresses, 5);
   EXPECT_DOUBLE_EQ(s.roots.height, 4.0);
   EXPECT_DOUBLE_EQ(s.roots.spread, 1.5);
   EXPECT_EQ(parse_species_toml(kMinimal, "r").roots.buttresses, 0);  // off by default
-  expect_toml_error(std::string(kMinimal) + "[roots]\nbuttresses = 2.5\n", 3, 14, "whole number in [0, 16]");
+  expect_toml_error(std::string(kMinimal) + "[roots]\nbuttresses = 2.5\n", 3, 14,
+                    "whole number in [0, 16]");
   expect_toml_error(std::string(kMinimal) + "[roots]\nbuttresses = 17\n", 3, 14, "[0, 16]");
   expect_toml_error(std::string(kMinimal) + "[roots]\nheight = 0\n", 3, 10, "(0, 50]");
-  expect_toml_error(std::string(kMinimal) + "[roots]\nreach = \"far\"\n", 3, 1, "unknown key 'reach' in [roots]");
+  expect_toml_error(std::string(kMinimal) + "[roots]\nreach = \"far\"\n", 3, 1,
+                    "unknown key 'reach' in [roots]");
 }
 
 TEST(SpeciesToml, LeafMustNotCreateEnergy) {
@@ -215,9 +218,10 @@ TEST(ArbaroXml, ArbaroExtensionsAreWarnedAboutAndIgnored) {
 }
 
 TEST(ArbaroXml, ErrorsCarryTheirLine) {
-  expect_xml_error("<arbaro><species>\n<param name='Shape' value='3'/>\n<param name='Shap' "
-                   "value='3'/>\n</species></arbaro>",
-                   3, "unknown parameter 'Shap'");
+  expect_xml_error(
+      "<arbaro><species>\n<param name='Shape' value='3'/>\n<param name='Shap' "
+      "value='3'/>\n</species></arbaro>",
+      3, "unknown parameter 'Shap'");
   expect_xml_error("<arbaro><species>\n\n<param name='Ratio' value='abc'/></species></arbaro>", 3,
                    "not a number");
   expect_xml_error("<arbaro><species>\n<param name='1Taper' value='4'/></species></arbaro>", 2,
@@ -240,15 +244,19 @@ namespace arbor::gen {
 
 // Text before the root element was once accepted; text is not part of the format anywhere.
 TEST(ArbaroXml, TextOutsideTheElementsIsRefused) {
-  const std::string body = "<arbaro><species name='x'>\n<param name='Shape' value='3'/>\n</species></arbaro>\n";
+  const std::string body =
+      "<arbaro><species name='x'>\n<param name='Shape' value='3'/>\n</species></arbaro>\n";
   expect_xml_error("garbage\n" + body, 1, "unexpected text outside the <arbaro> element");
   expect_xml_error(body + "\ntrailing words\n", 5, "unexpected text outside");
-  expect_xml_error("<arbaro>stray<species name='x'>\n</species></arbaro>\n", 1, "unexpected text in <arbaro>");
-  expect_xml_error("<arbaro><species name='x'>\n<param name='Shape' value='3'/>\nwords\n</species></arbaro>\n",
-                   3, "unexpected text in <species>");
+  expect_xml_error("<arbaro>stray<species name='x'>\n</species></arbaro>\n", 1,
+                   "unexpected text in <arbaro>");
+  expect_xml_error(
+      "<arbaro><species name='x'>\n<param name='Shape' value='3'/>\nwords\n</species></arbaro>\n",
+      3, "unexpected text in <species>");
   expect_xml_error(body + "<arbaro/>\n", 4, "a second root element");
   // Declarations, comments and white space stay allowed.
-  EXPECT_NO_THROW(parse_arbaro_xml("<?xml version='1.0'?>\n<!-- a tree -->\n" + body + "  \n", "t.xml"));
+  EXPECT_NO_THROW(
+      parse_arbaro_xml("<?xml version='1.0'?>\n<!-- a tree -->\n" + body + "  \n", "t.xml"));
 }
 
 }  // namespace arbor::gen

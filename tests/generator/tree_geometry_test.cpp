@@ -20,8 +20,7 @@ namespace arbor::gen {
 namespace {
 
 Skeleton grow_species(const char* name, std::uint64_t seed = 1, double quality = 0.2) {
-  const Species s =
-      load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + name + ".toml");
+  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + name + ".toml");
   GrowOptions o;
   o.seed = seed;
   o.quality = quality;
@@ -162,7 +161,8 @@ TEST(TreeGeometry, LeavesAreCardsWhoseTrianglesAreTwoSidedAndHingedLeavesFold) {
   const LeafMesh flat = leaf_triangles(flat_geometry);
   // As triangles: the shape's triangulation, every leaf.
   std::size_t expected = 0;
-  for (const Leaf& l : sk.leaves) expected += leaf_shapes()[static_cast<std::size_t>(l.shape)].triangles.size();
+  for (const Leaf& l : sk.leaves)
+    expected += leaf_shapes()[static_cast<std::size_t>(l.shape)].triangles.size();
   ASSERT_EQ(flat.triangle_count(), expected);
   ASSERT_EQ(flat.triangle_count(), flat.front_material.size());
   for (std::size_t t = 0; t < flat.triangle_count(); ++t) {
@@ -171,21 +171,24 @@ TEST(TreeGeometry, LeavesAreCardsWhoseTrianglesAreTwoSidedAndHingedLeavesFold) {
   }
   // Front faces along the leaf normal, for the triangles and the card (Embree's quad normal).
   const std::uint32_t* idx = flat.indices.data();
-  const glm::vec3 a = flat.positions[idx[0]], b = flat.positions[idx[1]], c = flat.positions[idx[2]];
+  const glm::vec3 a = flat.positions[idx[0]], b = flat.positions[idx[1]],
+                  c = flat.positions[idx[2]];
   EXPECT_GT(glm::dot(glm::cross(b - a, c - a), sk.leaves[0].normal), 0.0f);
   const glm::vec3* q = flat_geometry.cards.corners.data();
   EXPECT_GT(glm::dot(glm::cross(q[1] - q[0], q[3] - q[0]), sk.leaves[0].normal), 0.0f);
   // The triangles' vertices are where the leaf puts its outline's points.
   const Leaf& l0 = sk.leaves[0];
   const glm::vec2 tip = leaf_shapes()[static_cast<std::size_t>(l0.shape)].vertices[1];
-  const glm::vec3 expect_tip = l0.position + l0.axis * (tip.y * l0.length) + glm::cross(l0.axis, l0.normal) * (tip.x * l0.width);
+  const glm::vec3 expect_tip = l0.position + l0.axis * (tip.y * l0.length) +
+                               glm::cross(l0.axis, l0.normal) * (tip.x * l0.width);
   EXPECT_LT(glm::length(flat.positions[1] - expect_tip), 1e-5f * (1.0f + glm::length(expect_tip)));
 
   GeometryOptions hinged;
   hinged.leaf_style = LeafStyle::Hinged;
   hinged.hinge_angle = 30.0;
   const TreeGeometry folded_geometry = build_tree_geometry(sk, hinged);
-  EXPECT_EQ(folded_geometry.cards.size(), 3 * sk.leaves.size());  // the aspen's ovals span both hinges
+  EXPECT_EQ(folded_geometry.cards.size(),
+            3 * sk.leaves.size());  // the aspen's ovals span both hinges
   const LeafMesh folded = leaf_triangles(folded_geometry);
   EXPECT_GT(folded.triangle_count(), flat.triangle_count());
   // Folding keeps the area; the side panels rise off the leaf plane; the panels share the hinge
@@ -223,7 +226,8 @@ TEST(LeafOutline, ContainsIsTheShapesTriangulation) {
     const LeafOutline& outline = leaf_outline(s);
     int inside = 0, checked = 0;
     for (int i = 0; i < 20000; ++i) {
-      const glm::vec2 p(static_cast<float>(rng.uniform() * 1.2 - 0.6), static_cast<float>(rng.uniform() * 1.2 - 0.1));
+      const glm::vec2 p(static_cast<float>(rng.uniform() * 1.2 - 0.6),
+                        static_cast<float>(rng.uniform() * 1.2 - 0.1));
       bool in = false, near_edge = false;
       for (const auto& t : shape.triangles) {
         const glm::vec2 v[3] = {shape.vertices[t[0]], shape.vertices[t[1]], shape.vertices[t[2]]};
@@ -240,7 +244,8 @@ TEST(LeafOutline, ContainsIsTheShapesTriangulation) {
       ++checked;
       inside += in ? 1 : 0;
       ASSERT_EQ(outline.contains(p), in) << shape.name << " at (" << p.x << ", " << p.y << ")";
-      ASSERT_TRUE(!in || (p.x >= outline.lo.x && p.x <= outline.hi.x && p.y >= outline.lo.y && p.y <= outline.hi.y));
+      ASSERT_TRUE(!in || (p.x >= outline.lo.x && p.x <= outline.hi.x && p.y >= outline.lo.y &&
+                          p.y <= outline.hi.y));
     }
     EXPECT_GT(checked, 19000) << shape.name;
     EXPECT_GT(inside, 2000) << shape.name;
@@ -309,7 +314,8 @@ TEST(TreeGeometry, RootButtressesWidenTheTrunksBaseAndMergeIntoIt) {
   const std::vector<double> base = ring(0);
   int peaks = 0;
   for (std::size_t k = 0; k < base.size(); ++k) {
-    const double prev = base[(k + base.size() - 1) % base.size()], next = base[(k + 1) % base.size()];
+    const double prev = base[(k + base.size() - 1) % base.size()],
+                 next = base[(k + 1) % base.size()];
     if (base[k] > prev && base[k] >= next && base[k] > 1.5 * r0) ++peaks;
   }
   EXPECT_EQ(peaks, 6);
@@ -340,7 +346,8 @@ TEST(TreeGeometry, RootButtressesWidenTheTrunksBaseAndMergeIntoIt) {
   for (std::uint32_t i = 0; i < pd.height; ++i) {
     const std::size_t row = pd.first_vertex + static_cast<std::size_t>(i) * pd.width;
     glm::dvec3 centre(0.0);
-    for (std::uint32_t j = 0; j + 1 < pd.width; ++j) centre += glm::dvec3(plain.grids.vertices[row + j]);
+    for (std::uint32_t j = 0; j + 1 < pd.width; ++j)
+      centre += glm::dvec3(plain.grids.vertices[row + j]);
     centre /= double(pd.width - 1);
     for (std::uint32_t j = 0; j + 1 < pd.width; ++j) {
       const double without = glm::length(glm::dvec3(plain.grids.vertices[row + j]) - centre);
@@ -356,7 +363,10 @@ TEST(TreeGeometry, RootButtressesWidenTheTrunksBaseAndMergeIntoIt) {
   // Shading normals face outward at the base.
   for (std::uint32_t j = 0; j + 1 < d.width; ++j) {
     const glm::vec3 v = g.grids.vertices[d.first_vertex + j];
-    EXPECT_GT(glm::dot(g.grids.normals[d.first_vertex + j], glm::vec3(v.x - axis.x, v.y - axis.y, 0.0f)), 0.0f) << j;
+    EXPECT_GT(
+        glm::dot(g.grids.normals[d.first_vertex + j], glm::vec3(v.x - axis.x, v.y - axis.y, 0.0f)),
+        0.0f)
+        << j;
   }
 }
 

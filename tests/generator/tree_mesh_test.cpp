@@ -43,8 +43,10 @@ TEST(LeafShapes, EveryShapeCoversTheUnitLeafAndFacesFront) {
       area += 0.5 * cross;
     }
     for (const glm::vec2& v : s.vertices) {
-      min_x = std::min(min_x, double(v.x)); max_x = std::max(max_x, double(v.x));
-      min_y = std::min(min_y, double(v.y)); max_y = std::max(max_y, double(v.y));
+      min_x = std::min(min_x, double(v.x));
+      max_x = std::max(max_x, double(v.x));
+      min_y = std::min(min_y, double(v.y));
+      max_y = std::max(max_y, double(v.y));
     }
     EXPECT_GE(min_x, -0.5 - 1e-6) << s.name;
     EXPECT_LE(max_x, 0.5 + 1e-6) << s.name;
@@ -128,7 +130,8 @@ TEST(TreeMesh, ObjRoundTripsThroughTinyObjLoaderWithItsMaterials) {
   float position_error = 0.0f, unit_error = 0.0f;
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
     for (int k = 0; k < 3; ++k) {
-      position_error = std::max(position_error, std::fabs(attrib.vertices[3 * i + k] - mesh.positions[i][k]));
+      position_error =
+          std::max(position_error, std::fabs(attrib.vertices[3 * i + k] - mesh.positions[i][k]));
       unit_error = std::max(unit_error, std::fabs(attrib.normals[3 * i + k] - mesh.normals[i][k]));
     }
     for (int k = 0; k < 2; ++k) {
@@ -190,9 +193,12 @@ TEST(TreeMesh, PlyIsBinaryWithNormalsUvAndMaterials) {
     if (line == "end_header") break;
   }
   EXPECT_NE(header.find("format binary_little_endian 1.0"), std::string::npos);
-  EXPECT_NE(header.find("element vertex " + std::to_string(mesh.positions.size())), std::string::npos);
-  EXPECT_NE(header.find("element face " + std::to_string(mesh.triangle_count())), std::string::npos);
-  EXPECT_NE(header.find("comment material 0 bark albedo 0.58 0.57 0.52"), std::string::npos) << header;
+  EXPECT_NE(header.find("element vertex " + std::to_string(mesh.positions.size())),
+            std::string::npos);
+  EXPECT_NE(header.find("element face " + std::to_string(mesh.triangle_count())),
+            std::string::npos);
+  EXPECT_NE(header.find("comment material 0 bark albedo 0.58 0.57 0.52"), std::string::npos)
+      << header;
   const auto body_start = in.tellg();
   float first[8];
   in.read(reinterpret_cast<char*>(first), sizeof first);
@@ -231,13 +237,27 @@ namespace arbor::gen {
 // positions, unit normals and finite uvs.
 TEST(TreeMesh, EveryShippedSpeciesTessellatesToFiniteUnitNormals) {
   const std::string dir = std::string(ARBOR_SOURCE_DIR) + "/species/";
-  for (const char* name :
-       {"quaking_aspen.toml", "black_tupelo.toml", "ca_black_oak.toml", "weeping_willow.toml",
-        "sassafras.toml", "lombardy_poplar.toml", "black_spruce.toml", "queen_palm.toml",
-        "saguaro_cactus.toml", "balsam_fir.toml", "fractal_basic.toml", "fractal_broadleaf.toml",
-        "lsystem_2d_branching.lsys", "lsystem_almost_real.lsys", "lsystem_bush.lsys",
-        "lsystem_realistic_tree.lsys", "lsystem_weed.lsys", "dogwood.tmpl", "weeping_cherry.tmpl",
-        "young_pine.tmpl", "young_tree.skel"}) {
+  for (const char* name : {"quaking_aspen.toml",
+                           "black_tupelo.toml",
+                           "ca_black_oak.toml",
+                           "weeping_willow.toml",
+                           "sassafras.toml",
+                           "lombardy_poplar.toml",
+                           "black_spruce.toml",
+                           "queen_palm.toml",
+                           "saguaro_cactus.toml",
+                           "balsam_fir.toml",
+                           "fractal_basic.toml",
+                           "fractal_broadleaf.toml",
+                           "lsystem_2d_branching.lsys",
+                           "lsystem_almost_real.lsys",
+                           "lsystem_bush.lsys",
+                           "lsystem_realistic_tree.lsys",
+                           "lsystem_weed.lsys",
+                           "dogwood.tmpl",
+                           "weeping_cherry.tmpl",
+                           "young_pine.tmpl",
+                           "young_tree.skel"}) {
     const Species s = load_species(dir + name);
     GrowOptions o;
     o.seed = 1;
@@ -245,8 +265,10 @@ TEST(TreeMesh, EveryShippedSpeciesTessellatesToFiniteUnitNormals) {
     if (std::string(name) == "weeping_willow.toml") o.quality = 0.1;
     const TreeMesh mesh = tessellate(build_tree_geometry(grow_tree(s, o), geometry_options_for(s)));
     std::size_t bad_positions = 0, bad_normals = 0, bad_uvs = 0;
-    for (const glm::vec3& p : mesh.positions) bad_positions += !(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
-    for (const glm::vec3& n : mesh.normals) bad_normals += !(std::fabs(glm::length(n) - 1.0f) < 1e-3f);
+    for (const glm::vec3& p : mesh.positions)
+      bad_positions += !(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+    for (const glm::vec3& n : mesh.normals)
+      bad_normals += !(std::fabs(glm::length(n) - 1.0f) < 1e-3f);
     for (const glm::vec2& uv : mesh.uvs) bad_uvs += !(std::isfinite(uv.x) && std::isfinite(uv.y));
     EXPECT_EQ(bad_positions, 0u) << name;
     EXPECT_EQ(bad_normals, 0u) << name;

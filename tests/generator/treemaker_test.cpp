@@ -33,10 +33,15 @@ void expect_error(const std::string& text, int line, int column, const std::stri
 }
 
 // The smallest complete template: one rule, one particle, one leaf.
-const std::string kRule = "branch { level= 1 number= 1 to 2 (p=1 angle= 30 to 40 dir= 0 to 360 factor= 0.5 to 0.6) }\n";
+const std::string kRule =
+    "branch { level= 1 number= 1 to 2 (p=1 angle= 30 to 40 dir= 0 to 360 factor= 0.5 to 0.6) }\n";
 const std::string kColor = "color { green= 0,1,0 }\n";
-const std::string kParticle = "particle { pos=0,0,0 mag= 10 to 12 dir= 0,0,1:5 growth= 0.2 color= green brightness= 0.5 to 0.6 }\n";
-const std::string kLeaf = "leaf { p= 1 coord= limb out= 10 up= 10 color= green brightness= 0.5 to 0.6 tri= 0,0,0 1,0,1 -1,0,1 }\n";
+const std::string kParticle =
+    "particle { pos=0,0,0 mag= 10 to 12 dir= 0,0,1:5 growth= 0.2 color= green brightness= 0.5 to "
+    "0.6 }\n";
+const std::string kLeaf =
+    "leaf { p= 1 coord= limb out= 10 up= 10 color= green brightness= 0.5 to 0.6 tri= 0,0,0 1,0,1 "
+    "-1,0,1 }\n";
 
 }  // namespace
 
@@ -80,24 +85,35 @@ TEST(TreeMakerTemplate, AnySpacingIsAllowed) {
 TEST(TreeMakerTemplate, MalformedTemplatesAreRefusedWithTheirPosition) {
   const std::string ok = kColor + kRule + kParticle + kLeaf;
   EXPECT_NO_THROW(parse_treemaker_template(ok, "t.tmpl"));
-  expect_error(kColor + kParticle + kRule + kLeaf, 3, 1, "branching rules must come before the particles");
-  expect_error(kColor + "branch { level= 1 number= 1 to 2 (p=0.5 angle= 1 to 2 dir= 0 to 1 factor= 1 to 1) }\n" +
-                   kParticle + kLeaf, 2, 1, "add up to 0.5");
-  expect_error(kColor + kRule + kParticle + "leaf { p= 0.7 coord= leaf out= 1 up= 1 color= green tri= 0,0,0 1,0,0 0,1,0 }\n",
+  expect_error(kColor + kParticle + kRule + kLeaf, 3, 1,
+               "branching rules must come before the particles");
+  expect_error(
+      kColor +
+          "branch { level= 1 number= 1 to 2 (p=0.5 angle= 1 to 2 dir= 0 to 1 factor= 1 to 1) }\n" +
+          kParticle + kLeaf,
+      2, 1, "add up to 0.5");
+  expect_error(kColor + kRule + kParticle +
+                   "leaf { p= 0.7 coord= leaf out= 1 up= 1 color= green tri= 0,0,0 1,0,0 0,1,0 }\n",
                4, 1, "leaf probabilities add up to 0.7");
-  expect_error(kColor + kRule + "particle { color= red }\n" + kLeaf, 3, 19, "colour 'red' is not defined");
-  expect_error(kColor + kRule + kParticle + "leaf { p= 1 coord= tree }\n", 4, 20, "coord must be 'limb' or 'leaf'");
-  expect_error(kColor + kRule + kParticle + "leaf { p= 1 tri= 0,0,0 1,1,1 2,2,2 }\n", 4, 13, "color= before");
-  expect_error(kColor + kRule + "particle { mag= 20 to 10 }\n" + kLeaf, 3, 17, "low end must not exceed");
+  expect_error(kColor + kRule + "particle { color= red }\n" + kLeaf, 3, 19,
+               "colour 'red' is not defined");
+  expect_error(kColor + kRule + kParticle + "leaf { p= 1 coord= tree }\n", 4, 20,
+               "coord must be 'limb' or 'leaf'");
+  expect_error(kColor + kRule + kParticle + "leaf { p= 1 tri= 0,0,0 1,1,1 2,2,2 }\n", 4, 13,
+               "color= before");
+  expect_error(kColor + kRule + "particle { mag= 20 to 10 }\n" + kLeaf, 3, 17,
+               "low end must not exceed");
   expect_error(kColor + kRule + "particle { dir= 0,0,1 }\n" + kLeaf, 3, 23, "expected ':'");
-  expect_error(kColor + kRule + "particle { speed= 3 }\n" + kLeaf, 3, 12, "unknown particle key 'speed'");
+  expect_error(kColor + kRule + "particle { speed= 3 }\n" + kLeaf, 3, 12,
+               "unknown particle key 'speed'");
   expect_error("iterations { i= 0 }\n", 1, 17, "iterations must be a whole number");
   expect_error("iterations { i= 3 }\niterations { i= 4 }\n", 2, 1, "given twice");
   expect_error("weather { rain= 3 }\n", 1, 1, "unknown section 'weather'");
   expect_error("iterations { i= 3 \n", 2, 1, "expected '}' before the end of the file");
   expect_error("iterations { i= 3x }\n", 1, 18, "expected '}'");
   expect_error("color { green= 0,1 }\n", 1, 20, "expected ','");
-  expect_error(kColor + "branch { level= 1 number= 1 to 2 }\n", 2, 1, "at least one (p angle dir factor)");
+  expect_error(kColor + "branch { level= 1 number= 1 to 2 }\n", 2, 1,
+               "at least one (p angle dir factor)");
   expect_error(kColor + kRule + kLeaf, 1, 1, "at least one particle");
   expect_error(kColor + kRule + kParticle, 1, 1, "at least one leaf");
   expect_error("", 1, 1, "at least one branching rule");
@@ -122,7 +138,8 @@ Skeleton dogwood(std::uint64_t seed) {
 std::string trunk(const std::string& extra_particle = "", const std::string& gravity = "0") {
   return "iterations { i= 5 }\ngravity { g= " + gravity + " }\n" + kColor +
          "branch { level= 1 number= 0 to 0.5 (p=1 angle= 90 to 90 dir= 0 to 0 factor= 1 to 1) }\n"
-         "particle { pos=0,0,0 mag= 10 to 10 dir= 0,0,1:0 growth= 0.5 color= green " + extra_particle + " }\n" + kLeaf;
+         "particle { pos=0,0,0 mag= 10 to 10 dir= 0,0,1:0 growth= 0.5 color= green " +
+         extra_particle + " }\n" + kLeaf;
 }
 
 }  // namespace
@@ -168,16 +185,19 @@ TEST(TreeMakerGrowth, AgingShortensTheGrowthVector) {
   const Skeleton sk = grow_template(trunk("acc= -2"));
   const Stem& t = sk.stems[0];
   for (std::uint32_t k = 1; k < t.point_count; ++k) {
-    const float step = sk.points[t.first_point + k].position.z - sk.points[t.first_point + k - 1].position.z;
+    const float step =
+        sk.points[t.first_point + k].position.z - sk.points[t.first_point + k - 1].position.z;
     EXPECT_NEAR(step, 0.01f * (10.0f - 2.0f * (k - 1)), 1e-6f);
   }
 }
 
 TEST(TreeMakerGrowth, GravityPullsHorizontalGrowthDown) {
   auto end_height = [](const std::string& g) {
-    const std::string text = "iterations { i= 8 }\ngravity { g= " + g + " }\n" + kColor +
+    const std::string text =
+        "iterations { i= 8 }\ngravity { g= " + g + " }\n" + kColor +
         "branch { level= 1 number= 0 to 0.5 (p=1 angle= 90 to 90 dir= 0 to 0 factor= 1 to 1) }\n"
-        "particle { pos=0,0,1 mag= 10 to 10 dir= 1,0,0:0 color= green }\n" + kLeaf;
+        "particle { pos=0,0,1 mag= 10 to 10 dir= 1,0,0:0 color= green }\n" +
+        kLeaf;
     const Skeleton sk = grow_template(text);
     return sk.points[sk.stems[0].first_point + sk.stems[0].point_count - 1].position.z;
   };
@@ -189,15 +209,18 @@ TEST(TreeMakerGrowth, GravityPullsHorizontalGrowthDown) {
 TEST(TreeMakerGrowth, BranchesLeaveAtTheRuleAngleFromTheHorizontalDirection) {
   // Every branch at 90° from a vertical trunk, dir 90: straight "up" in the turtle's sense, i.e.
   // horizontal (the trunk is vertical), and the branch ends are all at its birth height.
-  const std::string text = "iterations { i= 3 }\n" + kColor +
+  const std::string text =
+      "iterations { i= 3 }\n" + kColor +
       "branch { level= 1 number= 1 to 1 (p=1 angle= 90 to 90 dir= 0 to 360 factor= 1 to 1) }\n"
       "branch { level= 2 number= 0 to 0.5 (p=1 angle= 10 to 10 dir= 0 to 0 factor= 1 to 1) }\n"
-      "particle { pos=0,0,0 mag= 10 to 10 dir= 0,0,1:0 color= green }\n" + kLeaf;
+      "particle { pos=0,0,0 mag= 10 to 10 dir= 0,0,1:0 color= green }\n" +
+      kLeaf;
   const Skeleton sk = grow_template(text);
   int branches = 0;
   for (const Stem& s : sk.stems) {
     if (s.level != 1) continue;
-    const glm::vec3 a = sk.points[s.first_point].position, b = sk.points[s.first_point + s.point_count - 1].position;
+    const glm::vec3 a = sk.points[s.first_point].position,
+                    b = sk.points[s.first_point + s.point_count - 1].position;
     EXPECT_NEAR(b.z, a.z, 1e-5f);
     ++branches;
   }
@@ -207,9 +230,11 @@ TEST(TreeMakerGrowth, BranchesLeaveAtTheRuleAngleFromTheHorizontalDirection) {
 TEST(TreeMakerGrowth, SameSeedSameTreeAndRoundTripsThroughSkeletonFiles) {
   const Skeleton a = dogwood(5), b = dogwood(5), c = dogwood(6);
   ASSERT_EQ(a.points.size(), b.points.size());
-  EXPECT_EQ(std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(SkeletonPoint)), 0);
+  EXPECT_EQ(std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(SkeletonPoint)),
+            0);
   EXPECT_NE(a.points.size() == c.points.size() &&
-                std::memcmp(a.points.data(), c.points.data(), a.points.size() * sizeof(SkeletonPoint)) == 0,
+                std::memcmp(a.points.data(), c.points.data(),
+                            a.points.size() * sizeof(SkeletonPoint)) == 0,
             true);
   const std::string path = ::testing::TempDir() + "dogwood.skel";
   write_skeleton_file(a, path);
@@ -226,19 +251,22 @@ TEST(TreeMakerGrowth, SameSeedSameTreeAndRoundTripsThroughSkeletonFiles) {
 }
 
 TEST(TreeMakerGrowth, SeveralParticlesFromOnePointMakeAShrub) {
-  const std::string two = kColor + kRule + kParticle + "particle { pos=0,0,0 mag= 8 to 9 dir= 1,0,1:5 color= green }\n" + kLeaf;
+  const std::string two = kColor + kRule + kParticle +
+                          "particle { pos=0,0,0 mag= 8 to 9 dir= 1,0,1:5 color= green }\n" + kLeaf;
   const Skeleton sk = grow_template("iterations { i= 4 }\n" + two);
   EXPECT_EQ(validate(sk), "");
   int from_root = 0;
   for (const Stem& s : sk.stems) from_root += (s.parent == 0 && s.parent_point == 0) ? 1 : 0;
   EXPECT_GE(from_root, 1);
-  const std::string apart = kColor + kRule + kParticle + "particle { pos=5,0,0 mag= 8 to 9 dir= 0,0,1:5 color= green }\n" + kLeaf;
+  const std::string apart = kColor + kRule + kParticle +
+                            "particle { pos=5,0,0 mag= 8 to 9 dir= 0,0,1:5 color= green }\n" +
+                            kLeaf;
   testing::expect_input_error([&] { grow_template(apart); }, "t.tmpl", 4, 1, "one root");
 }
 
 TEST(TreeMakerGrowth, LeafLinesBecomeThinLimbs) {
   const std::string text = "iterations { i= 2 }\n" + kColor + kRule + kParticle +
-      "leaf { p= 1 coord= limb out= 0 up= 0 color= green ln= 0,0,0 0,0,5 }\n";
+                           "leaf { p= 1 coord= limb out= 0 up= 0 color= green ln= 0,0,0 0,0,5 }\n";
   const Skeleton sk = grow_template(text);
   ASSERT_GT(sk.leaf_lines.size(), 0u);
   EXPECT_NEAR(glm::length(sk.leaf_lines[0].b - sk.leaf_lines[0].a), 0.05f, 1e-5f);
@@ -249,8 +277,10 @@ TEST(TreeMakerGrowth, LeafLinesBecomeThinLimbs) {
 }
 
 TEST(TreeMakerGrowth, AbsurdTemplatesAreRefusedWithTheEstimate) {
-  const std::string text = "iterations { i= 40 }\n" + kColor +
-      "branch { level= 1 number= 3 to 4 (p=1 angle= 30 to 40 dir= 0 to 360 factor= 1 to 1) }\n" + kParticle + kLeaf;
+  const std::string text =
+      "iterations { i= 40 }\n" + kColor +
+      "branch { level= 1 number= 3 to 4 (p=1 angle= 30 to 40 dir= 0 to 360 factor= 1 to 1) }\n" +
+      kParticle + kLeaf;
   try {
     grow_template(text);
     FAIL();
@@ -268,12 +298,16 @@ namespace arbor::gen {
 TEST(TreeMakerGrowth, TheSizeEstimateCountsTheMostBranchesTheRulesAllow) {
   for (int i : {1, 2, 3, 6}) {
     const std::string text = "iterations { i= " + std::to_string(i) + " }\n" + kColor +
-        "branch { level= 1 number= 2 to 3.5 (p=1 angle= 30 to 40 dir= 0 to 360 factor= 1 to 1) }\n" +
-        kParticle + kParticle + kLeaf;
-    EXPECT_DOUBLE_EQ(treemaker_estimate(parse_treemaker_template(text, "t.tmpl")), 2.0 * std::pow(4.0, i)) << i;
+                             "branch { level= 1 number= 2 to 3.5 (p=1 angle= 30 to 40 dir= 0 to "
+                             "360 factor= 1 to 1) }\n" +
+                             kParticle + kParticle + kLeaf;
+    EXPECT_DOUBLE_EQ(treemaker_estimate(parse_treemaker_template(text, "t.tmpl")),
+                     2.0 * std::pow(4.0, i))
+        << i;
   }
   // A second rule from level 3 on, allowing none.
-  const std::string two = "iterations { i= 3 }\n" + kColor +
+  const std::string two =
+      "iterations { i= 3 }\n" + kColor +
       "branch { level= 1 number= 3 to 3 (p=1 angle= 30 to 40 dir= 0 to 360 factor= 1 to 1) }\n"
       "branch { level= 3 number= 0 to 0.5 (p=1 angle= 30 to 40 dir= 0 to 360 factor= 1 to 1) }\n" +
       kParticle + kLeaf;
@@ -301,7 +335,8 @@ namespace arbor::gen {
 // Found by fuzzing (tests/fuzz/regressions/): a branch born where its parent began is moved to
 // the grandparent, and once started thicker than the grandparent there (an invalid skeleton).
 TEST(TreeMakerGrowth, ABranchMovedToItsGrandparentStartsNoThickerThanIt) {
-  const std::string path = std::string(ARBOR_SOURCE_DIR) + "/tests/fuzz/regressions/treemaker_thick_child.tmpl";
+  const std::string path =
+      std::string(ARBOR_SOURCE_DIR) + "/tests/fuzz/regressions/treemaker_thick_child.tmpl";
   const TreeMakerTemplate t = parse_treemaker_template(read_text_file(path), path);
   const Skeleton sk = grow_treemaker(t, TreeMakerOptions{});
   EXPECT_EQ(validate(sk), "");
@@ -315,9 +350,10 @@ namespace arbor::gen {
 // infinite float coordinates. Template numbers are bounded, and any tree grown past 1000 km is
 // refused at its file.
 TEST(TreeMakerGrowth, NumbersPastAMillionAreRefused) {
-  const std::string path = std::string(ARBOR_SOURCE_DIR) + "/tests/fuzz/regressions/treemaker_huge_leaf_line.tmpl";
-  testing::expect_input_error([&] { parse_treemaker_template(read_text_file(path), path); }, path, 30, 30,
-                              "out of range [-1e6, 1e6]");
+  const std::string path =
+      std::string(ARBOR_SOURCE_DIR) + "/tests/fuzz/regressions/treemaker_huge_leaf_line.tmpl";
+  testing::expect_input_error([&] { parse_treemaker_template(read_text_file(path), path); }, path,
+                              30, 30, "out of range [-1e6, 1e6]");
   expect_error("iterations { i= 3 }\ngravity { g= 2000000 }\n", 2, 14, "out of range");
   Skeleton sk;
   sk.points = {{glm::vec3(0.0f), 0.1f}, {glm::vec3(0.0f, 0.0f, 2e6f), 0.1f}};
@@ -336,8 +372,10 @@ namespace arbor::gen {
 // Found by fuzzing (tests/fuzz/regressions/): age= -1 drove the width growth below zero, so
 // limbs got negative radii; the growth stops at zero.
 TEST(TreeMakerGrowth, ANegativeAgeNeverMakesANegativeWidth) {
-  const std::string path = std::string(ARBOR_SOURCE_DIR) + "/tests/fuzz/regressions/treemaker_negative_age.tmpl";
-  const Skeleton sk = grow_treemaker(parse_treemaker_template(read_text_file(path), path), TreeMakerOptions{});
+  const std::string path =
+      std::string(ARBOR_SOURCE_DIR) + "/tests/fuzz/regressions/treemaker_negative_age.tmpl";
+  const Skeleton sk =
+      grow_treemaker(parse_treemaker_template(read_text_file(path), path), TreeMakerOptions{});
   EXPECT_EQ(validate(sk), "");
   for (const SkeletonPoint& p : sk.points) ASSERT_GE(p.radius, 0.0f);
 }

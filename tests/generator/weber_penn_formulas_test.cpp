@@ -10,15 +10,15 @@
 namespace arbor::gen::wp {
 
 TEST(ShapeRatio, MatchesThePaperTable) {
-  EXPECT_DOUBLE_EQ(shape_ratio(0, 0.5), 0.6);                          // conical: 0.2 + 0.8 r
-  EXPECT_DOUBLE_EQ(shape_ratio(1, 0.5), 1.0);                          // spherical
-  EXPECT_NEAR(shape_ratio(2, 1.0 / 3.0), 0.2 + 0.8 * 0.5, 1e-12);      // hemispherical
-  EXPECT_DOUBLE_EQ(shape_ratio(3, 0.1), 1.0);                          // cylindrical
-  EXPECT_DOUBLE_EQ(shape_ratio(4, 0.2), 0.6);                          // tapered cylindrical
-  EXPECT_DOUBLE_EQ(shape_ratio(5, 0.35), 0.5);                         // flame, rising
-  EXPECT_NEAR(shape_ratio(5, 0.85), 0.5, 1e-12);                       // flame, falling
-  EXPECT_DOUBLE_EQ(shape_ratio(6, 0.5), 0.6);                          // inverse conical
-  EXPECT_NEAR(shape_ratio(7, 0.7), 1.0, 1e-12);                        // tend flame peak
+  EXPECT_DOUBLE_EQ(shape_ratio(0, 0.5), 0.6);                      // conical: 0.2 + 0.8 r
+  EXPECT_DOUBLE_EQ(shape_ratio(1, 0.5), 1.0);                      // spherical
+  EXPECT_NEAR(shape_ratio(2, 1.0 / 3.0), 0.2 + 0.8 * 0.5, 1e-12);  // hemispherical
+  EXPECT_DOUBLE_EQ(shape_ratio(3, 0.1), 1.0);                      // cylindrical
+  EXPECT_DOUBLE_EQ(shape_ratio(4, 0.2), 0.6);                      // tapered cylindrical
+  EXPECT_DOUBLE_EQ(shape_ratio(5, 0.35), 0.5);                     // flame, rising
+  EXPECT_NEAR(shape_ratio(5, 0.85), 0.5, 1e-12);                   // flame, falling
+  EXPECT_DOUBLE_EQ(shape_ratio(6, 0.5), 0.6);                      // inverse conical
+  EXPECT_NEAR(shape_ratio(7, 0.7), 1.0, 1e-12);                    // tend flame peak
   EXPECT_NEAR(shape_ratio(7, 1.0), 0.5, 1e-12);
 }
 
@@ -47,7 +47,7 @@ TEST(PruningEnvelope, InsideTestUsesHorizontalDistance) {
   // scale 10, base 0.2: envelope from z = 2 to z = 10, widest (PruneWidth · 10 = 5 m) at z = 6.
   EXPECT_TRUE(inside_envelope(4.9, 0.0, 6.0, 10.0, 0.2, 0.5, e));
   EXPECT_FALSE(inside_envelope(5.1, 0.0, 6.0, 10.0, 0.2, 0.5, e));
-  EXPECT_TRUE(inside_envelope(0.0, 2.4, 8.0, 10.0, 0.2, 0.5, e));   // half width at 3/4 height
+  EXPECT_TRUE(inside_envelope(0.0, 2.4, 8.0, 10.0, 0.2, 0.5, e));  // half width at 3/4 height
   EXPECT_FALSE(inside_envelope(0.0, 2.6, 8.0, 10.0, 0.2, 0.5, e));
   EXPECT_FALSE(inside_envelope(0.0, 0.0, 10.5, 10.0, 0.2, 0.5, e));  // above the top
   EXPECT_FALSE(inside_envelope(0.1, 0.0, 1.0, 10.0, 0.2, 0.5, e));   // below the bottom
@@ -71,8 +71,8 @@ TEST(Taper, PeriodicMakesConcatenatedSpheres) {
   // nTaper = 3: spheres of radius 1 along a stem of length 10: radius 0 at each 2 m node.
   const double r = 1.0, L = 10.0;
   // (sqrt near zero amplifies rounding of z: 1e-15 in z is 3e-8 in radius)
-  EXPECT_NEAR(taper_radius(3.0, r, L, 1.0 - 0.2), 0.0, 1e-6);    // 2 m from the tip
-  EXPECT_NEAR(taper_radius(3.0, r, L, 1.0 - 0.1), 1.0, 1e-12);   // sphere centre
+  EXPECT_NEAR(taper_radius(3.0, r, L, 1.0 - 0.2), 0.0, 1e-6);   // 2 m from the tip
+  EXPECT_NEAR(taper_radius(3.0, r, L, 1.0 - 0.1), 1.0, 1e-12);  // sphere centre
   EXPECT_NEAR(taper_radius(3.0, r, L, 1.0 - 0.15), std::sqrt(1 - 0.25), 1e-12);
   // nTaper = 2.5: halfway between cylinder and spheres away from the tip.
   EXPECT_NEAR(taper_radius(2.5, r, L, 1.0 - 0.2), 0.5, 1e-6);
@@ -126,8 +126,8 @@ TEST(SplitAngle, SubtractsDeclinationAndStopsAtZero) {
 
 TEST(SplitSpread, SpansTwentyToFiftyForHorizontalAndUpTo140ForVertical) {
   EXPECT_DOUBLE_EQ(split_spread(90.0, 0.0), 20.0);
-  EXPECT_DOUBLE_EQ(split_spread(90.0, 1.0), 20.0 + 0.75 * 30.0);      // 42.5
-  EXPECT_DOUBLE_EQ(split_spread(0.0, 1.0), 20.0 + 0.75 * 120.0);      // 110
+  EXPECT_DOUBLE_EQ(split_spread(90.0, 1.0), 20.0 + 0.75 * 30.0);  // 42.5
+  EXPECT_DOUBLE_EQ(split_spread(0.0, 1.0), 20.0 + 0.75 * 120.0);  // 110
   EXPECT_DOUBLE_EQ(split_spread(0.0, 0.5), 20.0 + 0.75 * 120.0 * 0.25);
 }
 
@@ -165,7 +165,8 @@ TEST(Sway, IsZeroWithoutWindAndFollowsThePaper) {
   EXPECT_EQ(calm.y, 0.0);
   const double a0 = 4.0 * 10.0 * 0.5 / 0.1;
   const double a1 = 5.0 / 50.0 * a0, a2 = 2.0 / 50.0 * a0 + a1 / 2.0;
-  // The phase rate as arbor reads it: length / radius × time / 15 (the paper prints radius / length).
+  // The phase rate as arbor reads it: length / radius × time / 15 (the paper prints radius /
+  // length).
   const double b = 0.4 + 10.0 / 0.2 * 3.0 / 15.0;
   const Sway s = sway_angles(5, 2, 10, 0.2, 0.1, 0.5, 5, 3.0, 0.4, 1.1);
   EXPECT_NEAR(s.x, (a1 * std::sin(b) + a2 * std::sin(0.7 * b)) / 5.0, 1e-12);
@@ -176,7 +177,9 @@ TEST(Sway, IsZeroWithoutWindAndFollowsThePaper) {
 TEST(Sway, PeriodsAreSecondsForATrunkAndLessForATwig) {
   // The slower of the two terms, sin(0.7 b), has period 2π / (0.7 rate): a 12 m trunk of radius
   // 0.25 m about 2.8 s, a 0.3 m twig of radius 3 mm about 1.3 s.
-  auto period = [](double length, double radius) { return 2.0 * kPi / (0.7 * length / radius / 15.0); };
+  auto period = [](double length, double radius) {
+    return 2.0 * kPi / (0.7 * length / radius / 15.0);
+  };
   EXPECT_NEAR(period(12.0, 0.25), 2.8, 0.1);
   EXPECT_NEAR(period(0.3, 0.003), 1.35, 0.05);
   // Half a period of the twig's faster term moves it by degrees.

@@ -20,7 +20,6 @@ namespace arbor::gen {
 
 namespace {
 
-
 std::string species_path(const std::string& name) {
   return std::string(ARBOR_SOURCE_DIR) + "/species/" + name + ".toml";
 }
@@ -71,7 +70,8 @@ double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
 bool same_bytes(const Skeleton& a, const Skeleton& b) {
   return a.points.size() == b.points.size() && a.leaves.size() == b.leaves.size() &&
          a.stems.size() == b.stems.size() &&
-         std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(SkeletonPoint)) == 0 &&
+         std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(SkeletonPoint)) ==
+             0 &&
          std::memcmp(a.leaves.data(), b.leaves.data(), a.leaves.size() * sizeof(Leaf)) == 0;
 }
 
@@ -300,10 +300,10 @@ TEST(WeberPenn, PrunedStemsStayInsideTheEnvelope) {
     if (s.level == 0) continue;
     for (std::uint32_t k = 1; k < s.point_count; ++k) {
       const glm::vec3 q = sk.points[s.first_point + k].position;
-      const bool inside = wp::inside_envelope(q.x, q.y, q.z, scale_tree, p.base_size,
-                                              p.prune_width, e) ||
-                          wp::inside_envelope(q.x * (1 - slack), q.y * (1 - slack), q.z,
-                                              scale_tree, p.base_size, p.prune_width, e);
+      const bool inside =
+          wp::inside_envelope(q.x, q.y, q.z, scale_tree, p.base_size, p.prune_width, e) ||
+          wp::inside_envelope(q.x * (1 - slack), q.y * (1 - slack), q.z, scale_tree, p.base_size,
+                              p.prune_width, e);
       EXPECT_TRUE(inside) << "stem level " << s.level << " point " << k;
       ++checked;
       if (!inside) return;

@@ -20,17 +20,20 @@ namespace {
 
 const std::string kConfig = std::string(ARBOR_SOURCE_DIR) + "/imaging/ocio/config.ocio";
 
-void expect_rgb(const float got[3], double r, double g, double b, double tolerance, const char* what) {
+void expect_rgb(const float got[3], double r, double g, double b, double tolerance,
+                const char* what) {
   EXPECT_NEAR(got[0], r, tolerance) << what;
   EXPECT_NEAR(got[1], g, tolerance) << what;
   EXPECT_NEAR(got[2], b, tolerance) << what;
 }
 
 // Errors the OCIO config finds in a scene that parsed: still at the scene key.
-void expect_colour_error(const std::string& text, int line, int column, const std::string& fragment) {
+void expect_colour_error(const std::string& text, int line, int column,
+                         const std::string& fragment) {
   const SceneDesc s = parse_scene(text, "dir/s.toml");
   const ColorPipeline color(kConfig);
-  testing::expect_input_error([&] { color.check(s.output, s.output.where); }, "dir/s.toml", line, column, fragment);
+  testing::expect_input_error([&] { color.check(s.output, s.output.where); }, "dir/s.toml", line,
+                              column, fragment);
 }
 
 }  // namespace
@@ -108,8 +111,8 @@ TEST(Color, PngsGoThroughTheSrgbDisplayCurve) {
 }
 
 TEST(Color, AConfigThatCannotBeReadIsAnInputErrorNamingIt) {
-  testing::expect_input_error([] { ColorPipeline("/nonexistent/config.ocio"); }, "/nonexistent/config.ocio",
-                              0, 0, "cannot use this OCIO config");
+  testing::expect_input_error([] { ColorPipeline("/nonexistent/config.ocio"); },
+                              "/nonexistent/config.ocio", 0, 0, "cannot use this OCIO config");
 }
 
 }  // namespace arbor::trace
@@ -126,23 +129,27 @@ std::string write_config(const char* name, const std::string& text) {
 
 // The head every test config shares: a display with one view, the roles OCIO requires.
 std::string config_head(const std::string& scene_linear, const std::string& extra_roles) {
-  return "ocio_profile_version: 2.1\nsearch_path: \"\"\nstrictparsing: true\nroles:\n  default: " + scene_linear +
-         "\n  scene_linear: " + scene_linear + "\n" + extra_roles +
-         "displays:\n  sRGB:\n    - !<View> {name: Raw, colorspace: " + scene_linear + "}\n"
+  return "ocio_profile_version: 2.1\nsearch_path: \"\"\nstrictparsing: true\nroles:\n  default: " +
+         scene_linear + "\n  scene_linear: " + scene_linear + "\n" + extra_roles +
+         "displays:\n  sRGB:\n    - !<View> {name: Raw, colorspace: " + scene_linear +
+         "}\n"
          "active_displays: [sRGB]\nactive_views: [Raw]\ncolorspaces:\n";
 }
 
 // XYZ → scene_linear by `config`, against arbor's own config, at a few colours.
-void expect_xyz_like_arbors(const std::string& config, const std::string& route_fragment, double tolerance) {
+void expect_xyz_like_arbors(const std::string& config, const std::string& route_fragment,
+                            double tolerance) {
   const ColorPipeline mine(kConfig), other(config);
   EXPECT_NE(other.xyz_route().find(route_fragment), std::string::npos) << other.xyz_route();
   const ColorTransform a = mine.xyz_to_scene_linear(), b = other.xyz_to_scene_linear();
-  for (const auto& xyz : {std::array<float, 3>{0.95047f, 1.0f, 1.08883f}, std::array<float, 3>{0.3f, 0.4f, 0.2f},
-                          std::array<float, 3>{0.1f, 0.05f, 0.6f}}) {
+  for (const auto& xyz :
+       {std::array<float, 3>{0.95047f, 1.0f, 1.08883f}, std::array<float, 3>{0.3f, 0.4f, 0.2f},
+        std::array<float, 3>{0.1f, 0.05f, 0.6f}}) {
     float p[3] = {xyz[0], xyz[1], xyz[2]}, q[3] = {xyz[0], xyz[1], xyz[2]};
     a(p);
     b(q);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(q[c], p[c], tolerance) << other.xyz_route() << " channel " << c;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(q[c], p[c], tolerance) << other.xyz_route() << " channel " << c;
   }
 }
 
@@ -160,7 +167,8 @@ TEST(Color, XyzIsFoundInConfigsWithoutArborsName) {
                    config_head("Linear", "  XYZ: Linear XYZ (Blender)\n") +
                        "  - !<ColorSpace>\n    name: Linear\n    isdata: false\n"
                        "  - !<ColorSpace>\n    name: Linear XYZ (Blender)\n    isdata: false\n"
-                       "    from_scene_reference: !<MatrixTransform> {matrix: " + kRec709ToXyz + "}\n"),
+                       "    from_scene_reference: !<MatrixTransform> {matrix: " +
+                       kRec709ToXyz + "}\n"),
       "\"XYZ\" (\"Linear XYZ (Blender)\")", 2e-3);
   // Only the aces_interchange role: XYZ reaches ACES2065-1 by the AP0 primaries.
   expect_xyz_like_arbors(
@@ -169,13 +177,16 @@ TEST(Color, XyzIsFoundInConfigsWithoutArborsName) {
                        "  - !<ColorSpace>\n    name: ACES2065-1\n    isdata: false\n"
                        "  - !<ColorSpace>\n    name: lin_rec709\n    isdata: false\n"
                        "    to_scene_reference: !<GroupTransform>\n      children:\n"
-                       "        - !<BuiltinTransform> {style: \"UTILITY - ACES-AP1_to_LINEAR-REC709_BFD\", direction: inverse}\n"
+                       "        - !<BuiltinTransform> {style: \"UTILITY - "
+                       "ACES-AP1_to_LINEAR-REC709_BFD\", direction: inverse}\n"
                        "        - !<BuiltinTransform> {style: ACEScg_to_ACES2065-1}\n"),
       "role aces_interchange", 1e-4);
   // Nothing but a scene_linear space arbor knows by name.
-  expect_xyz_like_arbors(write_config("linear_only.ocio", config_head("lin_rec709", "") +
-                                                               "  - !<ColorSpace>\n    name: lin_rec709\n    isdata: false\n"),
-                         "the scene_linear space \"lin_rec709\" by its primaries", 2e-3);
+  expect_xyz_like_arbors(
+      write_config("linear_only.ocio",
+                   config_head("lin_rec709", "") +
+                       "  - !<ColorSpace>\n    name: lin_rec709\n    isdata: false\n"),
+      "the scene_linear space \"lin_rec709\" by its primaries", 2e-3);
 }
 
 TEST(Color, AConfigWithoutXyzSaysEveryWayItTried) {
@@ -193,10 +204,11 @@ TEST(Color, AConfigWithoutXyzSaysEveryWayItTried) {
     ADD_FAILURE() << "a config without XYZ was accepted";
   } catch (const InputError& e) {
     const std::string m = e.message();
-    for (const char* part : {"colour space \"Linear CIE-XYZ-D65\": not in the config",
-                             "\"CIE-XYZ-D65\" is display-referred", "role aces_interchange: not in the config",
-                             "the scene_linear space \"Mystery\": not a space arbor knows the primaries of",
-                             "Add a scene-referred colour space named \"Linear CIE-XYZ-D65\""}) {
+    for (const char* part :
+         {"colour space \"Linear CIE-XYZ-D65\": not in the config",
+          "\"CIE-XYZ-D65\" is display-referred", "role aces_interchange: not in the config",
+          "the scene_linear space \"Mystery\": not a space arbor knows the primaries of",
+          "Add a scene-referred colour space named \"Linear CIE-XYZ-D65\""}) {
       EXPECT_NE(m.find(part), std::string::npos) << part << "\n" << m;
     }
   }

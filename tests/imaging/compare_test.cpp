@@ -162,7 +162,8 @@ TEST(Compare, ReadingFindsVarianceChannels) {
   spec.channelnames = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
   OIIO::ImageBuf buf(spec);
   const float px[6] = {0.25f, 0.5f, 0.75f, 1e-3f, 2e-3f, 3e-3f};
-  for (int y = 0; y < 2; ++y) for (int x = 0; x < 2; ++x) buf.setpixel(x, y, px);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 2; ++x) buf.setpixel(x, y, px);
   ASSERT_TRUE(buf.write(path));
   const CompareImage im = read_compare_image(path);
   ASSERT_EQ(im.variance.size(), 12u);
@@ -216,7 +217,8 @@ TEST(Compare, PooledTestsCatchATwoPercentShiftOfARegion) {
 TEST(Compare, FalseAlarmRateOnNoiseOfTheStatedVariance) {
   const CompareImage b = flat(48, 48, 0.5f, 1e-3f);
   int alarms = 0;
-  for (unsigned seed = 100; seed < 500; ++seed) alarms += reference_z_test(noisy(b, 1e-3f, 0.0f, seed), b).passed ? 0 : 1;
+  for (unsigned seed = 100; seed < 500; ++seed)
+    alarms += reference_z_test(noisy(b, 1e-3f, 0.0f, seed), b).passed ? 0 : 1;
   EXPECT_LE(alarms, 12);  // 3 %: the binomial's 99.9 % bound for a rate of 1 %
 }
 

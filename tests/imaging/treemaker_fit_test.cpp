@@ -122,10 +122,12 @@ TEST(TreemakerFit, RefusesMismatchedInputs) {
   exact.colorspace = "ACEScg";
   TreemakerAovs other = t;
   other.colorspace = "Linear Rec.709 (sRGB)";
-  testing::expect_input_error([&] { fit_treemaker(exact, other); }, "tm.exr", 0, 0, "same colour space");
+  testing::expect_input_error([&] { fit_treemaker(exact, other); }, "tm.exr", 0, 0,
+                              "same colour space");
   TreemakerAovs empty = t;
   std::fill(empty.coverage.begin(), empty.coverage.end(), 0.0f);
-  testing::expect_input_error([&] { fit_treemaker(made_with(empty, w), empty); }, "tm.exr", 0, 0, "shows no tree");
+  testing::expect_input_error([&] { fit_treemaker(made_with(empty, w), empty); }, "tm.exr", 0, 0,
+                              "shows no tree");
 }
 
 }  // namespace arbor::trace

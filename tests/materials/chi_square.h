@@ -46,7 +46,8 @@ inline ChiSquareResult chi_square(const std::function<BsdfSample(Rng&)>& sample,
           integral += pdf(Dir(r * std::cos(phi), r * std::sin(phi), z));
         }
       }
-      expected[c * n_phi + p] = integral / double(sub * sub) * (2.0 / n_cos) * (2.0 * kPi / n_phi) * samples;
+      expected[c * n_phi + p] =
+          integral / double(sub * sub) * (2.0 / n_cos) * (2.0 * kPi / n_phi) * samples;
     }
   }
   ChiSquareResult result;

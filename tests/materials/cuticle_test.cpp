@@ -60,13 +60,15 @@ TEST(CuticleCoat, AlbedoTableAgreesWithAnIndependentIntegral) {
     const CuticleCoat coat(1.45, roughness);
     for (double mu : {0.15, 0.5, 0.93}) {
       const Dir wo = at_angle(mu);
-      const double direct =
-          testing::hemisphere_integral([&](const Dir& wi) { return coat.eval(wo, wi) * wi.z; }, 600);
-      EXPECT_NEAR(coat.albedo(mu), direct, 0.004 * direct + 2e-5) << "roughness " << roughness << " μ " << mu;
+      const double direct = testing::hemisphere_integral(
+          [&](const Dir& wi) { return coat.eval(wo, wi) * wi.z; }, 600);
+      EXPECT_NEAR(coat.albedo(mu), direct, 0.004 * direct + 2e-5)
+          << "roughness " << roughness << " μ " << mu;
     }
     // Ē against 2 ∫ E μ dμ by the midpoint rule over the interpolant's own values.
     double mean = 0.0;
-    for (int k = 0; k < 1000; ++k) mean += 2.0 * coat.albedo((k + 0.5) / 1000) * (k + 0.5) / 1000 / 1000;
+    for (int k = 0; k < 1000; ++k)
+      mean += 2.0 * coat.albedo((k + 0.5) / 1000) * (k + 0.5) / 1000 / 1000;
     EXPECT_NEAR(coat.mean_albedo(), mean, 1e-6);
     // A dielectric of index 1.45 reflects 3.4 % at normal incidence (less what a rough surface's
     // single scattering loses), and more towards grazing.
@@ -100,9 +102,12 @@ TEST(CoatedLeafBsdf, SamplingMatchesItsPdfFromBothSides) {
   for (double roughness : {0.2, 0.45, 0.9}) {
     const CuticleCoat coat(1.45, roughness);
     const LeafBsdf bsdf{Rgb(0.06, 0.2, 0.04), Rgb(0.05, 0.18, 0.03), &coat};
-    for (const Dir& wo : {glm::normalize(Dir(0.4, -0.2, 0.7)), glm::normalize(Dir(0.8, 0.3, -0.35))}) {
+    for (const Dir& wo :
+         {glm::normalize(Dir(0.4, -0.2, 0.7)), glm::normalize(Dir(0.8, 0.3, -0.35))}) {
       const auto r = testing::chi_square(
-          [&](Rng& rng) { return bsdf.sample(wo, {rng.uniform(), rng.uniform(), rng.uniform()}); },
+          [&](Rng& rng) {
+            return bsdf.sample(wo, {rng.uniform(), rng.uniform(), rng.uniform()});
+          },
           [&](const Dir& wi) { return bsdf.pdf(wo, wi); }, 400000, 23, 100, 64, 12);
       EXPECT_LT(r.chi2, testing::chi_square_critical(r.degrees_of_freedom))
           << "roughness " << roughness << " wo.z " << wo.z;
@@ -131,7 +136,8 @@ TEST(CoatedLeafBsdf, IsReciprocalOnBothSides) {
   const LeafBsdf bsdf{Rgb(0.3, 0.2, 0.1), Rgb(0.4, 0.5, 0.6), &coat};
   const Dir a = glm::normalize(Dir(0.1, 0.2, 0.9)), b = glm::normalize(Dir(-0.5, 0.3, -0.4));
   const Dir b_up(b.x, b.y, -b.z), c = glm::normalize(Dir(-0.2, -0.1, 0.95));
-  for (const auto& [x, y] : {std::pair{a, b}, std::pair{a, b_up}, std::pair{a, c}, std::pair{-a, -c}}) {
+  for (const auto& [x, y] :
+       {std::pair{a, b}, std::pair{a, b_up}, std::pair{a, c}, std::pair{-a, -c}}) {
     const Rgb f = bsdf.eval(x, y), g = bsdf.eval(y, x);
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(f[k], g[k], 1e-12 * f[k]);
   }
@@ -152,7 +158,8 @@ TEST(CoatedLeafBsdf, AWhiteLeafScattersExactlyWhatArrivesAndADarkOneLess) {
         // Transmission has no coat lobe: exactly (1 − E(μo)) T, at any roughness.
         const Rgb t = scattered(white, wo, side < 0);
         for (int k = 0; k < 3; ++k) EXPECT_NEAR(t[k], (1.0 - e) * white.transmittance[k], 2e-4);
-        // Roughness 0 is a lobe narrower than the integration grid: the rest only where it resolves.
+        // Roughness 0 is a lobe narrower than the integration grid: the rest only where it
+        // resolves.
         if (roughness < 0.1) continue;
         const Rgb w = scattered(white, wo, side > 0) + t;
         const Rgb d = scattered(dark, wo, side > 0) + scattered(dark, wo, side < 0);
@@ -172,7 +179,8 @@ TEST(CoatedLeafBsdf, TheCoatReflectsWhiteAndIsStrongestAtTheMirrorDirection) {
   const LeafBsdf bare{green.reflectance, green.transmittance, nullptr};
   const Dir wo = at_angle(0.5, 0.0), mirror(-wo.x, -wo.y, wo.z), off = at_angle(0.9, 2.0);
   const Rgb highlight = green.eval(wo, mirror);
-  const double e = coat.albedo(0.5), scale = (1.0 - e) * (1.0 - coat.albedo(0.5)) / (1.0 - coat.mean_albedo());
+  const double e = coat.albedo(0.5),
+               scale = (1.0 - e) * (1.0 - coat.albedo(0.5)) / (1.0 - coat.mean_albedo());
   const Rgb specular = highlight - bare.eval(wo, mirror) * scale;
   EXPECT_NEAR(specular.x, specular.y, 1e-12);
   EXPECT_NEAR(specular.y, specular.z, 1e-12);

@@ -52,16 +52,18 @@ TEST(Lambert, ReflectsExactlyItsAlbedo) {
   for (double theta_o : {0.0, 0.7, 1.45}) {
     const Dir wo(std::sin(theta_o), 0.0, std::cos(theta_o));
     for (int c = 0; c < 3; ++c) {
-      const double reflected = testing::hemisphere_integral(
-          [&](const Dir& wi) { return bsdf.eval(wo, wi)[c] * wi.z; });
+      const double reflected =
+          testing::hemisphere_integral([&](const Dir& wi) { return bsdf.eval(wo, wi)[c] * wi.z; });
       EXPECT_NEAR(reflected, bsdf.albedo[c], 1e-5) << "theta_o " << theta_o << " channel " << c;
     }
-    EXPECT_NEAR(testing::hemisphere_integral([&](const Dir& wi) { return bsdf.pdf(wo, wi); }), 1.0, 1e-5);
+    EXPECT_NEAR(testing::hemisphere_integral([&](const Dir& wi) { return bsdf.pdf(wo, wi); }), 1.0,
+                1e-5);
   }
   // And each sample's weight value · cos / pdf is that albedo (the white furnace in one bounce).
   Rng rng(5);
   for (int i = 0; i < 1000; ++i) {
-    const BsdfSample s = bsdf.sample(glm::normalize(Dir(0.2, 0.1, 0.9)), {rng.uniform(), rng.uniform()});
+    const BsdfSample s =
+        bsdf.sample(glm::normalize(Dir(0.2, 0.1, 0.9)), {rng.uniform(), rng.uniform()});
     const Rgb weight = s.value * std::fabs(s.wi.z) / s.pdf;
     EXPECT_NEAR(weight.x, 0.3, 1e-12);
     EXPECT_NEAR(weight.y, 0.6, 1e-12);

@@ -37,7 +37,8 @@ TEST(LeafBsdf, SamplingMatchesPdfChiSquare) {
     const double c0 = double(t) / n_theta - 1.0, c1 = double(t + 1) / n_theta - 1.0;
     // ∫ |cos θ| / π d(cos θ) dφ over the cell, times the lobe's probability.
     const double lobe = c0 >= 0.0 ? pr : 1.0 - pr;
-    const double p_cell = lobe * std::fabs(c1 * std::fabs(c1) - c0 * std::fabs(c0)) / 2.0 / n_phi * 2.0;
+    const double p_cell =
+        lobe * std::fabs(c1 * std::fabs(c1) - c0 * std::fabs(c0)) / 2.0 / n_phi * 2.0;
     for (int p = 0; p < n_phi; ++p) {
       const double expected = p_cell * samples;
       const double d = observed[t * n_phi + p] - expected;
@@ -52,7 +53,9 @@ TEST(LeafBsdf, SamplingMatchesItsOwnPdfFromBothSides) {
   const LeafBsdf bsdf{Rgb(0.2, 0.3, 0.1), Rgb(0.5, 0.4, 0.2)};
   for (const Dir& wo : {glm::normalize(Dir(0.4, -0.2, 0.7)), glm::normalize(Dir(0.1, 0.3, -0.9))}) {
     const auto r = testing::chi_square(
-        [&](Rng& rng) { return bsdf.sample(wo, {rng.uniform(), rng.uniform(), rng.uniform()}); },
+        [&](Rng& rng) {
+          return bsdf.sample(wo, {rng.uniform(), rng.uniform(), rng.uniform()});
+        },
         [&](const Dir& wi) { return bsdf.pdf(wo, wi); }, 200000, 17);
     EXPECT_LT(r.chi2, testing::chi_square_critical(r.degrees_of_freedom));
   }

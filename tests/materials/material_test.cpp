@@ -143,8 +143,8 @@ TEST(GroundMaterial, PatchesCoverTheAskedFractionWithSoftEdges) {
       }
     }
     EXPECT_NEAR(double(inside) / n, cover, 0.05) << "cover " << cover;
-    EXPECT_GT(soft, n / 50);   // the edges blend
-    EXPECT_LT(soft, n / 2);    // but most of the ground is one or the other
+    EXPECT_GT(soft, n / 50);  // the edges blend
+    EXPECT_LT(soft, n / 2);   // but most of the ground is one or the other
   }
   g.set_cover(0.0f);
   EXPECT_EQ(g.patch({1.0f, 2.0f}), 0.0f);

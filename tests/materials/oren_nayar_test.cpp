@@ -22,7 +22,9 @@ TEST(OrenNayar, SamplingMatchesPdfChiSquare) {
       const OrenNayar on{Rgb(0.6), sigma};
       const Dir wo(std::sin(theta_o), 0.0, std::cos(theta_o));
       const auto r = testing::chi_square(
-          [&](Rng& rng) { return on.sample(wo, {rng.uniform(), rng.uniform()}); },
+          [&](Rng& rng) {
+            return on.sample(wo, {rng.uniform(), rng.uniform()});
+          },
           [&](const Dir& wi) { return on.pdf(wo, wi); }, 200000, 31);
       EXPECT_LT(r.chi2, testing::chi_square_critical(r.degrees_of_freedom))
           << "sigma " << sigma << " theta_o " << theta_o;
@@ -43,7 +45,8 @@ TEST(OrenNayar, EvalIsTheQualitativeModelOfThePaper) {
           const Dir wi(std::sin(ti), 0.0, std::cos(ti));
           const Dir wo(std::sin(to) * std::cos(dphi), std::sin(to) * std::sin(dphi), std::cos(to));
           const double expected = rho / kPi *
-              (A + B * std::max(0.0, std::cos(dphi)) * std::sin(std::max(ti, to)) * std::tan(std::min(ti, to)));
+                                  (A + B * std::max(0.0, std::cos(dphi)) *
+                                           std::sin(std::max(ti, to)) * std::tan(std::min(ti, to)));
           EXPECT_NEAR(on.eval(wo, wi).x, expected, 1e-12)
               << "sigma " << sigma << " theta_i " << ti << " theta_o " << to << " dphi " << dphi;
         }
@@ -89,7 +92,7 @@ TEST(OrenNayar, IsReciprocalAndConservesEnergy) {
 
 TEST(HeightMap, WrapsAndInterpolates) {
   const HeightMap m({0.0f, 1.0f, 2.0f, 3.0f}, 2, 2);  // rows: 0 1 / 2 3
-  EXPECT_FLOAT_EQ(m.sample(0.25, 0.25), 0.0f);  // pixel centres
+  EXPECT_FLOAT_EQ(m.sample(0.25, 0.25), 0.0f);        // pixel centres
   EXPECT_FLOAT_EQ(m.sample(0.75, 0.25), 1.0f);
   EXPECT_FLOAT_EQ(m.sample(0.75, 0.75), 3.0f);
   EXPECT_FLOAT_EQ(m.sample(1.25, -0.75), 0.0f);  // wraps in both directions
@@ -102,7 +105,8 @@ TEST(ColorMap, DecodesSrgbImagesAndRejectsAlbedosAboveOne) {
   const std::string png = ::testing::TempDir() + "grey.png";
   OIIO::ImageBuf grey(OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::UINT8));
   const float half[3] = {128.0f / 255.0f, 128.0f / 255.0f, 1.0f};
-  for (int y = 0; y < 2; ++y) for (int x = 0; x < 2; ++x) grey.setpixel(x, y, half);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 2; ++x) grey.setpixel(x, y, half);
   ASSERT_TRUE(grey.write(png));
   const ColorMap decoded(png, config);
   // sRGB 128/255 is 0.2159 linear; 1 stays 1.
@@ -112,7 +116,8 @@ TEST(ColorMap, DecodesSrgbImagesAndRejectsAlbedosAboveOne) {
   const std::string exr = ::testing::TempDir() + "bright.exr";
   OIIO::ImageBuf bright(OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::FLOAT));
   const float ok[3] = {0.25f, 0.5f, 0.75f}, too_much[3] = {1.5f, 0.5f, 0.5f};
-  for (int y = 0; y < 2; ++y) for (int x = 0; x < 2; ++x) bright.setpixel(x, y, ok);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 2; ++x) bright.setpixel(x, y, ok);
   ASSERT_TRUE(bright.write(exr));
   EXPECT_NEAR(ColorMap(exr, config).sample(0.1, 0.1).y, 0.5f, 1e-6f);  // linear files stay linear
   bright.setpixel(1, 1, too_much);

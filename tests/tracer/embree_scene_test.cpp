@@ -28,7 +28,8 @@ namespace {
 // One tree geometry as a scene of one prototype and one instance at `placement`, in Embree.
 class GeometryWorld {
  public:
-  GeometryWorld(const gen::TreeGeometry& g, const EmbreeDevice& device, const Placement& placement = {})
+  GeometryWorld(const gen::TreeGeometry& g, const EmbreeDevice& device,
+                const Placement& placement = {})
       : scene_(make_scene(g, placement)), world_(*scene_, device) {}
   // The closest hit in world space; false when the ray escapes.
   bool intersect(const Ray& ray, SurfaceHit& hit) const {
@@ -57,7 +58,6 @@ class GeometryWorld {
   std::unique_ptr<Scene> scene_;
   World world_;
 };
-
 
 // Centre of the trunk grid's ring nearest height z (lobes cancel in the mean of a full ring).
 glm::vec2 ring_centre(const gen::TreeGeometry& g, float z) {
@@ -120,8 +120,8 @@ gen::Skeleton straight_stem() {
 }  // namespace
 
 TEST(TreePrototype, RaysFindTheTrunkLobesAndFlare) {
-  const gen::Species aspen = gen::load_species(std::string(ARBOR_SOURCE_DIR) +
-                                               "/species/quaking_aspen.toml");
+  const gen::Species aspen =
+      gen::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
   gen::GrowOptions o;
   o.quality = 0.1;
   gen::WeberPennParams calm = aspen.weber_penn();
@@ -138,7 +138,8 @@ TEST(TreePrototype, RaysFindTheTrunkLobesAndFlare) {
     const double hi = *std::max_element(r.begin(), r.end());
     const double lo = *std::min_element(r.begin(), r.end());
     EXPECT_NEAR(hi / lo, 1.07 / 0.93, 0.02) << "z " << z;  // LobeDepth = 0.07
-    if (z == 3.0f) for (double v : r) mean_high += v / r.size();
+    if (z == 3.0f)
+      for (double v : r) mean_high += v / r.size();
   }
   for (double v : radii_at(tree, ring_centre(g, 0.02f), 0.02f, 360)) mean_low += v / 360.0;
   // Flare 0.6 near the ground: 1 + 0.6 (100^(1 - 8z) - 1) / 100 at z = 0.02 / 12 m.
@@ -164,11 +165,11 @@ TEST(TreePrototype, CurvesAreHitAtTheirRadiusWithBarkCoordinates) {
       SurfaceHit hit;
       ASSERT_TRUE(tree.intersect(ray, hit));
       EXPECT_EQ(hit.kind, SurfaceKind::Curve);
-      EXPECT_NEAR(hit.t, 1.9f, 1e-3f);                          // radius 0.1
+      EXPECT_NEAR(hit.t, 1.9f, 1e-3f);                         // radius 0.1
       EXPECT_GT(glm::dot(hit.geometric_normal, out), 0.999f);  // radial, facing the ray
       EXPECT_NEAR(hit.bark.along, z, 1e-3f);                   // arc length from the base
       EXPECT_NEAR(hit.bark.azimuth, angle, 1e-2f);
-      EXPECT_NEAR(hit.bark.around, 0.1f * angle, 1e-3f);       // radius × azimuth
+      EXPECT_NEAR(hit.bark.around, 0.1f * angle, 1e-3f);  // radius × azimuth
       EXPECT_EQ(hit.material, gen::kMaterialBark);
     }
   }
@@ -227,11 +228,12 @@ TEST(TreePrototype, RaysLeavingLimbsAndLeavesDoNotHitThemAgain) {
   // leaves, behind them) with the integrator's offset rule. None may hit the same primitive at
   // once. Once with the tree where it grew, once placed as a forest places trees (moved far from
   // the origin, turned, scaled), where the hit is carried back from the instance's space.
-  const gen::Species tupelo = gen::load_species(std::string(ARBOR_SOURCE_DIR) +
-                                                "/species/black_tupelo.toml");
+  const gen::Species tupelo =
+      gen::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/black_tupelo.toml");
   gen::GrowOptions o;
   o.quality = 0.3;
-  const gen::TreeGeometry g = gen::build_tree_geometry(gen::grow_weber_penn(tupelo.weber_penn(), o));
+  const gen::TreeGeometry g =
+      gen::build_tree_geometry(gen::grow_weber_penn(tupelo.weber_penn(), o));
   EmbreeDevice device("threads=1");
   Placement placed;
   placed.position = {180.0, -140.0, 0.5};
@@ -247,8 +249,8 @@ TEST(TreePrototype, RaysLeavingLimbsAndLeavesDoNotHitThemAgain) {
       const double a = 2 * kPi * rng.uniform(), z = 4.0 + 16.0 * rng.uniform();
       Ray ray;
       ray.origin = world(glm::vec3(30.0 * std::cos(a), 30.0 * std::sin(a), z));
-      const glm::vec3 target =
-          world(glm::vec3(4.0 * rng.symmetric(), 4.0 * rng.symmetric(), 4.0 + 16.0 * rng.uniform()));
+      const glm::vec3 target = world(
+          glm::vec3(4.0 * rng.symmetric(), 4.0 * rng.symmetric(), 4.0 + 16.0 * rng.uniform()));
       ray.direction = glm::normalize(target - ray.origin);
       SurfaceHit hit;
       if (!tree.intersect(ray, hit)) continue;
@@ -260,8 +262,8 @@ TEST(TreePrototype, RaysLeavingLimbsAndLeavesDoNotHitThemAgain) {
       if (glm::dot(d, hit.geometric_normal) < 0.0f && hit.kind != SurfaceKind::Leaf) d = -d;
       const Ray out = spawn_ray(hit.position, hit.geometric_normal, d);
       SurfaceHit again;
-      if (tree.intersect(out, again) && again.kind == hit.kind && again.primitive == hit.primitive &&
-          again.t < 1e-3f) {
+      if (tree.intersect(out, again) && again.kind == hit.kind &&
+          again.primitive == hit.primitive && again.t < 1e-3f) {
         ++acne;
       }
     }

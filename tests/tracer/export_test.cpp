@@ -1,5 +1,6 @@
-// Tests of the pbrt-v4 scene writer (`arbor export`): pbrt-v4's equal-area map, the colour space, and a whole exported scene
-// read back: its syntax, camera, lights, objects and the sky image's irradiance and orientation.
+// Tests of the pbrt-v4 scene writer (`arbor export`): pbrt-v4's equal-area map, the colour space,
+// and a whole exported scene read back: its syntax, camera, lights, objects and the sky image's
+// irradiance and orientation.
 #include "tracer/pbrt_scene.h"
 
 #include <algorithm>
@@ -30,8 +31,8 @@ constexpr double kPi = 3.14159265358979323846;
 // `arbor export`'s library part: the scene built, then written as pbrt-v4 sees it.
 void export_scene(const std::string& scene_path, const std::string& out, int sky_resolution) {
   const SceneDesc desc = load_scene(scene_path);
-  write_pbrt_scene(*build_scene(desc, kOcioConfig), render_input(desc), ColorPipeline(kOcioConfig), out,
-                   sky_resolution);
+  write_pbrt_scene(*build_scene(desc, kOcioConfig), render_input(desc), ColorPipeline(kOcioConfig),
+                   out, sky_resolution);
 }
 
 std::string slurp(const std::string& path) {
@@ -67,8 +68,8 @@ std::vector<Statement> parse_pbrt(const std::string& text) {
       ++i;
     } else {
       std::size_t end = i;
-      while (end < text.size() && !std::isspace(static_cast<unsigned char>(text[end])) && text[end] != '[' &&
-             text[end] != ']' && text[end] != '"')
+      while (end < text.size() && !std::isspace(static_cast<unsigned char>(text[end])) &&
+             text[end] != '[' && text[end] != ']' && text[end] != '"')
         ++end;
       tokens.push_back(text.substr(i, end - i));
       i = end;
@@ -96,24 +97,43 @@ std::vector<Statement> parse_pbrt(const std::string& text) {
     out.back().args.push_back(t[0] == '"' ? t.substr(1) : t);
   }
   EXPECT_EQ(depth, 0);
-  const std::set<std::string> known = {
-      "ColorSpace", "Scale", "LookAt", "Camera", "Film", "PixelFilter", "Sampler", "Integrator", "WorldBegin",
-      "LightSource", "MakeNamedMaterial", "NamedMaterial", "Material", "ObjectBegin", "ObjectEnd",
-      "ObjectInstance", "AttributeBegin", "AttributeEnd", "Shape", "Transform", "Texture"};
-  const std::set<std::string> types = {"float", "integer", "point3", "point2", "normal", "rgb", "string", "bool",
-                                       "texture"};
+  const std::set<std::string> known = {"ColorSpace",
+                                       "Scale",
+                                       "LookAt",
+                                       "Camera",
+                                       "Film",
+                                       "PixelFilter",
+                                       "Sampler",
+                                       "Integrator",
+                                       "WorldBegin",
+                                       "LightSource",
+                                       "MakeNamedMaterial",
+                                       "NamedMaterial",
+                                       "Material",
+                                       "ObjectBegin",
+                                       "ObjectEnd",
+                                       "ObjectInstance",
+                                       "AttributeBegin",
+                                       "AttributeEnd",
+                                       "Shape",
+                                       "Transform",
+                                       "Texture"};
+  const std::set<std::string> types = {"float", "integer", "point3", "point2", "normal",
+                                       "rgb",   "string",  "bool",   "texture"};
   for (const Statement& s : out) {
     EXPECT_TRUE(known.count(s.directive)) << s.directive;
     // Parameter lists: "type name" then one value or a bracketed list.
     std::size_t i = 0;
-    if (s.directive == "Camera" || s.directive == "Film" || s.directive == "PixelFilter" || s.directive == "Sampler" ||
-        s.directive == "Integrator" || s.directive == "LightSource" || s.directive == "Shape" ||
-        s.directive == "MakeNamedMaterial" || s.directive == "Material" || s.directive == "Texture") {
+    if (s.directive == "Camera" || s.directive == "Film" || s.directive == "PixelFilter" ||
+        s.directive == "Sampler" || s.directive == "Integrator" || s.directive == "LightSource" ||
+        s.directive == "Shape" || s.directive == "MakeNamedMaterial" || s.directive == "Material" ||
+        s.directive == "Texture") {
       i = s.directive == "Texture" ? 3 : 1;  // Texture "name" "type" "class" params
       while (i < s.args.size()) {
         const std::string& decl = s.args[i];
         const std::size_t space = decl.find(' ');
-        EXPECT_NE(space, std::string::npos) << s.directive << ": parameter without a type: " << decl;
+        EXPECT_NE(space, std::string::npos)
+            << s.directive << ": parameter without a type: " << decl;
         if (space == std::string::npos) break;
         EXPECT_TRUE(types.count(decl.substr(0, space))) << s.directive << ": type of " << decl;
         ++i;
@@ -142,9 +162,11 @@ std::vector<double> numbers(const Statement& s, const std::string& param) {
   return v;
 }
 
-const Statement* find(const std::vector<Statement>& all, const std::string& directive, const std::string& first = "") {
+const Statement* find(const std::vector<Statement>& all, const std::string& directive,
+                      const std::string& first = "") {
   for (const Statement& s : all) {
-    if (s.directive == directive && (first.empty() || (!s.args.empty() && s.args[0] == first))) return &s;
+    if (s.directive == directive && (first.empty() || (!s.args.empty() && s.args[0] == first)))
+      return &s;
   }
   return nullptr;
 }
@@ -187,7 +209,8 @@ TEST(PbrtExport, EqualAreaMapIsPbrtsAndKeepsAreas) {
 
 TEST(PbrtExport, ColourSpacesPbrtKnowsAreKeptAndAcesCgBecomesAp0) {
   const std::vector<float> rec709 = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
-  const std::vector<float> ap1 = {0.713f, 0.293f, 0.165f, 0.830f, 0.128f, 0.044f, 0.32168f, 0.33767f};
+  const std::vector<float> ap1 = {0.713f, 0.293f, 0.165f,   0.830f,
+                                  0.128f, 0.044f, 0.32168f, 0.33767f};
   EXPECT_STREQ(pbrt_color_space_for(rec709).name, "srgb");
   const PbrtColorSpace aces = pbrt_color_space_for(ap1);
   EXPECT_STREQ(aces.name, "aces2065-1");
@@ -208,12 +231,19 @@ TEST(PbrtExport, WritesTheWholeSceneAndASkyWithItsIrradiance) {
   std::remove((dir + "scene.pbrt").c_str());
   std::string text =
       "[render]\nwidth = 90\nheight = 120\nspp = 32\nmax_depth = 6\n"
-      "[camera]\nposition = [12.0, -18.0, 2.5]\nlook_at = [0.0, 0.0, 5.0]\nfov = 40.0\nexposure = 1.0\n"
+      "[camera]\nposition = [12.0, -18.0, 2.5]\nlook_at = [0.0, 0.0, 5.0]\nfov = 40.0\nexposure = "
+      "1.0\n"
       "[sun]\nelevation = 35.0\nazimuth = 120.0\nirradiance = 3.0\n"
       "[sky]\nmodel = \"preetham\"\nturbidity = 3.0\n"
-      "[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) + "/species/young_tree.skel\"\nposition = [0.0, 0.0, 0.0]\n"
-      "[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) + "/species/young_tree.skel\"\nposition = [4.0, 1.0, 0.0]\nrotation = 30.0\n"
-      "[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) + "/species/young_tree.skel\"\nposition = [-4.0, 1.0, 0.0]\n"
+      "[[tree]]\nspecies = \"" +
+      std::string(ARBOR_SOURCE_DIR) +
+      "/species/young_tree.skel\"\nposition = [0.0, 0.0, 0.0]\n"
+      "[[tree]]\nspecies = \"" +
+      std::string(ARBOR_SOURCE_DIR) +
+      "/species/young_tree.skel\"\nposition = [4.0, 1.0, 0.0]\nrotation = 30.0\n"
+      "[[tree]]\nspecies = \"" +
+      std::string(ARBOR_SOURCE_DIR) +
+      "/species/young_tree.skel\"\nposition = [-4.0, 1.0, 0.0]\n"
       "[tree.bark]\nalbedo = [0.2, 0.1, 0.05]\n";
   {
     std::system(("mkdir -p " + dir).c_str());
@@ -227,11 +257,13 @@ TEST(PbrtExport, WritesTheWholeSceneAndASkyWithItsIrradiance) {
   EXPECT_EQ(find(pbrt, "ColorSpace")->args.at(0), "srgb");
   const Statement* look = find(pbrt, "LookAt");
   ASSERT_NE(look, nullptr);
-  EXPECT_EQ(look->args, (std::vector<std::string>{"12", "-18", "2.5", "0", "0", "5", "0", "0", "1"}));
+  EXPECT_EQ(look->args,
+            (std::vector<std::string>{"12", "-18", "2.5", "0", "0", "5", "0", "0", "1"}));
   // A portrait image: pbrt's fov spans the width, arbor's the height.
   const Statement* camera = find(pbrt, "Camera");
   ASSERT_NE(camera, nullptr);
-  EXPECT_NEAR(numbers(*camera, "float fov").at(0), 2.0 * std::atan(std::tan(20.0 * kPi / 180.0) * 90.0 / 120.0) * 180.0 / kPi, 1e-4);
+  EXPECT_NEAR(numbers(*camera, "float fov").at(0),
+              2.0 * std::atan(std::tan(20.0 * kPi / 180.0) * 90.0 / 120.0) * 180.0 / kPi, 1e-4);
   EXPECT_EQ(numbers(*find(pbrt, "Film"), "integer xresolution").at(0), 90);
   EXPECT_EQ(numbers(*find(pbrt, "Sampler"), "integer pixelsamples").at(0), 32);
   EXPECT_EQ(numbers(*find(pbrt, "Integrator"), "integer maxdepth").at(0), 6);
@@ -242,7 +274,9 @@ TEST(PbrtExport, WritesTheWholeSceneAndASkyWithItsIrradiance) {
   EXPECT_EQ(count(pbrt, "ObjectInstance"), 3u);
   bool dark_bark = false;
   for (const Statement& s : pbrt) {
-    if (s.directive == "MakeNamedMaterial" && numbers(s, "rgb reflectance") == std::vector<double>{0.2, 0.1, 0.05}) dark_bark = true;
+    if (s.directive == "MakeNamedMaterial" &&
+        numbers(s, "rgb reflectance") == std::vector<double>{0.2, 0.1, 0.05})
+      dark_bark = true;
   }
   EXPECT_TRUE(dark_bark);
 
@@ -280,7 +314,8 @@ TEST(PbrtExport, WritesTheWholeSceneAndASkyWithItsIrradiance) {
   glm::vec3 brightest_direction(0.0f);
   for (int y = 0; y < spec.height; ++y) {
     for (int x = 0; x < spec.width; ++x) {
-      const glm::vec3 d = equal_area_square_to_sphere({(x + 0.5f) / spec.width, (y + 0.5f) / spec.height});
+      const glm::vec3 d =
+          equal_area_square_to_sphere({(x + 0.5f) / spec.width, (y + 0.5f) / spec.height});
       const float* p = &px[(static_cast<std::size_t>(y) * spec.width + x) * spec.nchannels];
       if (d.z > 0.0f) e += glm::dvec3(p[0], p[1], p[2]) * static_cast<double>(d.z);
       // Below the horizon (the ground hides it) and on it (z = 0: texels the square's diamond runs
@@ -289,7 +324,8 @@ TEST(PbrtExport, WritesTheWholeSceneAndASkyWithItsIrradiance) {
       if (d.z <= 0.0f) {
         const float across = std::hypot(d.x, d.y);
         const glm::vec3 h = glm::normalize(glm::vec3(d.x / across, d.y / across, 1e-4f));
-        const glm::vec3 horizon = glm::max(sky.radiance(h), glm::vec3(0.0f));  // pbrt's srgb is scene_linear here
+        const glm::vec3 horizon =
+            glm::max(sky.radiance(h), glm::vec3(0.0f));  // pbrt's srgb is scene_linear here
         EXPECT_GT(p[1], 0.0f) << x << "," << y;
         EXPECT_NEAR(p[1], horizon.y, 1e-3f * horizon.y + 1e-6f) << x << "," << y;
       }
@@ -302,7 +338,8 @@ TEST(PbrtExport, WritesTheWholeSceneAndASkyWithItsIrradiance) {
   e *= 4.0 * kPi / (spec.width * spec.height);
   const glm::vec3 expected = sky.irradiance_up();
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(e[k], expected[k], 0.02 * expected[k]) << k;
-  EXPECT_GT(glm::dot(glm::normalize(brightest_direction), sky.sun_direction()), std::cos(15.0 * kPi / 180.0));
+  EXPECT_GT(glm::dot(glm::normalize(brightest_direction), sky.sun_direction()),
+            std::cos(15.0 * kPi / 180.0));
 }
 
 }  // namespace arbor::trace
@@ -316,17 +353,19 @@ TEST(PbrtExport, GroundPatchesNearTheCameraAreAnImage) {
   const std::string dir = ::testing::TempDir() + "pbrt_ground/";
   std::system(("mkdir -p " + dir).c_str());
   const std::string scene_path = dir + "scene.toml";
-  std::ofstream(scene_path) << "[render]\nwidth = 40\nheight = 30\nspp = 4\n"
-                               "[camera]\nposition = [12.4, -18.6, 2.5]\nlook_at = [0.0, 0.0, 1.0]\n"
-                               "[sky]\nmodel = \"constant\"\ncolor = [0.5, 0.5, 0.5]\n"
-                               "[ground]\nalbedo = [0.2, 0.15, 0.1]\npatch_albedo = [0.05, 0.1, 0.03]\n"
-                               "patch_cover = 0.5\npatch_scale = 4.0\n";
+  std::ofstream(scene_path)
+      << "[render]\nwidth = 40\nheight = 30\nspp = 4\n"
+         "[camera]\nposition = [12.4, -18.6, 2.5]\nlook_at = [0.0, 0.0, 1.0]\n"
+         "[sky]\nmodel = \"constant\"\ncolor = [0.5, 0.5, 0.5]\n"
+         "[ground]\nalbedo = [0.2, 0.15, 0.1]\npatch_albedo = [0.05, 0.1, 0.03]\n"
+         "patch_cover = 0.5\npatch_scale = 4.0\n";
   const std::string pbrt_out = dir + "scene.pbrt";
   export_scene(scene_path, pbrt_out, 16);
   const std::vector<Statement> pbrt = parse_pbrt(slurp(pbrt_out));
   const Statement* texture = find(pbrt, "Texture", "ground patches");
   ASSERT_NE(texture, nullptr);
-  EXPECT_NE(std::find(texture->args.begin(), texture->args.end(), "scene.ground.exr"), texture->args.end());
+  EXPECT_NE(std::find(texture->args.begin(), texture->args.end(), "scene.ground.exr"),
+            texture->args.end());
 
   auto in = OIIO::ImageInput::open(dir + "scene.ground.exr");
   ASSERT_TRUE(in);
@@ -344,11 +383,13 @@ TEST(PbrtExport, GroundPatchesNearTheCameraAreAnImage) {
   int patched = 0, bare = 0;
   for (int row = 0; row < 1024; row += 37) {
     for (int column = 0; column < 1024; column += 41) {
-      const glm::vec2 xy(12.0f - 128.0f + (column + 0.5f) * 0.25f, -19.0f + 128.0f - (row + 0.5f) * 0.25f);
+      const glm::vec2 xy(12.0f - 128.0f + (column + 0.5f) * 0.25f,
+                         -19.0f + 128.0f - (row + 0.5f) * 0.25f);
       const float w = ground.ground.patch(xy);
       const glm::vec3 expected = ground.albedo + (ground.ground.patch_albedo - ground.albedo) * w;
       const float* p = &px[(static_cast<std::size_t>(row) * 1024 + column) * spec.nchannels];
-      for (int k = 0; k < 3; ++k) EXPECT_NEAR(p[k], expected[k], 2e-3f * expected[k] + 1e-5f) << row << "," << column;
+      for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(p[k], expected[k], 2e-3f * expected[k] + 1e-5f) << row << "," << column;
       patched += w > 0.99f;
       bare += w < 0.01f;
       mean += p[1];
@@ -360,7 +401,9 @@ TEST(PbrtExport, GroundPatchesNearTheCameraAreAnImage) {
   const Statement* outer = nullptr;
   for (const Statement& s : pbrt) {
     const std::string name = s.args.empty() ? "" : s.args[0];
-    if (s.directive == "MakeNamedMaterial" && name.size() >= 6 && name.compare(name.size() - 6, 6, "ground") == 0) outer = &s;
+    if (s.directive == "MakeNamedMaterial" && name.size() >= 6 &&
+        name.compare(name.size() - 6, 6, "ground") == 0)
+      outer = &s;
   }
   ASSERT_NE(outer, nullptr);
   const double g = numbers(*outer, "rgb reflectance").at(1);

@@ -49,11 +49,13 @@ TEST(FilmFile, WritesAndReadsBackExactly) {
   const FilmFile back = read_film_state(path);
   EXPECT_EQ(back.film->sums(), film.sums());
   ASSERT_EQ(back.film->states().size(), film.states().size());
-  for (std::size_t p = 0; p < film.states().size(); ++p) EXPECT_EQ(back.film->state(p).mean, film.state(p).mean);
+  for (std::size_t p = 0; p < film.states().size(); ++p)
+    EXPECT_EQ(back.film->state(p).mean, film.state(p).mean);
 }
 
 TEST(FilmFile, NonFiniteSumsAreRefusedEvenWithAGoodChecksum) {
-  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+  for (const double bad :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     const std::string path = ::testing::TempDir() + "film_file_nan.state";
     Film film = small_film();
     film.sums()[5] = bad;

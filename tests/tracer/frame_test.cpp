@@ -15,12 +15,15 @@ namespace arbor::trace {
 namespace {
 
 SceneDesc animated(const std::string& species, const std::string& animation) {
-  return parse_scene("[render]\nseed = 9\n[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) + "/species/" +
-                         species + "\"\n[output]\nexr = \"out/f.####.exr\"\npng = \"out/f.##.png\"\n" + animation,
-                     "/tmp/scene.toml");
+  return parse_scene(
+      "[render]\nseed = 9\n[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) + "/species/" +
+          species + "\"\n[output]\nexr = \"out/f.####.exr\"\npng = \"out/f.##.png\"\n" + animation,
+      "/tmp/scene.toml");
 }
 
-std::size_t segments(const SceneDesc& s) { return build_scene(s, kOcioConfig)->stats.curve_segments; }
+std::size_t segments(const SceneDesc& s) {
+  return build_scene(s, kOcioConfig)->stats.curve_segments;
+}
 
 }  // namespace
 
@@ -47,12 +50,12 @@ TEST(Frames, FrameSetsClockSeedAndOutputNames) {
 
 TEST(Frames, AnimationTableIsChecked) {
   using arbor::testing::expect_input_error;
-  expect_input_error([] { animated("quaking_aspen.toml", "[animation]\nfps = 24.0\n"); }, "/tmp/scene.toml", 8, 1,
-                     "[animation] needs frames");
-  expect_input_error([] { animated("quaking_aspen.toml", "[animation]\nframes = 4\nspeed = 2\n"); }, "/tmp/scene.toml",
-                     10, 1, "unknown key 'speed' in [animation]");
-  expect_input_error([] { animated("quaking_aspen.toml", "[animation]\nframes = 0\n"); }, "/tmp/scene.toml", 9, 10,
-                     "animation.frames = 0 is out of range");
+  expect_input_error([] { animated("quaking_aspen.toml", "[animation]\nfps = 24.0\n"); },
+                     "/tmp/scene.toml", 8, 1, "[animation] needs frames");
+  expect_input_error([] { animated("quaking_aspen.toml", "[animation]\nframes = 4\nspeed = 2\n"); },
+                     "/tmp/scene.toml", 10, 1, "unknown key 'speed' in [animation]");
+  expect_input_error([] { animated("quaking_aspen.toml", "[animation]\nframes = 0\n"); },
+                     "/tmp/scene.toml", 9, 10, "animation.frames = 0 is out of range");
 }
 
 TEST(Frames, WindSwaysWithTheClockAndGrowthOnlyWhenAsked) {
@@ -61,7 +64,8 @@ TEST(Frames, WindSwaysWithTheClockAndGrowthOnlyWhenAsked) {
   SceneDesc later = still;
   later.clock = 1.0;
   const auto a = build_scene(still, kOcioConfig), b = build_scene(later, kOcioConfig);
-  const gen::CurveSet &ca = a->prototypes.at(0).geometry->curves, &cb = b->prototypes.at(0).geometry->curves;
+  const gen::CurveSet &ca = a->prototypes.at(0).geometry->curves,
+                      &cb = b->prototypes.at(0).geometry->curves;
   ASSERT_EQ(ca.size(), cb.size());
   bool moved = false;
   for (std::size_t i = 0; i < ca.points.size() && !moved; ++i) moved = ca.points[i] != cb.points[i];

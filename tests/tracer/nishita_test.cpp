@@ -46,7 +46,8 @@ TEST(Nishita, RayleighAndOzoneConstantsAreThePublishedOnes) {
   EXPECT_NEAR(NishitaSky::rayleigh_scattering(550.0) * 8434.0, 0.0973, 0.002);
   EXPECT_NEAR(NishitaSky::rayleigh_scattering(400.0) * 8434.0, 0.364, 0.008);
   // ≈ λ⁻⁴ (a little steeper, by the dispersion of air).
-  const double ratio = NishitaSky::rayleigh_scattering(440.0) / NishitaSky::rayleigh_scattering(680.0);
+  const double ratio =
+      NishitaSky::rayleigh_scattering(440.0) / NishitaSky::rayleigh_scattering(680.0);
   EXPECT_GT(ratio, std::pow(680.0 / 440.0, 4.0));
   EXPECT_LT(ratio, 1.08 * std::pow(680.0 / 440.0, 4.0));
   // The Chappuis band peaks near 600 nm at about 5e-21 cm² and is weak in the blue.
@@ -83,19 +84,22 @@ TEST(Nishita, ThinAirScattersAndAttenuatesAsTheClosedForms) {
   double y = 0.0;
   for (int k = 0; k < NishitaSky::kWavelengths; ++k) {
     const double nm = NishitaSky::wavelength(k);
-    y += NishitaSky::cie_xyz_bar(nm).y / (std::pow(nm, 5.0) * (std::exp(1.4387769e7 / (nm * 5778.0)) - 1.0));
+    y += NishitaSky::cie_xyz_bar(nm).y /
+         (std::pow(nm, 5.0) * (std::exp(1.4387769e7 / (nm * 5778.0)) - 1.0));
   }
   for (int k = 0; k < NishitaSky::kWavelengths; ++k) {
     const double nm = NishitaSky::wavelength(k);
     const double s = 3.0 / y / (std::pow(nm, 5.0) * (std::exp(1.4387769e7 / (nm * 5778.0)) - 1.0));
     const double beta = NishitaSky::rayleigh_scattering(nm), tau = beta * column;
-    expected += s * beta * column * 3.0 / (8.0 * kPi) * std::exp(-tau) * NishitaSky::cie_xyz_bar(nm);
+    expected +=
+        s * beta * column * 3.0 / (8.0 * kPi) * std::exp(-tau) * NishitaSky::cie_xyz_bar(nm);
     space += s * NishitaSky::cie_xyz_bar(nm);
     EXPECT_NEAR(model.transmittance({0.0, 0.0, 1.0}, k), std::exp(-tau), 1e-5 * tau);
   }
   EXPECT_NEAR(space.y, 3.0, 1e-9);
   const glm::dvec3 zenith = model.radiance_xyz({0.0, 0.0, 1.0}, 2048);
-  for (int c = 0; c < 3; ++c) EXPECT_NEAR(zenith[c], expected[c], 0.002 * expected[c]) << "channel " << c;
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(zenith[c], expected[c], 0.002 * expected[c]) << "channel " << c;
   // The default quadrature (32 steps) within 0.3 % of it.
   EXPECT_NEAR(model.radiance_xyz({0.0, 0.0, 1.0}).y, expected.y, 0.003 * expected.y);
 }
@@ -164,7 +168,8 @@ TEST(Nishita, TheMapsIrradianceIsTheModelsIntegratedIndependently) {
       }
     }
     const glm::vec3 map = sky.irradiance_up();
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(map[c], e[c], 0.01 * e[c]) << "elevation " << elevation << " channel " << c;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(map[c], e[c], 0.01 * e[c]) << "elevation " << elevation << " channel " << c;
   }
 }
 
@@ -182,7 +187,8 @@ TEST(Nishita, DensitiesAndAltitudeChangeTheSkyTheWayTheyShould) {
   EXPECT_LT(d.z / d.x, s.z / s.x);  // haze whitens the sky
   EXPECT_LT(h.y, s.y);              // less air above: darker
   EXPECT_LT(o.z / o.x, s.z / s.x);  // ozone takes red and green, not blue
-  EXPECT_GT(NishitaSky(high, sun_at(30.0), 3.0).sun_irradiance_xyz().y, standard.sun_irradiance_xyz().y);
+  EXPECT_GT(NishitaSky(high, sun_at(30.0), 3.0).sun_irradiance_xyz().y,
+            standard.sun_irradiance_xyz().y);
 }
 
 }  // namespace arbor::trace

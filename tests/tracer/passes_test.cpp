@@ -84,7 +84,8 @@ Spread stated_to_seen(int spp, int pass_spp, bool independent) {
 
 TEST(Passes, IndependentPassesStateTheVarianceTwoSeedsShow) {
   // 64 spp in 8 independent passes of 8: within ±25 % of the empirical variance of the difference
-  // is what issue 12 asks; we hold it to ±15 % (measured 0.995; a variance 30 % too large gives 0.765).
+  // is what issue 12 asks; we hold it to ±15 % (measured 0.995; a variance 30 % too large gives
+  // 0.765).
   const double honest = stated_to_seen(64, 8, true).ratio();
   EXPECT_GT(honest, 0.85);
   EXPECT_LT(honest, 1.15);
@@ -92,7 +93,8 @@ TEST(Passes, IndependentPassesStateTheVarianceTwoSeedsShow) {
   // the variance of the mean (issue 12 measured 0.31), and the test above would catch it.
   const double one_pass = stated_to_seen(64, 64, true).ratio();
   EXPECT_LT(one_pass, 0.6);
-  std::printf("two seeds differ by %.3f of the stated variance (8 passes), %.3f (one pass)\n", honest, one_pass);
+  std::printf("two seeds differ by %.3f of the stated variance (8 passes), %.3f (one pass)\n",
+              honest, one_pass);
 }
 
 TEST(Passes, PassesOfOneSequenceHaveLessVarianceWhichTheyOverstate) {
@@ -100,8 +102,9 @@ TEST(Passes, PassesOfOneSequenceHaveLessVarianceWhichTheyOverstate) {
   // two seeds differ by less than with independent passes (the reason for the default), and the
   // spread of the pass means overstates the variance of their mean (an upper bound).
   const Spread sequence = stated_to_seen(64, 8, false), independent = stated_to_seen(64, 8, true);
-  std::printf("two seeds differ by %.3g (one sequence), %.3g (independent passes); stated %.3g, %.3g\n",
-              sequence.seen, independent.seen, sequence.stated, independent.stated);
+  std::printf(
+      "two seeds differ by %.3g (one sequence), %.3g (independent passes); stated %.3g, %.3g\n",
+      sequence.seen, independent.seen, sequence.stated, independent.stated);
   EXPECT_LT(sequence.seen, 0.85 * independent.seen);
   EXPECT_LT(sequence.ratio(), 0.95);
   EXPECT_GT(sequence.ratio(), 0.3);
@@ -129,8 +132,10 @@ TEST(Passes, PassesOfOneSequenceAreTheSinglePassSamples) {
   for (std::size_t p = 0; p < single.beauty.size(); ++p) {
     for (int c = 0; c < 3; ++c) {
       const double scale = std::max(1.0, std::fabs(double(single.beauty[p][c])));
-      worst_split = std::max(worst_split, std::fabs(double(split.beauty[p][c]) - single.beauty[p][c]) / scale);
-      worst_apart = std::max(worst_apart, std::fabs(double(apart.beauty[p][c]) - single.beauty[p][c]) / scale);
+      worst_split = std::max(worst_split,
+                             std::fabs(double(split.beauty[p][c]) - single.beauty[p][c]) / scale);
+      worst_apart = std::max(worst_apart,
+                             std::fabs(double(apart.beauty[p][c]) - single.beauty[p][c]) / scale);
     }
   }
   EXPECT_LT(worst_split, 1e-5);
@@ -159,7 +164,8 @@ TEST(Passes, AdaptiveSamplingStopsConvergedPixelsDeterministically) {
       // A pixel stopped only once its relative standard error was at the threshold.
       for (int c = 0; c < 3; ++c) {
         const double se = std::sqrt(double(a.variance[p][c]));
-        EXPECT_LE(se / std::max(std::fabs(double(a.beauty[p][c])), 0.01), 0.05 * 1.0001) << "pixel " << p;
+        EXPECT_LE(se / std::max(std::fabs(double(a.beauty[p][c])), 0.01), 0.05 * 1.0001)
+            << "pixel " << p;
       }
     }
   }
@@ -168,7 +174,8 @@ TEST(Passes, AdaptiveSamplingStopsConvergedPixelsDeterministically) {
   // Without a threshold every pixel takes every sample.
   s.render.noise_threshold = 0;
   const Image uniform = render(s);
-  EXPECT_TRUE(std::all_of(uniform.samples.begin(), uniform.samples.end(), [](float n) { return n == 256.0f; }));
+  EXPECT_TRUE(std::all_of(uniform.samples.begin(), uniform.samples.end(),
+                          [](float n) { return n == 256.0f; }));
 }
 
 }  // namespace arbor::trace

@@ -27,7 +27,6 @@ namespace arbor::trace {
 
 namespace {
 
-
 const ColorTransform kIdentity = [](float*) {};
 
 SceneDesc small_scene(int width, int height, int spp) {
@@ -81,7 +80,8 @@ TreeDesc white_aspen() {
 }
 
 Image render(const SceneDesc& scene, RenderStats& stats) {
-  const EmbreeDevice device(scene.render.threads > 0 ? "threads=" + std::to_string(scene.render.threads) : "");
+  const EmbreeDevice device(
+      scene.render.threads > 0 ? "threads=" + std::to_string(scene.render.threads) : "");
   const TestWorld test_world(scene, device);
   const World& world = test_world.world;
   const Sky sky(sky_spec(scene.sky), sun_spec(scene.sun), xyz_to_scene_linear(), 128);
@@ -165,7 +165,7 @@ TEST(Render, WhiteFurnaceWithBumpMappedBarkLosesEnergyButNeverGainsIt) {
   TreeDesc t = aspen();
   t.bark.albedo = Rgb{1.0, 1.0, 1.0};
   t.bark.bump_height = 0.004;  // the species' default relief
-  t.bark.roughness = 0.0;     // Lambertian (Oren–Nayar's qualitative model loses energy itself)
+  t.bark.roughness = 0.0;      // Lambertian (Oren–Nayar's qualitative model loses energy itself)
   t.leaf.reflectance = t.leaf.back_reflectance = Rgb{0.5, 0.5, 0.5};
   t.leaf.transmittance = Rgb{0.5, 0.5, 0.5};
   s.trees.push_back(t);
@@ -222,7 +222,8 @@ TEST(Render, ASmallSunLightsTheGroundExactly) {
     s.ground.albedo = {0.5, 0.5, 0.5};
     RenderStats stats;
     const Image img = render(s, stats);
-    for (const glm::vec3& v : img.beauty) EXPECT_NEAR(v.x, 0.5 * 3.0 / kPi, 2e-4 * 0.5 * 3.0 / kPi) << diameter;
+    for (const glm::vec3& v : img.beauty)
+      EXPECT_NEAR(v.x, 0.5 * 3.0 / kPi, 2e-4 * 0.5 * 3.0 / kPi) << diameter;
   }
 }
 
@@ -275,7 +276,8 @@ TEST(Render, ImagesAreBitIdenticalAtAnyThreadCount) {
   const Image b = render(s, b_stats);
   ASSERT_EQ(a.beauty.size(), b.beauty.size());
   EXPECT_EQ(std::memcmp(a.beauty.data(), b.beauty.data(), a.beauty.size() * sizeof(glm::vec3)), 0);
-  EXPECT_EQ(std::memcmp(a.variance.data(), b.variance.data(), a.variance.size() * sizeof(glm::vec3)), 0);
+  EXPECT_EQ(
+      std::memcmp(a.variance.data(), b.variance.data(), a.variance.size() * sizeof(glm::vec3)), 0);
   EXPECT_EQ(std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)), 0);
   EXPECT_EQ(a_stats.rays, b_stats.rays);
 }
@@ -307,7 +309,8 @@ SceneDesc floor_scene(const std::string& name, const std::string& text, const st
 
 TEST(Render, ObjMeshesAreConvertedToZUpAndUseTheirMaterials) {
   // A floor quad in a y-up OBJ (group "floor") must lie flat in arbor's z-up world.
-  SceneDesc s = floor_scene("floor.obj", "v -5 0 -5\nv 5 0 -5\nv 5 0 5\nv -5 0 5\ng floor\nf 1 4 3 2\n", "y");
+  SceneDesc s =
+      floor_scene("floor.obj", "v -5 0 -5\nv 5 0 -5\nv 5 0 5\nv -5 0 5\ng floor\nf 1 4 3 2\n", "y");
   const MeshMaterialDesc floor = s.meshes[0].materials["floor"];
   RenderStats stats;
   for (const glm::vec3& v : render(s, stats).beauty) EXPECT_NEAR(v.x, 0.5 * 2.0 / kPi, 4e-3);
@@ -358,7 +361,8 @@ TEST(Render, ATreesCurvesAndItsOwnMeshExportCoverTheSamePixels) {
   const gen::Species species = gen::load_species(t.species);
   gen::GrowOptions grow;
   grow.seed = t.seed;
-  const gen::TreeGeometry g = gen::build_tree_geometry(gen::grow_tree(species, grow), gen::geometry_options_for(species));
+  const gen::TreeGeometry g =
+      gen::build_tree_geometry(gen::grow_tree(species, grow), gen::geometry_options_for(species));
   const std::string obj = ::testing::TempDir() + "saguaro.obj";
   gen::write_obj(gen::tessellate(g), obj, {species.name, species.bark, species.leaf});
   s.trees.clear();
@@ -421,7 +425,8 @@ TEST(Render, BarkBumpMapImagesShadeTheBarkAndMissingOnesAreErrors) {
     noise += std::fabs(smooth_again.beauty[p].x - smooth.beauty[p].x);
   }
   ASSERT_GT(bark, 200);
-  EXPECT_GT(relief, 3.0 * noise) << "relief " << relief / bark << ", noise " << noise / bark << " a pixel";
+  EXPECT_GT(relief, 3.0 * noise) << "relief " << relief / bark << ", noise " << noise / bark
+                                 << " a pixel";
   s.trees[0].bark.bump_map = ::testing::TempDir() + "missing.png";
   try {
     build_scene(s, kOcioConfig);
@@ -441,7 +446,8 @@ TEST(Camera, ThinLensKeepsTheFocusPlaneSharp) {
   for (glm::vec2 film : {glm::vec2(32, 24), glm::vec2(5, 40), glm::vec2(60, 3)}) {
     const Ray centre = cam.generate(film, {0.5f, 0.5f});
     // Where rays through different lens points meet the plane y = 7 (the focus plane).
-    const glm::vec3 focus = centre.origin + centre.direction * ((7.0f - centre.origin.y) / centre.direction.y);
+    const glm::vec3 focus =
+        centre.origin + centre.direction * ((7.0f - centre.origin.y) / centre.direction.y);
     for (glm::vec2 lens : {glm::vec2(0.1f, 0.2f), glm::vec2(0.9f, 0.7f), glm::vec2(0.3f, 0.95f)}) {
       const Ray r = cam.generate(film, lens);
       EXPECT_GT(glm::length(r.origin - centre.origin), 1e-3f);  // the lens is used
@@ -486,11 +492,14 @@ TEST(Sky, SamplingIsConsistentWithItsPdfAndRadiance) {
     for (int j = 0; j < m / 2; ++j) {
       for (int i = 0; i < m; ++i) {
         const double theta = kPi * (j + 0.5) / (m / 2), phi = 2 * kPi * (i + 0.5) / m;
-        const glm::vec3 d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
-        quadrature += glm::dvec3(sky.radiance(d)) * std::sin(theta) * (kPi / (m / 2)) * (2 * kPi / m);
+        const glm::vec3 d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                          std::cos(theta));
+        quadrature +=
+            glm::dvec3(sky.radiance(d)) * std::sin(theta) * (kPi / (m / 2)) * (2 * kPi / m);
       }
     }
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(estimate[c], quadrature[c], 0.01 * quadrature[c]) << name_of(model);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(estimate[c], quadrature[c], 0.01 * quadrature[c]) << name_of(model);
   }
 }
 
@@ -504,7 +513,8 @@ TEST(Sampler, FirstSixteenSamplesFillEveryStratum) {
       ASSERT_LT(u.x, 1.0f);
       seen[static_cast<int>(u.x * 4)][static_cast<int>(u.y * 4)] = true;
     }
-    for (auto& row : seen) for (bool b : row) EXPECT_TRUE(b) << "dim " << dim;
+    for (auto& row : seen)
+      for (bool b : row) EXPECT_TRUE(b) << "dim " << dim;
   }
   EXPECT_NE(PixelSampler(1, 7).get2d(0, 0), PixelSampler(2, 7).get2d(0, 0));
 }

@@ -58,10 +58,10 @@ TEST(Treemaker, FactorsMatchHandWorkedValues) {
   // A leaf 3 m towards the sun from the axis, 4 m up.
   TreemakerTerms t = treemaker_terms(tree, {4.0f, 1.0f, 4.5f}, up, false, L);
   EXPECT_FLOAT_EQ(t[0], 1.0f);
-  EXPECT_NEAR(t[1], 0.5f, 1e-6f);   // N·L = sin 30°
-  EXPECT_NEAR(t[2], 0.4f, 1e-6f);   // 4 / 10
-  EXPECT_NEAR(t[3], 0.6f, 1e-6f);   // 3 / 5
-  EXPECT_NEAR(t[4], 1.0f, 1e-6f);   // on the sun's side: q = π
+  EXPECT_NEAR(t[1], 0.5f, 1e-6f);  // N·L = sin 30°
+  EXPECT_NEAR(t[2], 0.4f, 1e-6f);  // 4 / 10
+  EXPECT_NEAR(t[3], 0.6f, 1e-6f);  // 3 / 5
+  EXPECT_NEAR(t[4], 1.0f, 1e-6f);  // on the sun's side: q = π
   // The same leaf turned over: TREE-MAKER shades the side facing the light.
   EXPECT_NEAR(treemaker_terms(tree, {4.0f, 1.0f, 4.5f}, -up, false, L)[1], 0.5f, 1e-6f);
   // On the far side: q = 0; at right angles: q = π/2.
@@ -124,7 +124,8 @@ TEST(Treemaker, WeightsComeFromTheTemplateThenTheScene) {
   const EmbreeDevice device("");
   const TestWorld test_world(scene, device);
   const World& world = test_world.world;
-  const mat::TreemakerWeights& dogwood = world.instance(0).treemaker;  // light { 0.1 0.4 0.4 0.3 0.2 }
+  const mat::TreemakerWeights& dogwood =
+      world.instance(0).treemaker;  // light { 0.1 0.4 0.4 0.3 0.2 }
   EXPECT_DOUBLE_EQ(dogwood.ambient, 0.1);
   EXPECT_DOUBLE_EQ(dogwood.lambert, 0.4);
   EXPECT_DOUBLE_EQ(dogwood.height, 0.4);
@@ -158,7 +159,8 @@ TEST(Treemaker, ShadeOfAVerticalTrunkIsWorkedOutFromTheView) {
   s.sun.irradiance = 2.0;
   s.sky.model = SkyModel::None;
   s.ground.enabled = false;
-  TreeDesc t = tree_of(write_file("tm_pole.skel", "point 1 0 0 0 0.3\npoint 2 0 0 10 0.3\nconnect 1 2\n"));
+  TreeDesc t =
+      tree_of(write_file("tm_pole.skel", "point 1 0 0 0 0.3\npoint 2 0 0 10 0.3\nconnect 1 2\n"));
   t.bark.albedo = Rgb{0.5, 0.5, 0.5};
   t.treemaker = {0.0, 1.0, 0.0, 0.0, 0.0};  // N·L alone
   s.trees.push_back(t);
@@ -182,9 +184,11 @@ TEST(Treemaker, ShadeOfAVerticalTrunkIsWorkedOutFromTheView) {
         if (img.depth[p] <= 0.0f || z < 0.3 || z > 9.7) continue;
         ++trunk;
         if (part == 0) {
-          EXPECT_NEAR(img.beauty[p].x, 0.5 * max_intensity * std::cos(kPi / 6.0), 1e-5) << "row " << y;
+          EXPECT_NEAR(img.beauty[p].x, 0.5 * max_intensity * std::cos(kPi / 6.0), 1e-5)
+              << "row " << y;
         } else {
-          EXPECT_NEAR(img.beauty[p].x, 0.5 * max_intensity * z / 10.0, 0.5 * max_intensity * 1.5 * z_pixel / 10.0)
+          EXPECT_NEAR(img.beauty[p].x, 0.5 * max_intensity * z / 10.0,
+                      0.5 * max_intensity * 1.5 * z_pixel / 10.0)
               << "row " << y;
         }
       }
@@ -247,7 +251,8 @@ TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
         // One sample per pixel: the pixel is one element's shade.
         TreemakerTerms terms;
         for (int i = 0; i < 5; ++i) terms[static_cast<size_t>(i)] = extra[i];
-        EXPECT_NEAR(v, img.albedo[p].x * integrator.max_intensity().x * treemaker_shade(w, terms), 1e-5f);
+        EXPECT_NEAR(v, img.albedo[p].x * integrator.max_intensity().x * treemaker_shade(w, terms),
+                    1e-5f);
         continue;
       }
       if (std::fabs(v - lit) < 1e-5f) {
@@ -284,7 +289,7 @@ TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
     s.render.threads = threads;
     const EmbreeDevice device("threads=" + std::to_string(threads));
     const TestWorld test_world(s, device);
-  const World& world = test_world.world;
+    const World& world = test_world.world;
     const Sky sky(sky_spec(s.sky), sun_spec(s.sun), xyz_to_scene_linear(), 128);
     RenderStats stats;
     images[threads - 1] = render_image(render_input(s), world, sky, kIdentity, stats);
@@ -292,9 +297,11 @@ TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
   ASSERT_EQ(images[0].extra.size(), images[1].extra.size());
   ASSERT_EQ(images[0].extra.size(), 48u * 32u * 23u);
   EXPECT_EQ(std::memcmp(images[0].beauty.data(), images[1].beauty.data(),
-                        images[0].beauty.size() * sizeof(glm::vec3)), 0);
+                        images[0].beauty.size() * sizeof(glm::vec3)),
+            0);
   EXPECT_EQ(std::memcmp(images[0].extra.data(), images[1].extra.data(),
-                        images[0].extra.size() * sizeof(float)), 0);
+                        images[0].extra.size() * sizeof(float)),
+            0);
   // Without the AOV nothing extra is kept, and the beauty is the same.
   s.output.aovs = {};
   const EmbreeDevice device("threads=2");
@@ -305,7 +312,9 @@ TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
   const Image plain = render_image(render_input(s), world, sky, kIdentity, stats);
   EXPECT_TRUE(plain.extra.empty());
   EXPECT_TRUE(plain.extra_names.empty());
-  EXPECT_EQ(std::memcmp(plain.beauty.data(), images[1].beauty.data(), plain.beauty.size() * sizeof(glm::vec3)), 0);
+  EXPECT_EQ(std::memcmp(plain.beauty.data(), images[1].beauty.data(),
+                        plain.beauty.size() * sizeof(glm::vec3)),
+            0);
 }
 
 }  // namespace arbor::trace

@@ -15,7 +15,8 @@ EmbreeDevice::EmbreeDevice(const std::string& config) {
                          std::to_string(static_cast<int>(code)) + ")");
   }
   rtcSetDeviceErrorFunction(
-      device_, [](void* self, RTCError code, const char* message) {
+      device_,
+      [](void* self, RTCError code, const char* message) {
         EmbreeDevice::on_error(self, static_cast<int>(code), message);
       },
       this);

@@ -13,8 +13,12 @@ namespace arbor::trace {
 
 inline RTCRay embree_ray(const Ray& ray) {
   RTCRay r{};
-  r.org_x = ray.origin.x; r.org_y = ray.origin.y; r.org_z = ray.origin.z;
-  r.dir_x = ray.direction.x; r.dir_y = ray.direction.y; r.dir_z = ray.direction.z;
+  r.org_x = ray.origin.x;
+  r.org_y = ray.origin.y;
+  r.org_z = ray.origin.z;
+  r.dir_x = ray.direction.x;
+  r.dir_y = ray.direction.y;
+  r.dir_z = ray.direction.z;
   r.tnear = ray.t_min;
   r.tfar = ray.t_max;
   r.mask = ~0u;

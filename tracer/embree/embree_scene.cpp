@@ -22,7 +22,8 @@ void cut_out_leaf(const RTCFilterFunctionNArguments* args) {
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
     const gen::LeafCard& c = cards->cards[RTCHitN_primID(args->hit, args->N, i)];
-    const glm::vec2 p = c.leaf_point(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
+    const glm::vec2 p =
+        c.leaf_point(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
     if (!gen::leaf_outline(c.shape).contains(p)) args->valid[i] = 0;
   }
 }
@@ -37,9 +38,12 @@ TreePrototype::TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_ROUND_HERMITE_CURVE);
     std::vector<std::uint32_t> index(c.size());
     for (std::size_t i = 0; i < c.size(); ++i) index[i] = static_cast<std::uint32_t>(2 * i);
-    fill(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT, index.data(), sizeof(std::uint32_t), index.size());
-    fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT4, c.points.data(), sizeof(glm::vec4), c.points.size());
-    fill(g, RTC_BUFFER_TYPE_TANGENT, RTC_FORMAT_FLOAT4, c.tangents.data(), sizeof(glm::vec4), c.tangents.size());
+    fill(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT, index.data(), sizeof(std::uint32_t),
+         index.size());
+    fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT4, c.points.data(), sizeof(glm::vec4),
+         c.points.size());
+    fill(g, RTC_BUFFER_TYPE_TANGENT, RTC_FORMAT_FLOAT4, c.tangents.data(), sizeof(glm::vec4),
+         c.tangents.size());
     curve_id_ = attach(scene_.get(), g);
   }
   const gen::GridSet& gs = geometry.grids;
@@ -51,27 +55,30 @@ TreePrototype::TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry
                   gs.grids[i].height};
     }
     fill(g, RTC_BUFFER_TYPE_GRID, RTC_FORMAT_GRID, grids.data(), sizeof(RTCGrid), grids.size());
-    fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, gs.vertices.data(), sizeof(glm::vec3), gs.vertices.size());
+    fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, gs.vertices.data(), sizeof(glm::vec3),
+         gs.vertices.size());
     grid_id_ = attach(scene_.get(), g);
   }
   const gen::LeafMesh& lm = geometry.leaves;
   if (lm.triangle_count() > 0) {
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
-    fill(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, lm.indices.data(), 3 * sizeof(std::uint32_t), lm.triangle_count());
-    fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, lm.positions.data(), sizeof(glm::vec3), lm.positions.size());
+    fill(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, lm.indices.data(), 3 * sizeof(std::uint32_t),
+         lm.triangle_count());
+    fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, lm.positions.data(), sizeof(glm::vec3),
+         lm.positions.size());
     leaf_id_ = attach(scene_.get(), g);
   }
   const gen::LeafCards& lc = geometry.cards;
   if (lc.size() > 0) {
     // The corners are shared with the geometry, not copied; the quads' indices are 4i .. 4i+3.
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_QUAD);
-    auto* index = static_cast<std::uint32_t*>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(std::uint32_t), lc.size()));
+    auto* index = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(std::uint32_t), lc.size()));
     if (index) {
       for (std::uint32_t k = 0; k < 4 * lc.size(); ++k) index[k] = k;
     }
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, lc.corners.data(), 0,
-                               sizeof(glm::vec3), lc.corners.size());
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, lc.corners.data(),
+                               0, sizeof(glm::vec3), lc.corners.size());
     rtcSetGeometryUserData(g, const_cast<gen::LeafCards*>(&lc));
     rtcSetGeometryIntersectFilterFunction(g, cut_out_leaf);
     rtcSetGeometryOccludedFilterFunction(g, cut_out_leaf);
@@ -109,7 +116,8 @@ void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned prim
     hit.material = d.material;
     hit.geometric_normal = glm::dot(ng, ray.direction) < 0.0f ? ng : -ng;
     hit.shading_normal = gen::grid_normal(g, primitive, u, v);
-    if (glm::dot(hit.shading_normal, hit.geometric_normal) < 0.0f) hit.shading_normal = -hit.shading_normal;
+    if (glm::dot(hit.shading_normal, hit.geometric_normal) < 0.0f)
+      hit.shading_normal = -hit.shading_normal;
     hit.bark = gen::grid_bark(g, primitive, u, v);
     // Along the trunk: between the rings around this hit.
     const auto row = std::min(static_cast<std::uint32_t>(v * (d.height - 1)), d.height - 2u);

@@ -25,8 +25,8 @@ class TreePrototype {
 
   // Fills `hit` from Embree's answer for an instanced hit, the ray taken to this prototype's
   // own space (World::intersect carries it back to the world).
-  void describe_hit(const Ray& ray, unsigned geom_id, unsigned primitive, float u, float v,
-                    float t, const glm::vec3& embree_ng, SurfaceHit& hit) const;
+  void describe_hit(const Ray& ray, unsigned geom_id, unsigned primitive, float u, float v, float t,
+                    const glm::vec3& embree_ng, SurfaceHit& hit) const;
 
  private:
   const gen::TreeGeometry& geometry_;

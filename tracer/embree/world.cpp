@@ -16,7 +16,6 @@ namespace arbor::trace {
 namespace {
 constexpr float kGroundHalfSize = 1.0e4f;  // metres: the ground quad reaches past any horizon
 
-
 // Records that Embree geometry `id` is item `index` of some list.
 void map_id(std::vector<int>& map, unsigned id, std::size_t index) {
   if (map.size() <= id) map.resize(id + 1, -1);
@@ -40,8 +39,10 @@ World::World(const Scene& scene, const EmbreeDevice& device) : scene_(scene), de
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
     const MeshObject& mesh = scene.meshes[i];
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
-    fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, mesh.positions.data(), sizeof(glm::vec3), mesh.positions.size());
-    fill(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, mesh.indices.data(), 3 * sizeof(std::uint32_t), mesh.indices.size() / 3);
+    fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, mesh.positions.data(), sizeof(glm::vec3),
+         mesh.positions.size());
+    fill(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, mesh.indices.data(), 3 * sizeof(std::uint32_t),
+         mesh.indices.size() / 3);
     map_id(mesh_of_geometry_, attach(top_.get(), g), i);
   }
   if (scene.has_ground) {
@@ -69,9 +70,11 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
   SurfaceHit& s = hit.surface;
   if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && rh.hit.geomID < mesh_of_geometry_.size() &&
       mesh_of_geometry_[rh.hit.geomID] >= 0) {
-    const MeshObject& mesh = scene_.meshes[static_cast<std::size_t>(mesh_of_geometry_[rh.hit.geomID])];
+    const MeshObject& mesh =
+        scene_.meshes[static_cast<std::size_t>(mesh_of_geometry_[rh.hit.geomID])];
     const std::uint32_t* tri = &mesh.indices[3 * static_cast<std::size_t>(rh.hit.primID)];
-    const glm::vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]], c = mesh.positions[tri[2]];
+    const glm::vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]],
+                    c = mesh.positions[tri[2]];
     const TriangleSide side = side_seen(a, b, c, ray.direction);
     s.kind = SurfaceKind::None;
     s.t = rh.ray.tfar;
@@ -85,9 +88,11 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
     // the side the ray sees.
     if (!mesh.normal_indices.empty()) {
       const std::uint32_t* ni = &mesh.normal_indices[3 * static_cast<std::size_t>(rh.hit.primID)];
-      if (ni[0] != MeshObject::kNoNormal && ni[1] != MeshObject::kNoNormal && ni[2] != MeshObject::kNoNormal) {
+      if (ni[0] != MeshObject::kNoNormal && ni[1] != MeshObject::kNoNormal &&
+          ni[2] != MeshObject::kNoNormal) {
         const float u = rh.hit.u, v = rh.hit.v;
-        glm::vec3 n = (1.0f - u - v) * mesh.normals[ni[0]] + u * mesh.normals[ni[1]] + v * mesh.normals[ni[2]];
+        glm::vec3 n = (1.0f - u - v) * mesh.normals[ni[0]] + u * mesh.normals[ni[1]] +
+                      v * mesh.normals[ni[2]];
         const float len = glm::length(n);
         if (len > 1e-6f) {
           n /= len;
@@ -141,8 +146,9 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
   hit.instance = instance;
   hit.material = s.kind == SurfaceKind::Leaf ? &inst.leaf : &inst.bark;
   hit.object_id = inst.object_id;
-  hit.material_id = s.kind != SurfaceKind::Leaf ? inst.bark_id
-                    : s.material == gen::kMaterialLeafBack ? inst.leaf_back_id : inst.leaf_front_id;
+  hit.material_id = s.kind != SurfaceKind::Leaf            ? inst.bark_id
+                    : s.material == gen::kMaterialLeafBack ? inst.leaf_back_id
+                                                           : inst.leaf_front_id;
   return true;
 }
 

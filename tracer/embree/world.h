@@ -29,10 +29,14 @@ class World {
   bool occluded(const Ray& ray) const;
 
   const Scene& scene() const { return scene_; }
-  const TreeInstance& instance(int i) const { return scene_.instances[static_cast<std::size_t>(i)]; }
+  const TreeInstance& instance(int i) const {
+    return scene_.instances[static_cast<std::size_t>(i)];
+  }
   const TreeExtent& extent(int i) const { return instance(i).extent; }
   double build_seconds() const { return build_seconds_; }  // the BVHs, after the scene
-  RTCSceneTy* embree_scene() const { return top_.get(); }  // for benchmarks of raw Embree throughput
+  RTCSceneTy* embree_scene() const {
+    return top_.get();
+  }  // for benchmarks of raw Embree throughput
 
  private:
   const Scene& scene_;

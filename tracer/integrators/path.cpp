@@ -53,7 +53,8 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
         out.radiance += beta * sky_.radiance(ray.direction);
       }
       if (sky_.in_sun(ray.direction)) {
-        const float w_sun = bsdf_pdf > 0.0f ? power_heuristic(bsdf_pdf, p_sun_ * sky_.sun_pdf()) : 1.0f;
+        const float w_sun =
+            bsdf_pdf > 0.0f ? power_heuristic(bsdf_pdf, p_sun_ * sky_.sun_pdf()) : 1.0f;
         out.radiance += beta * sky_.sun_radiance() * w_sun;
       }
       break;
@@ -75,17 +76,20 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
 
     // Next-event estimation: one light, the sun or the sky, chosen by its irradiance.
     const bool pick_sun = sampler.get2d(index, dim).x < p_sun_;
-    LightSample ls = pick_sun ? sky_.sample_sun(sampler.get2d(index, dim + 1)) : sky_.sample(sampler.get2d(index, dim + 1));
+    LightSample ls = pick_sun ? sky_.sample_sun(sampler.get2d(index, dim + 1))
+                              : sky_.sample(sampler.get2d(index, dim + 1));
     ls.pdf *= pick_sun ? p_sun_ : 1.0f - p_sun_;
     if (ls.pdf > 0.0f && (ls.radiance.x > 0.0f || ls.radiance.y > 0.0f || ls.radiance.z > 0.0f) &&
-        (sh.leaf || glm::dot(ls.direction, s.geometric_normal) > 0.0f)) {  // not below an opaque surface
+        (sh.leaf ||
+         glm::dot(ls.direction, s.geometric_normal) > 0.0f)) {  // not below an opaque surface
       const glm::dvec3 wi = frame.local(ls.direction);
       const glm::vec3 f = sh.eval(wo, wi);
       if (f.x > 0.0f || f.y > 0.0f || f.z > 0.0f) {
         ++out.rays;
         if (!world_.occluded(spawn_ray(s.position, s.geometric_normal, ls.direction))) {
           const float w = power_heuristic(ls.pdf, sh.pdf(wo, wi));
-          out.radiance += beta * f * ls.radiance * (static_cast<float>(std::fabs(wi.z)) * w / ls.pdf);
+          out.radiance +=
+              beta * f * ls.radiance * (static_cast<float>(std::fabs(wi.z)) * w / ls.pdf);
         }
       }
     }

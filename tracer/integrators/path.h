@@ -22,7 +22,7 @@ struct PathSample {
   float depth = 0.0f;  // distance along the camera ray to the first hit (0 when none)
   bool hit = false;    // the camera ray hit something (alpha)
   std::uint32_t object_id = 0, material_id = 0;  // of the first hit (0: none)
-  std::uint32_t rays = 0;  // rays traced for it (closest-hit and shadow)
+  std::uint32_t rays = 0;                        // rays traced for it (closest-hit and shadow)
 };
 
 class PathIntegrator {

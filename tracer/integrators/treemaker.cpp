@@ -40,7 +40,8 @@ float treemaker_shade(const mat::TreemakerWeights& w, const TreemakerTerms& t) {
                             w.radius * t[3] + w.angle * t[4]);
 }
 
-void TreemakerSample::write_aovs(float exposure, const ColorTransform& to_output, float* out) const {
+void TreemakerSample::write_aovs(float exposure, const ColorTransform& to_output,
+                                 float* out) const {
   std::size_t k = 0;
   for (float term : terms) out[k++] = term;
   auto put = [&](const glm::vec3& c) {
@@ -72,7 +73,8 @@ glm::vec3 TreemakerIntegrator::diffuse_radiance(const WorldHit& hit, std::uint32
     // exactly the points that projection covers. The shadow colour is the ground lit by the sky
     // alone.
     ++rays;
-    if (!world_.occluded(spawn_ray(s.position, s.geometric_normal, to_light_))) e += sun_irradiance_ * cos_sun;
+    if (!world_.occluded(spawn_ray(s.position, s.geometric_normal, to_light_)))
+      e += sun_irradiance_ * cos_sun;
   }
   return surface_albedo(hit) * e / static_cast<float>(kPi);
 }

@@ -21,7 +21,9 @@ Distribution2D::Distribution2D(const std::vector<float>& w, int width, int heigh
 
 glm::vec2 Distribution2D::sample(glm::vec2 u, float& pdf) const {
   const double ru = u.y * total_;
-  int j = static_cast<int>(std::upper_bound(row_cdf_.begin(), row_cdf_.end(), ru) - row_cdf_.begin()) - 1;
+  int j =
+      static_cast<int>(std::upper_bound(row_cdf_.begin(), row_cdf_.end(), ru) - row_cdf_.begin()) -
+      1;
   j = std::clamp(j, 0, height_ - 1);
   while (j > 0 && row_cdf_[static_cast<size_t>(j) + 1] == row_cdf_[static_cast<size_t>(j)]) --j;
   const double* cdf = &col_cdf_[static_cast<size_t>(j) * (width_ + 1)];
@@ -41,7 +43,8 @@ glm::vec2 Distribution2D::sample(glm::vec2 u, float& pdf) const {
 float Distribution2D::pdf(glm::vec2 p) const {
   const int i = std::clamp(static_cast<int>(p.x * width_), 0, width_ - 1);
   const int j = std::clamp(static_cast<int>(p.y * height_), 0, height_ - 1);
-  return static_cast<float>(weights_[static_cast<size_t>(j) * width_ + i] / total_ * width_ * height_);
+  return static_cast<float>(weights_[static_cast<size_t>(j) * width_ + i] / total_ * width_ *
+                            height_);
 }
 
 }  // namespace arbor::trace

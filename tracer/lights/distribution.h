@@ -19,8 +19,8 @@ class Distribution2D {
 
  private:
   int width_ = 0, height_ = 0;
-  std::vector<double> row_cdf_;   // height + 1
-  std::vector<double> col_cdf_;   // height × (width + 1)
+  std::vector<double> row_cdf_;  // height + 1
+  std::vector<double> col_cdf_;  // height × (width + 1)
   std::vector<float> weights_;
   double total_ = 0.0;
 };

@@ -28,7 +28,8 @@ SkyMap envmap_sky_map(const SkyContext& c) {
   for (int j = 0; j < map.height; ++j) {
     for (int i = 0; i < map.width; ++i) {
       image.getpixel(i, j, pixel.data(), static_cast<int>(pixel.size()));
-      const glm::vec3 colour = spec.nchannels >= 3 ? glm::vec3(pixel[0], pixel[1], pixel[2]) : glm::vec3(pixel[0]);
+      const glm::vec3 colour =
+          spec.nchannels >= 3 ? glm::vec3(pixel[0], pixel[1], pixel[2]) : glm::vec3(pixel[0]);
       if (!std::isfinite(colour.x) || !std::isfinite(colour.y) || !std::isfinite(colour.z)) {
         throw InputError({sky.path, 0, 0}, "the environment map has a pixel that is not finite");
       }

@@ -2,7 +2,8 @@
 // integral over the ray of the sunlight scattered towards the observer at each point — the
 // scattering coefficient × phase function × the sun's irradiance attenuated from the top of the
 // atmosphere to the point and from the point to the observer — here with ozone absorption added to
-// the attenuation (Nishita et al. have molecules and aerosols only) and evaluated at 25 wavelengths.
+// the attenuation (Nishita et al. have molecules and aerosols only) and evaluated at 25
+// wavelengths.
 #include "tracer/lights/nishita.h"
 
 #include <algorithm>
@@ -17,8 +18,8 @@ namespace arbor::trace {
 
 namespace {
 
-constexpr double kEarthRadius = 6360e3;     // m
-constexpr double kTop = 60e3;               // m: the atmosphere's thickness
+constexpr double kEarthRadius = 6360e3;  // m
+constexpr double kTop = 60e3;            // m: the atmosphere's thickness
 constexpr double kTopRadius = kEarthRadius + kTop;
 constexpr double kRayleighHeight = 8000.0;  // m, scale height of the molecules
 constexpr double kMieHeight = 1200.0;       // m, scale height of the aerosols
@@ -37,7 +38,8 @@ double rayleigh_phase(double c) { return 3.0 / (16.0 * kPi) * (1.0 + c * c); }
 // the sphere: 3/(8π) (1 − g²)(1 + cos² θ) / ((2 + g²)(1 + g² − 2g cos θ)^(3/2)).
 double mie_phase(double c) {
   const double g = kMieG, g2 = g * g;
-  return 3.0 / (8.0 * kPi) * (1.0 - g2) * (1.0 + c * c) / ((2.0 + g2) * std::pow(1.0 + g2 - 2.0 * g * c, 1.5));
+  return 3.0 / (8.0 * kPi) * (1.0 - g2) * (1.0 + c * c) /
+         ((2.0 + g2) * std::pow(1.0 + g2 - 2.0 * g * c, 1.5));
 }
 
 // Distance from radius r along cos zenith μ to the top of the atmosphere (r inside it).
@@ -74,7 +76,8 @@ double NishitaSky::rayleigh_scattering(double nm) {
   const double n1 = (8060.51 + 2480990.0 / (132.274 - s2) + 17455.7 / (39.32957 - s2)) * 1e-8;
   const double N = 2.547e25, rho = 0.0279, l = nm * 1e-9;
   const double n2 = n1 * (2.0 + n1);  // n² − 1
-  return 8.0 * kPi * kPi * kPi * n2 * n2 / (3.0 * N * l * l * l * l) * (6.0 + 3.0 * rho) / (6.0 - 7.0 * rho);
+  return 8.0 * kPi * kPi * kPi * n2 * n2 / (3.0 * N * l * l * l * l) * (6.0 + 3.0 * rho) /
+         (6.0 - 7.0 * rho);
 }
 
 double NishitaSky::ozone_cross_section(double nm) {
@@ -95,7 +98,8 @@ glm::dvec3 NishitaSky::cie_xyz_bar(double nm) {
   return {x, y, z};
 }
 
-NishitaSky::NishitaSky(const Atmosphere& atmosphere, const glm::dvec3& sun_direction, double sun_irradiance)
+NishitaSky::NishitaSky(const Atmosphere& atmosphere, const glm::dvec3& sun_direction,
+                       double sun_irradiance)
     : a_(atmosphere), sun_(glm::normalize(sun_direction)), r0_(kEarthRadius + atmosphere.altitude) {
   const double dl = 400.0 / (kWavelengths - 1);
   double y = 0.0;
@@ -116,7 +120,8 @@ NishitaSky::NishitaSky(const Atmosphere& atmosphere, const glm::dvec3& sun_direc
     const double u = double(i) / (kRows - 1), r = kEarthRadius + kTop * u * u;
     // Below the horizon a ray meets the Earth; those cells hold the grazing ray's depth so that
     // interpolation next to the horizon stays finite (depth_to_sun tests the Earth itself).
-    const double mu_horizon = -std::sqrt(std::max(0.0, 1.0 - (kEarthRadius / r) * (kEarthRadius / r)));
+    const double mu_horizon =
+        -std::sqrt(std::max(0.0, 1.0 - (kEarthRadius / r) * (kEarthRadius / r)));
     for (int j = 0; j < kCols; ++j) {
       double mu = -1.0 + 2.0 * j / (kCols - 1);
       if (hits_earth(r, mu)) mu = mu_horizon + 1e-6;
@@ -169,14 +174,16 @@ NishitaSky::Depth NishitaSky::depth_to_sun(double r, double mu) const {
   }
   const double u = std::sqrt(std::clamp((r - kEarthRadius) / kTop, 0.0, 1.0)) * (kRows - 1);
   const double v = (std::clamp(mu, -1.0, 1.0) + 1.0) * 0.5 * (kCols - 1);
-  const int i = std::min(kRows - 2, static_cast<int>(u)), j = std::min(kCols - 2, static_cast<int>(v));
+  const int i = std::min(kRows - 2, static_cast<int>(u)),
+            j = std::min(kCols - 2, static_cast<int>(v));
   const double fu = u - i, fv = v - j;
   const Depth& d00 = sun_table_[static_cast<size_t>(i) * kCols + j];
   const Depth& d01 = sun_table_[static_cast<size_t>(i) * kCols + j + 1];
   const Depth& d10 = sun_table_[static_cast<size_t>(i + 1) * kCols + j];
   const Depth& d11 = sun_table_[static_cast<size_t>(i + 1) * kCols + j + 1];
   auto mix = [&](double Depth::*f) {
-    return (1.0 - fu) * ((1.0 - fv) * d00.*f + fv * d01.*f) + fu * ((1.0 - fv) * d10.*f + fv * d11.*f);
+    return (1.0 - fu) * ((1.0 - fv) * d00.*f + fv * d01.*f) +
+           fu * ((1.0 - fv) * d10.*f + fv * d11.*f);
   };
   return {mix(&Depth::rayleigh), mix(&Depth::mie), mix(&Depth::ozone)};
 }
@@ -190,7 +197,8 @@ std::array<double, NishitaSky::kWavelengths> NishitaSky::optical_depth(const Dep
 }
 
 double NishitaSky::transmittance(const glm::dvec3& direction, int k) const {
-  return std::exp(-optical_depth(depth_to_space(r0_, glm::normalize(direction).z))[static_cast<size_t>(k)]);
+  return std::exp(
+      -optical_depth(depth_to_space(r0_, glm::normalize(direction).z))[static_cast<size_t>(k)]);
 }
 
 glm::dvec3 NishitaSky::radiance_xyz(const glm::dvec3& view, int steps) const {
@@ -215,7 +223,8 @@ glm::dvec3 NishitaSky::radiance_xyz(const glm::dvec3& view, int steps) const {
     seen.ozone += rho.ozone * dt;
     const Depth sun = depth_to_sun(r, glm::dot(p, sun_) / r);
     if (!std::isfinite(sun.rayleigh)) continue;  // the point is in the Earth's shadow
-    const double mie = kMieScattering * rho.mie * pm * dt, mie_depth = kMieExtinction * (to_point.mie + sun.mie);
+    const double mie = kMieScattering * rho.mie * pm * dt,
+                 mie_depth = kMieExtinction * (to_point.mie + sun.mie);
     for (int k = 0; k < kWavelengths; ++k) {
       const double tau = beta_r_[k] * (to_point.rayleigh + sun.rayleigh) + mie_depth +
                          sigma_o_[k] * (to_point.ozone + sun.ozone);

@@ -51,7 +51,7 @@ class NishitaSky {
   struct Depth {
     double rayleigh = 0.0, mie = 0.0, ozone = 0.0;  // column densities (density × metres)
   };
-  Depth densities(double r) const;          // at radius r: the three profiles' densities
+  Depth densities(double r) const;                  // at radius r: the three profiles' densities
   Depth depth_to_space(double r, double mu) const;  // along a ray from radius r at cos zenith μ
   Depth depth_to_sun(double r, double mu) const;    // tabulated depth_to_space towards the sun
   Depth integrate_to_space(double r, double mu, int steps) const;
@@ -59,7 +59,7 @@ class NishitaSky {
 
   Atmosphere a_;
   glm::dvec3 sun_{0.0, 0.0, 1.0};
-  double r0_ = 0.0;  // the observer's radius
+  double r0_ = 0.0;                           // the observer's radius
   std::array<double, kWavelengths> solar_{};  // extraterrestrial spectral irradiance, scaled
   std::array<double, kWavelengths> beta_r_{}, sigma_o_{};
   std::array<glm::dvec3, kWavelengths> cmf_{};

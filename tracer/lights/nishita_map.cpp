@@ -26,7 +26,8 @@ SkyMap nishita_sky_map(const SkyContext& c) {
   // that sun even when [sun] enabled = false (which removes only its disk).
   const NishitaSky model(atmosphere, c.sun_direction, c.sun.irradiance);
   auto convert = [&](const glm::dvec3& xyz) {
-    float rgb[3] = {static_cast<float>(xyz.x), static_cast<float>(xyz.y), static_cast<float>(xyz.z)};
+    float rgb[3] = {static_cast<float>(xyz.x), static_cast<float>(xyz.y),
+                    static_cast<float>(xyz.z)};
     c.xyz_to_linear(rgb);
     return glm::dvec3(rgb[0], rgb[1], rgb[2]);
   };
@@ -34,20 +35,24 @@ SkyMap nishita_sky_map(const SkyContext& c) {
   // models' sun is), so the colours are the atmosphere's alone — a channel scale in that space.
   const glm::dvec3 space = convert(model.extraterrestrial_xyz());
   const double space_y = model.extraterrestrial_xyz().y;
-  const glm::dvec3 balance = glm::all(glm::greaterThan(space, glm::dvec3(0.0))) ? space_y / space : glm::dvec3(1.0);
+  const glm::dvec3 balance =
+      glm::all(glm::greaterThan(space, glm::dvec3(0.0))) ? space_y / space : glm::dvec3(1.0);
   auto to_linear = [&](const glm::dvec3& xyz) {
     return glm::max(glm::vec3(convert(xyz) * balance), glm::vec3(0.0f));
   };
   // Rows are independent: in parallel, each texel the same whatever the thread.
-  tbb::parallel_for(tbb::blocked_range<int>(0, map.height / 2 + 1), [&](const tbb::blocked_range<int>& rows) {
-    for (int j = rows.begin(); j < rows.end(); ++j) {
-      for (int i = 0; i < map.width; ++i) {
-        const glm::vec3 d = lat_long_direction({(i + 0.5f) / map.width, (j + 0.5f) / map.height}, c.rotation);
-        if (d.z <= 0.0f) continue;
-        map.texels[static_cast<size_t>(j) * map.width + i] = to_linear(model.radiance_xyz(glm::dvec3(d)));
-      }
-    }
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, map.height / 2 + 1), [&](const tbb::blocked_range<int>& rows) {
+        for (int j = rows.begin(); j < rows.end(); ++j) {
+          for (int i = 0; i < map.width; ++i) {
+            const glm::vec3 d =
+                lat_long_direction({(i + 0.5f) / map.width, (j + 0.5f) / map.height}, c.rotation);
+            if (d.z <= 0.0f) continue;
+            map.texels[static_cast<size_t>(j) * map.width + i] =
+                to_linear(model.radiance_xyz(glm::dvec3(d)));
+          }
+        }
+      });
   map.sun_irradiance = to_linear(model.sun_irradiance_xyz());
   return map;
 }

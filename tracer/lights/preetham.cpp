@@ -58,13 +58,15 @@ SkyMap preetham_sky_map(const SkyContext& c) {
   const glm::vec3 sun_direction(c.sun_direction);
   for (int j = 0; j < map.height; ++j) {
     for (int i = 0; i < map.width; ++i) {
-      const glm::vec3 d = lat_long_direction({(i + 0.5f) / map.width, (j + 0.5f) / map.height}, c.rotation);
+      const glm::vec3 d =
+          lat_long_direction({(i + 0.5f) / map.width, (j + 0.5f) / map.height}, c.rotation);
       glm::vec3 colour(0.0f);
       if (d.z > 0.0f) {
         const double gamma = std::acos(std::clamp(double(glm::dot(d, sun_direction)), -1.0, 1.0));
         const glm::dvec3 xyz = preetham_xyz(c.sky.turbidity, std::acos(double(d.z)), gamma,
                                             std::min(theta_s, kPi / 2.0 - 1e-3), c.sun.irradiance);
-        float rgb[3] = {static_cast<float>(xyz.x), static_cast<float>(xyz.y), static_cast<float>(xyz.z)};
+        float rgb[3] = {static_cast<float>(xyz.x), static_cast<float>(xyz.y),
+                        static_cast<float>(xyz.z)};
         c.xyz_to_linear(rgb);
         // Out-of-gamut negatives (none for daylight) would be emission of negative light.
         colour = glm::max(glm::vec3(rgb[0], rgb[1], rgb[2]), glm::vec3(0.0f));

@@ -18,8 +18,8 @@ constexpr float kPif = static_cast<float>(kPi);
 
 Sky::Sky(const SkySpec& sky, const SunSpec& sun, const ColorTransform& xyz_to_linear, int width) {
   const double elevation = sun.elevation * kPi / 180.0, azimuth = sun.azimuth * kPi / 180.0;
-  sun_direction_d_ = glm::dvec3(std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth),
-                                std::sin(elevation));
+  sun_direction_d_ = glm::dvec3(std::cos(elevation) * std::cos(azimuth),
+                                std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
   sun_direction_ = glm::vec3(sun_direction_d_);
   if (sun.enabled && sun.irradiance > 0.0) {
     // E = ∫ L cos θ dω over the disk = L π sin²(α): uniform radiance L = E / (π sin² α).
@@ -27,7 +27,8 @@ Sky::Sky(const SkySpec& sky, const SunSpec& sun, const ColorTransform& xyz_to_li
     // 1 - cos α in double (2 sin²(α/2), no cancellation): as a float cos α it was 0.18 % off at
     // α = 0.25°, and with it the sun's pdf and the ground it lights.
     sun_one_minus_cos_ = 2.0 * std::sin(0.5 * alpha) * std::sin(0.5 * alpha);
-    sun_radiance_ = glm::vec3(static_cast<float>(sun.irradiance / (kPi * std::sin(alpha) * std::sin(alpha))));
+    sun_radiance_ =
+        glm::vec3(static_cast<float>(sun.irradiance / (kPi * std::sin(alpha) * std::sin(alpha))));
     sun_irradiance_ = static_cast<float>(sun.irradiance);
     sun_irradiance_color_ = glm::vec3(sun_irradiance_);
     sun_present_ = true;
@@ -88,7 +89,9 @@ glm::vec3 Sky::map_at(glm::vec2 p) const {
   return map_[static_cast<size_t>(j) * width_ + i];
 }
 
-glm::vec3 Sky::radiance(const glm::vec3& d) const { return present_ ? map_at(to_map(d)) : glm::vec3(0.0f); }
+glm::vec3 Sky::radiance(const glm::vec3& d) const {
+  return present_ ? map_at(to_map(d)) : glm::vec3(0.0f);
+}
 
 LightSample Sky::lookup(const glm::vec3& d) const {
   LightSample s;
@@ -140,7 +143,8 @@ LightSample Sky::sample_sun(glm::vec2 u) const {
   const glm::dvec3 w(sun_direction_d_);
   const glm::dvec3 a = std::fabs(w.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
   const glm::dvec3 x = glm::normalize(glm::cross(a, w)), y = glm::cross(w, x);
-  s.direction = glm::vec3(glm::normalize(x * (sin_t * std::cos(phi)) + y * (sin_t * std::sin(phi)) + w * cos_t));
+  s.direction = glm::vec3(
+      glm::normalize(x * (sin_t * std::cos(phi)) + y * (sin_t * std::sin(phi)) + w * cos_t));
   s.radiance = sun_radiance_;
   s.pdf = sun_pdf();
   return s;

@@ -1,6 +1,7 @@
 // The lights of a scene: the sky (Preetham, Nishita, constant, environment map or none; each
-// model's map made in its own file, sky_model.h) as one importance-sampled lat-long radiance map, and the sun as a disk of given angular diameter and
-// irradiance (with Nishita's sky, attenuated and coloured by the same atmosphere).
+// model's map made in its own file, sky_model.h) as one importance-sampled lat-long radiance map,
+// and the sun as a disk of given angular diameter and irradiance (with Nishita's sky, attenuated
+// and coloured by the same atmosphere).
 #pragma once
 
 #include <string>
@@ -19,7 +20,7 @@ namespace arbor::trace {
 struct LightSample {
   glm::vec3 direction{0.0f};  // towards the light
   glm::vec3 radiance{0.0f};
-  float pdf = 0.0f;           // solid angle
+  float pdf = 0.0f;  // solid angle
 };
 
 class Sky {
@@ -67,7 +68,7 @@ class Sky {
   glm::vec3 sun_direction_{0.0f, 0.0f, 1.0f}, sun_radiance_{0.0f};
   float sun_irradiance_ = 0.0f;
   glm::vec3 sun_irradiance_color_{0.0f};
-  double sun_one_minus_cos_ = 0.0;      // 1 - cos α, the cone's solid angle / 2π
+  double sun_one_minus_cos_ = 0.0;  // 1 - cos α, the cone's solid angle / 2π
   glm::dvec3 sun_direction_d_{0.0, 0.0, 1.0};
 };
 

@@ -20,10 +20,10 @@ namespace arbor::trace {
 struct SkyContext {
   const SkySpec& sky;
   const SunSpec& sun;
-  glm::dvec3 sun_direction;              // unit, z up
-  const ColorTransform& xyz_to_linear;   // CIE XYZ → scene-linear
-  int width = 512;                       // of the map, for the models that compute theirs
-  float rotation = 0.0f;                 // radians about z of the map's columns
+  glm::dvec3 sun_direction;             // unit, z up
+  const ColorTransform& xyz_to_linear;  // CIE XYZ → scene-linear
+  int width = 512;                      // of the map, for the models that compute theirs
+  float rotation = 0.0f;                // radians about z of the map's columns
 };
 
 // A lat-long map: `width` columns over the azimuth, `height` rows from the zenith (row 0) to the

@@ -18,7 +18,15 @@ namespace {
 
 // One random stream per stochastic parameter (§4.1), derived from the branch's identity, so the
 // tree at t and at t + dt is the same tree, grown.
-enum Stream : std::uint64_t { kLength = 1, kAngle, kAzimuth, kPrune, kWiggle, kRadius, kChild = 1000 };
+enum Stream : std::uint64_t {
+  kLength = 1,
+  kAngle,
+  kAzimuth,
+  kPrune,
+  kWiggle,
+  kRadius,
+  kChild = 1000
+};
 
 class Grower {
   struct OpenStem {
@@ -31,7 +39,8 @@ class Grower {
   Grower(const FractalParams& p, const FractalOptions& o, double age) : p_(p), o_(o), age_(age) {}
 
   Skeleton run() {
-    const int levels = std::min(p_.depth, static_cast<int>(std::floor(age_ / p_.years_per_level)) + 1);
+    const int levels =
+        std::min(p_.depth, static_cast<int>(std::floor(age_ / p_.years_per_level)) + 1);
     levels_ = std::max(1, levels);
     Frame trunk;  // heading +z
     branch(0, -1, Vec3(0.0), trunk, p_.length, p_.radius, derive_key(o_.seed, 7));
@@ -50,8 +59,8 @@ class Grower {
               double full_bottom_radius, std::uint64_t key) {
     const double s = growth(level);
     if (s <= 0.0) return;
-    refuse_growth(o_.force, static_cast<double>(stems_.size()), o_.max_stems, "the fractal tree grew past",
-                  "branches");
+    refuse_growth(o_.force, static_cast<double>(stems_.size()), o_.max_stems,
+                  "the fractal tree grew past", "branches");
     Rng length_rng(derive_key(key, kLength)), wiggle_rng(derive_key(key, kWiggle)),
         radius_rng(derive_key(key, kRadius));
     const double length = full_length * length_rng.vary(1.0, p_.length_variation) * s;
@@ -62,7 +71,8 @@ class Grower {
     st.stem.level = level;
     st.stem.taper = -1.0f;
     if (parent >= 0) {
-      st.stem.parent_point = static_cast<std::int32_t>(stems_[static_cast<size_t>(parent)].points.size()) - 1;
+      st.stem.parent_point =
+          static_cast<std::int32_t>(stems_[static_cast<size_t>(parent)].points.size()) - 1;
       st.stem.parent_offset = static_cast<float>(stems_[static_cast<size_t>(parent)].length);
     }
     for (int d = 0; d < p_.discs; ++d) {
@@ -79,7 +89,8 @@ class Grower {
     }
     // Keep radii from growing along the branch or past the parent's at the joint.
     if (parent >= 0) {
-      st.points[0].radius = std::min(st.points[0].radius, stems_[static_cast<size_t>(parent)].points.back().radius);
+      st.points[0].radius =
+          std::min(st.points[0].radius, stems_[static_cast<size_t>(parent)].points.back().radius);
     }
     for (std::size_t d = 1; d < st.points.size(); ++d) {
       st.points[d].radius = std::min(st.points[d].radius, st.points[d - 1].radius);
@@ -95,7 +106,8 @@ class Grower {
         prune_rng(derive_key(key, kPrune));
     const double child_growth = growth(level + 1);
     const double half_angle = 0.5 * p_.cone_angle * (1.0 - p_.cone_widening * (1.0 - child_growth));
-    const Vec3 axis = glm::normalize(tip - Vec3(stems_[static_cast<size_t>(index)].points[p_.discs - 2].position));
+    const Vec3 axis = glm::normalize(
+        tip - Vec3(stems_[static_cast<size_t>(index)].points[p_.discs - 2].position));
     Frame at_tip = frame;
     at_tip.z = axis;
     at_tip = at_tip.orthonormalized();
@@ -108,7 +120,8 @@ class Grower {
       const bool pruned = prune_rng.uniform() < p_.prune;  // §3.2: its descendants go with it
       if (pruned) continue;
       const Frame child = at_tip.rotated_z(azimuth).rotated_x(radians(half_angle * spread));
-      branch(level + 1, index, tip, child, full_length * p_.size_ratio, full_bottom_radius * p_.taper,
+      branch(level + 1, index, tip, child, full_length * p_.size_ratio,
+             full_bottom_radius * p_.taper,
              derive_key(key, kChild + static_cast<std::uint64_t>(c)));
     }
   }
@@ -146,7 +159,8 @@ class Grower {
       Leaf leaf;
       leaf.position = glm::vec3(a + (b - a) * f);
       leaf.axis = glm::vec3(glm::normalize(h + out));
-      leaf.normal = glm::vec3(glm::normalize(glm::cross(glm::dvec3(leaf.axis), glm::cross(out, h))));
+      leaf.normal =
+          glm::vec3(glm::normalize(glm::cross(glm::dvec3(leaf.axis), glm::cross(out, h))));
       leaf.length = static_cast<float>(p_.leaf_length * g);
       leaf.width = static_cast<float>(p_.leaf_width * g);
       leaf.stem = stem;

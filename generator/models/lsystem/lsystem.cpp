@@ -19,7 +19,6 @@ namespace arbor::gen {
 
 namespace {
 
-
 // The most one interpretation of `body` at recursion depth `depth` costs: its actions of any kind
 // (`work`: what bounds the time, even for a system that draws nothing, A: A A;) or its f
 // segments. `deeper` holds each rule's cost one depth further down.
@@ -28,8 +27,10 @@ double body_cost(const LSystem& sys, const std::vector<LAction>& body, int depth
   double n = 0.0;
   for (const LAction& a : body) {
     if (work || a.kind == LAction::Forward) n += 1.0;
-    if (a.kind == LAction::Branch) n += body_cost(sys, a.branch, depth, deeper, work);
-    else if (a.kind == LAction::Rule && depth + 1 <= sys.iterations) n += deeper[static_cast<size_t>(a.rule - 'A')];
+    if (a.kind == LAction::Branch)
+      n += body_cost(sys, a.branch, depth, deeper, work);
+    else if (a.kind == LAction::Rule && depth + 1 <= sys.iterations)
+      n += deeper[static_cast<size_t>(a.rule - 'A')];
   }
   return n;
 }
@@ -56,9 +57,9 @@ struct Turtle {
   Vec3 heading{0, 0, 1}, left{1, 0, 0}, up{0, 1, 0};
   double step = 1.0, radius = 0.05;
   double yaw = 1.0, pitch = 1.0, roll = 1.0;  // u, l, h multipliers
-  int stem = -1;          // stem being drawn; -1 before its first f
-  int parent_stem = -1;   // stem this branch grows from
-  int parent_point = -1;  // that stem's point where it starts
+  int stem = -1;                              // stem being drawn; -1 before its first f
+  int parent_stem = -1;                       // stem this branch grows from
+  int parent_point = -1;                      // that stem's point where it starts
 };
 
 class Interpreter {
@@ -80,7 +81,9 @@ class Interpreter {
   }
 
  private:
-  double vary() { return sys_.randomness > 0.0 ? 1.0 + sys_.randomness * jitter_.symmetric() : 1.0; }
+  double vary() {
+    return sys_.randomness > 0.0 ? 1.0 + sys_.randomness * jitter_.symmetric() : 1.0;
+  }
 
   // The body a rule of this name runs, chosen by weight (the number after a rule's name).
   const std::vector<LAction>& choose(char name) {
@@ -106,12 +109,13 @@ class Interpreter {
   }
 
   void forward(const LAction& a, Turtle& t) {
-    refuse_growth(o_.force, static_cast<double>(++segments_), o_.max_stems, "the L-system drew more than",
-                  "segments");
+    refuse_growth(o_.force, static_cast<double>(++segments_), o_.max_stems,
+                  "the L-system drew more than", "segments");
     if (t.stem < 0) {
       if (t.parent_stem < 0 && !stems_.empty()) {
-        throw InputError(a.where, "a second trunk starts here: a tree has one root, so every "
-                                  "stem but the first must grow from another one");
+        throw InputError(a.where,
+                         "a second trunk starts here: a tree has one root, so every "
+                         "stem but the first must grow from another one");
       }
       start_stem(t);
     }
@@ -121,15 +125,19 @@ class Interpreter {
     // and frame would be NaN), and steps that s(n) multiplies without bound leave any scale.
     if (!(std::fabs(t.position.x) <= kMaxReach && std::fabs(t.position.y) <= kMaxReach &&
           std::fabs(t.position.z) <= kMaxReach)) {
-      throw InputError(a.where, "the turtle moves more than 1000 km from the root here (s(n) "
-                                "multiplies the step at every use)");
+      throw InputError(a.where,
+                       "the turtle moves more than 1000 km from the root here (s(n) "
+                       "multiplies the step at every use)");
     }
     std::vector<SkeletonPoint>& points = stems_[static_cast<size_t>(t.stem)].points;
     const glm::vec3 at(t.position);
-    if (!(length >= kMinSegment) || glm::length(at - points.back().position) < static_cast<float>(kMinSegment)) {
+    if (!(length >= kMinSegment) ||
+        glm::length(at - points.back().position) < static_cast<float>(kMinSegment)) {
       char buf[160];
-      std::snprintf(buf, sizeof buf, "this move is %.3g m long; limb segments must be at least 1 micrometre "
-                                     "(the step has shrunk, or f(0))", length);
+      std::snprintf(buf, sizeof buf,
+                    "this move is %.3g m long; limb segments must be at least 1 micrometre "
+                    "(the step has shrunk, or f(0))",
+                    length);
       throw InputError(a.where, buf);
     }
     points.push_back({at, static_cast<float>(t.radius)});
@@ -139,14 +147,17 @@ class Interpreter {
     OpenStem s;
     s.stem.parent = t.parent_stem;
     s.stem.parent_point = t.parent_point;
-    s.stem.level = t.parent_stem < 0 ? 0 : stems_[static_cast<size_t>(t.parent_stem)].stem.level + 1;
+    s.stem.level =
+        t.parent_stem < 0 ? 0 : stems_[static_cast<size_t>(t.parent_stem)].stem.level + 1;
     s.stem.taper = -1.0f;
     s.points.push_back({glm::vec3(t.position), static_cast<float>(t.radius)});
     if (t.parent_stem >= 0) {
       // Where along the parent: the arc length to the branch point.
       const OpenStem& p = stems_[static_cast<size_t>(t.parent_stem)];
       float arc = 0.0f;
-      for (int i = 1; i <= t.parent_point; ++i) arc += glm::length(p.points[static_cast<size_t>(i)].position - p.points[static_cast<size_t>(i - 1)].position);
+      for (int i = 1; i <= t.parent_point; ++i)
+        arc += glm::length(p.points[static_cast<size_t>(i)].position -
+                           p.points[static_cast<size_t>(i - 1)].position);
       s.stem.parent_offset = arc;
       stems_[static_cast<size_t>(t.parent_stem)].has_children = true;
     }
@@ -195,13 +206,15 @@ class Interpreter {
         case LAction::ScaleRadius: t.radius *= a.number; break;
         case LAction::Rule:
           // Iterations bound the recursion: a rule is consumed only down to that depth.
-          if (depth + 1 <= sys_.iterations) frames.push_back({&choose(a.rule), 0, depth + 1, turtle, false});
+          if (depth + 1 <= sys_.iterations)
+            frames.push_back({&choose(a.rule), 0, depth + 1, turtle, false});
           break;
         case LAction::Branch: {
           Turtle inner = t;
           if (t.stem >= 0) {
             inner.parent_stem = t.stem;
-            inner.parent_point = static_cast<int>(stems_[static_cast<size_t>(t.stem)].points.size()) - 1;
+            inner.parent_point =
+                static_cast<int>(stems_[static_cast<size_t>(t.stem)].points.size()) - 1;
           }
           inner.stem = -1;
           turtles.push_back(inner);
@@ -219,7 +232,8 @@ class Interpreter {
       st.first_point = static_cast<std::uint32_t>(sk_.points.size());
       st.point_count = static_cast<std::uint32_t>(s.points.size());
       float length = 0.0f;
-      for (std::size_t i = 1; i < s.points.size(); ++i) length += glm::length(s.points[i].position - s.points[i - 1].position);
+      for (std::size_t i = 1; i < s.points.size(); ++i)
+        length += glm::length(s.points[i].position - s.points[i - 1].position);
       st.length = length;
       st.base_radius = s.points.front().radius;
       sk_.points.insert(sk_.points.end(), s.points.begin(), s.points.end());
@@ -237,7 +251,8 @@ class Interpreter {
       const glm::dvec3 tip(sk_.points[s.first_point + s.point_count - 1].position);
       const glm::dvec3 prev(sk_.points[s.first_point + s.point_count - 2].position);
       const glm::dvec3 h = glm::normalize(tip - prev);
-      const glm::dvec3 side = glm::normalize(glm::cross(h, std::fabs(h.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0)));
+      const glm::dvec3 side = glm::normalize(
+          glm::cross(h, std::fabs(h.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0)));
       for (int k = 0; k < sys_.leaves; ++k) {
         const glm::dvec3 out = rotate(side, h, 2.0 * kPi * k / sys_.leaves);
         const glm::dvec3 axis = glm::normalize(h + out);
@@ -260,7 +275,7 @@ class Interpreter {
     bool has_children = false;
   };
 
-  static constexpr double kMaxReach = 1e6;    // metres from the root
+  static constexpr double kMaxReach = 1e6;     // metres from the root
   static constexpr double kMinSegment = 1e-6;  // metres
   const LSystem& sys_;
   const LSystemOptions& o_;
@@ -273,14 +288,13 @@ class Interpreter {
 
 }  // namespace
 
-
 double estimate_segments(const LSystem& sys) { return axiom_cost(sys, false); }
 
 Skeleton grow_lsystem(const LSystem& sys, const LSystemOptions& o) {
   const double estimate = estimate_segments(sys);
   refuse_estimate(o.force, estimate, o.max_stems, "the L-system would draw", "segments");
-  refuse_estimate(o.force, axiom_cost(sys, true), 50.0 * o.max_stems, "the L-system would interpret",
-                  "actions");
+  refuse_estimate(o.force, axiom_cost(sys, true), 50.0 * o.max_stems,
+                  "the L-system would interpret", "actions");
   return Interpreter(sys, o).run();
 }
 

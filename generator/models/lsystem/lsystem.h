@@ -15,15 +15,26 @@ namespace arbor::gen {
 // One action of a rule body.
 struct LAction {
   enum Kind : char {
-    Forward = 'f', TurnLeft = '+', TurnRight = '-', RollLeft = '<', RollRight = '>',
-    PitchDown = 'v', PitchUp = '^', ScaleStep = 's', ScaleRoll = 'h', ScaleYaw = 'u',
-    ScalePitch = 'l', ScaleRadius = 'r', Rule = 'R', Branch = '[',
+    Forward = 'f',
+    TurnLeft = '+',
+    TurnRight = '-',
+    RollLeft = '<',
+    RollRight = '>',
+    PitchDown = 'v',
+    PitchUp = '^',
+    ScaleStep = 's',
+    ScaleRoll = 'h',
+    ScaleYaw = 'u',
+    ScalePitch = 'l',
+    ScaleRadius = 'r',
+    Rule = 'R',
+    Branch = '[',
   };
   Kind kind = Forward;
   bool has_number = false;
   double number = 0.0;
-  char rule = 0;                  // for Rule
-  std::vector<LAction> branch;    // for Branch
+  char rule = 0;                // for Rule
+  std::vector<LAction> branch;  // for Branch
   SourceLocation where;
 };
 
@@ -37,14 +48,14 @@ struct LRule {
 struct LSystem {
   std::string path;
   int iterations = 4;
-  double step = 1.0;          // metres per f
-  double angle = 25.0;        // degrees per turn
-  double radius = 0.05;       // metres, at the start
-  double randomness = 0.0;    // relative variation of every step and turn
-  int leaves = 0;             // leaves at the tip of every stem that has no branches
+  double step = 1.0;        // metres per f
+  double angle = 25.0;      // degrees per turn
+  double radius = 0.05;     // metres, at the start
+  double randomness = 0.0;  // relative variation of every step and turn
+  int leaves = 0;           // leaves at the tip of every stem that has no branches
   double leaf_length = 0.1, leaf_width = 0.05;  // metres
   int leaf_shape = 0;
-  std::vector<LRule> rules;   // the first rule's name is the axiom
+  std::vector<LRule> rules;  // the first rule's name is the axiom
 };
 
 // Upper estimate of the number of f segments the system draws (for the size limit).

@@ -67,8 +67,9 @@ class Grower {
         // Several particles from one point: stems of a shrub from the root point.
         add_stem(p, 0, 0);
       } else {
-        throw InputError(def.where, "every particle must start at the first particle's pos: a tree "
-                                    "has one root (Bloomenthal's skeleton)");
+        throw InputError(def.where,
+                         "every particle must start at the first particle's pos: a tree "
+                         "has one root (Bloomenthal's skeleton)");
       }
       particles_.push_back(p);
     }
@@ -104,7 +105,8 @@ class Grower {
 
   // The stem a particle's leaf goes on: its own, or the nearest ancestor's that was kept.
   int kept_stem(int branch) const {
-    while (branch >= 0 && stem_index_[static_cast<size_t>(branch)] < 0) branch = branches_[static_cast<size_t>(branch)].parent;
+    while (branch >= 0 && stem_index_[static_cast<size_t>(branch)] < 0)
+      branch = branches_[static_cast<size_t>(branch)].parent;
     return branch >= 0 ? stem_index_[static_cast<size_t>(branch)] : 0;
   }
 
@@ -125,8 +127,8 @@ class Grower {
     b.color = p.color;
     branches_.push_back(b);
     p.stem = static_cast<int>(branches_.size()) - 1;
-    refuse_growth(o_.force, static_cast<double>(branches_.size()), o_.max_stems, "the template grew past",
-                  "branches");
+    refuse_growth(o_.force, static_cast<double>(branches_.size()), o_.max_stems,
+                  "the template grew past", "branches");
   }
 
   // One iteration (§II): every particle stores its position, widens its limb, branches by the
@@ -189,7 +191,8 @@ class Grower {
     Rng own(c.key);
     const TmParticle& def = t_.particles[static_cast<size_t>(c.def)];
     c.color = shade(t_, def.color, uniform(own, def.brightness));
-    add_stem(c, parent.stem, static_cast<int>(branches_[static_cast<size_t>(parent.stem)].positions.size()) - 1);
+    add_stem(c, parent.stem,
+             static_cast<int>(branches_[static_cast<size_t>(parent.stem)].positions.size()) - 1);
     return c;
   }
 
@@ -237,21 +240,25 @@ class Grower {
                        static_cast<float>(0.5 * std::min(parent_width, own) * kTreeMakerUnit)});
       }
       for (std::size_t k = 0; k < b.positions.size(); ++k) {
-        pts.push_back({glm::vec3(b.positions[k]), static_cast<float>(0.5 * b.widths[k] * kTreeMakerUnit)});
+        pts.push_back(
+            {glm::vec3(b.positions[k]), static_cast<float>(0.5 * b.widths[k] * kTreeMakerUnit)});
       }
-      if (b.parent >= 0 && pts.size() >= 2 && glm::length(pts[1].position - pts[0].position) < 1e-7f) {
+      if (b.parent >= 0 && pts.size() >= 2 &&
+          glm::length(pts[1].position - pts[0].position) < 1e-7f) {
         pts.erase(pts.begin() + 1);  // the branch's first stored position is the branch point
       }
       st.first_point = static_cast<std::uint32_t>(sk_.points.size());
       st.point_count = static_cast<std::uint32_t>(pts.size());
       float length = 0.0f;
-      for (std::size_t k = 1; k < pts.size(); ++k) length += glm::length(pts[k].position - pts[k - 1].position);
+      for (std::size_t k = 1; k < pts.size(); ++k)
+        length += glm::length(pts[k].position - pts[k - 1].position);
       st.length = length;
       st.base_radius = pts.front().radius;
       // A child starting at its parent's first point starts at the point the parent itself grew
       // from: it belongs to the stem that owns that point (one owner per point, as in a
       // skeleton file).
-      while (st.parent >= 0 && st.parent_point == 0 && sk_.stems[static_cast<size_t>(st.parent)].parent >= 0) {
+      while (st.parent >= 0 && st.parent_point == 0 &&
+             sk_.stems[static_cast<size_t>(st.parent)].parent >= 0) {
         const Stem& ps = sk_.stems[static_cast<size_t>(st.parent)];
         st.parent_point = ps.parent_point;
         st.parent = ps.parent;
@@ -260,12 +267,14 @@ class Grower {
         const Stem& ps = sk_.stems[static_cast<size_t>(st.parent)];
         // Re-parented to the point its parent grew from, a limb starts no thicker than the new
         // parent is there (its old parent's own base width may be larger).
-        pts.front().radius = std::min(pts.front().radius,
-                                      sk_.points[ps.first_point + static_cast<std::uint32_t>(st.parent_point)].radius);
+        pts.front().radius = std::min(
+            pts.front().radius,
+            sk_.points[ps.first_point + static_cast<std::uint32_t>(st.parent_point)].radius);
         st.base_radius = pts.front().radius;
         float arc = 0.0f;
         for (int k = 1; k <= st.parent_point; ++k) {
-          arc += glm::length(sk_.points[ps.first_point + k].position - sk_.points[ps.first_point + k - 1].position);
+          arc += glm::length(sk_.points[ps.first_point + k].position -
+                             sk_.points[ps.first_point + k - 1].position);
         }
         st.parent_offset = arc;
       }
@@ -307,7 +316,8 @@ class Grower {
     }
     // Out deviation: tilt out by up to `out` degrees in a random direction; up deviation: twist
     // about out by up to ±`up` degrees.
-    const Vec3 tilt_axis = rotate(glm::normalize(glm::cross(out, up)), out, 2.0 * kPi * rng.uniform());
+    const Vec3 tilt_axis =
+        rotate(glm::normalize(glm::cross(out, up)), out, 2.0 * kPi * rng.uniform());
     const double tilt = radians(leaf->out) * rng.uniform();
     out = glm::normalize(rotate(out, tilt_axis, tilt));
     up = glm::normalize(rotate(up, tilt_axis, tilt));
@@ -366,7 +376,8 @@ double treemaker_estimate(const TreeMakerTemplate& t) {
   for (int n = 1; n <= n_max; ++n) {
     for (int l = 0; l <= kLevels; ++l) {
       const double p = per_iteration[static_cast<size_t>(l + 1)];
-      f[static_cast<size_t>(l)] = 1.0 + (p > 0.0 ? p * sum[static_cast<size_t>(std::min(l + 1, kLevels))] : 0.0);
+      f[static_cast<size_t>(l)] =
+          1.0 + (p > 0.0 ? p * sum[static_cast<size_t>(std::min(l + 1, kLevels))] : 0.0);
     }
     for (int l = 0; l <= kLevels; ++l) sum[static_cast<size_t>(l)] += f[static_cast<size_t>(l)];
   }

@@ -64,7 +64,7 @@ struct TmElement {
 
 struct TmLeaf {
   double p = 1.0;
-  bool limb_coords = false;  // coord= limb (else leaf)
+  bool limb_coords = false;    // coord= limb (else leaf)
   double out = 0.0, up = 0.0;  // degrees of deviation
   std::vector<TmElement> elements;
   SourceLocation where;

@@ -23,8 +23,17 @@ namespace {
 // child's key from its parent's key and its ordinal, so changing one parameter only reshuffles
 // the draws that depend on it.
 enum Stream : std::uint64_t {
-  kTreeScale = 1, kTrunk, kCurve, kSplit, kChildPlacement, kLeafPlacement, kLength, kDown,
-  kSway, kChildBase = 1u << 20, kCloneBase = 1u << 30,
+  kTreeScale = 1,
+  kTrunk,
+  kCurve,
+  kSplit,
+  kChildPlacement,
+  kLeafPlacement,
+  kLength,
+  kDown,
+  kSway,
+  kChildBase = 1u << 20,
+  kCloneBase = 1u << 30,
 };
 
 constexpr double kMinLength = 1e-4;  // metres; shorter stems are not grown
@@ -50,11 +59,11 @@ struct StemSpec {
   int first_segment = 0;
   int parent_first_segment = 0;  // for clones: the first segment of the stem they split from
   std::uint64_t key = 0;
-  double split_correction = 0.0;  // radians per remaining segment (§4.2 back-rotation)
+  double split_correction = 0.0;    // radians per remaining segment (§4.2 back-rotation)
   double pending_correction = 0.0;  // joins split_correction after the next segment
-  double share = 1.0;             // fraction of the children/leaves this clone carries
-  double children = 0.0;          // children over the whole stem (before sharing)
-  double leaves = 0.0;            // leaves over the whole stem (before sharing)
+  double share = 1.0;               // fraction of the children/leaves this clone carries
+  double children = 0.0;            // children over the whole stem (before sharing)
+  double leaves = 0.0;              // leaves over the whole stem (before sharing)
   Placement child_place;
   Placement leaf_place;
   // Where the stem grows from, to recompute radius and counts when pruning shortens it.
@@ -114,10 +123,10 @@ class Grower {
     s.children = 0.0;
     if (next < p_.levels) {
       const double stems_max = std::fabs(p_.at(next).branches);
-      s.children = s.level == 1 ? wp::children_of_first_level(stems_max, s.length,
-                                                              s.parent_length, s.length_max)
-                                : wp::children_of_deeper_level(stems_max, s.parent_offset,
-                                                               s.parent_length);
+      s.children =
+          s.level == 1
+              ? wp::children_of_first_level(stems_max, s.length, s.parent_length, s.length_max)
+              : wp::children_of_deeper_level(stems_max, s.parent_offset, s.parent_length);
     }
     s.leaves = next == p_.levels ? leaf_count(s.parent_offset, s.parent_length) : 0.0;
     // A fan (negative nBranches) holds exactly |nBranches| children at the tip.
@@ -193,9 +202,9 @@ class Grower {
     if (s.split_correction != 0.0) f = f.rotated_x(-s.split_correction);
     if (wind_ && !probe) {
       const double z = static_cast<double>(i) / n;
-      const wp::Sway sw = wp::sway_angles(p_.wind_speed, p_.wind_gust, s.length, s.base_radius,
-                                          radius_at(s, z), z, n, o_.time, sway_offset[0],
-                                          sway_offset[1]);
+      const wp::Sway sw =
+          wp::sway_angles(p_.wind_speed, p_.wind_gust, s.length, s.base_radius, radius_at(s, z), z,
+                          n, o_.time, sway_offset[0], sway_offset[1]);
       f = f.rotated_x(radians(sw.x)).rotated_y(radians(sw.y));
     }
     return f.orthonormalized();
@@ -331,8 +340,8 @@ class Grower {
       points.reserve(static_cast<size_t>(n - s.first_segment + 1));
       points.push_back({glm::vec3(s.position), static_cast<float>(radius_at(s, st.z_start))});
       if (o_.progress && (out_.stems.size() & 1023u) == 0) o_.progress->update(out_.stems.size());
-      refuse_growth(o_.force, static_cast<double>(out_.stems.size()), o_.max_stems, "the tree grew past",
-                    "stems");
+      refuse_growth(o_.force, static_cast<double>(out_.stems.size()), o_.max_stems,
+                    "the tree grew past", "stems");
     }
     Rng child_rng(derive_key(s.key, kChildPlacement + 7));
     Rng leaf_rng(derive_key(s.key, kLeafPlacement + 7));
@@ -368,8 +377,8 @@ class Grower {
         for (int k = 0; k < count; ++k) {
           const double off = lo + usable * (k + 0.5) / count;
           const double azimuth = next_azimuth(s.child_place, child_level, child_rng);
-          spawn_child(s, stem_index, off, pos + seg.z * (off - a),
-                      seg.rotated_z(radians(azimuth)), child_ordinal++);
+          spawn_child(s, stem_index, off, pos + seg.z * (off - a), seg.rotated_z(radians(azimuth)),
+                      child_ordinal++);
         }
       }
       if (grows_leaves && !fan_leaves && usable > 0.0 && span > 0.0) {
@@ -434,8 +443,8 @@ class Grower {
     if (clones == 0) return true;
 
     const double declination = degrees(std::acos(std::clamp(axis.z.z, -1.0, 1.0)));
-    const double angle = wp::split_angle(split_rng.vary(lv.split_angle, lv.split_angle_v),
-                                         declination);
+    const double angle =
+        wp::split_angle(split_rng.vary(lv.split_angle, lv.split_angle_v), declination);
     const double spread = wp::split_spread(declination, split_rng.uniform());
     const double sign = split_rng.uniform() < 0.5 ? -1.0 : 1.0;
     const int remaining = n - (i + 2);  // segments after the first one past the split
@@ -537,7 +546,8 @@ Skeleton grow_weber_penn(const WeberPennParams& params, const GrowOptions& optio
   // first and give the swaying tree the same lengths (§4.7: "the same basic geometry, perturbed
   // only by the wind").
   std::unordered_map<std::uint64_t, double> pruned;
-  const bool sway_pruned = params.prune_ratio > 0.0 && (params.wind_speed != 0.0 || params.wind_gust != 0.0);
+  const bool sway_pruned =
+      params.prune_ratio > 0.0 && (params.wind_speed != 0.0 || params.wind_gust != 0.0);
   if (sway_pruned) {
     WeberPennParams calm = params;
     calm.wind_speed = calm.wind_gust = 0.0;

@@ -24,15 +24,15 @@ double envelope_ratio(double ratio, const Envelope& e) {
 double shape_ratio(int shape, double r, const Envelope& envelope) {
   // §4.3, table of ShapeRatio(shape, ratio).
   switch (shape) {
-    case 0: return 0.2 + 0.8 * r;                                      // conical
-    case 1: return 0.2 + 0.8 * std::sin(kPi * r);                      // spherical
-    case 2: return 0.2 + 0.8 * std::sin(0.5 * kPi * r);                // hemispherical
-    case 3: return 1.0;                                                // cylindrical
-    case 4: return 0.5 + 0.5 * r;                                      // tapered cylindrical
-    case 5: return r <= 0.7 ? r / 0.7 : (1.0 - r) / 0.3;               // flame
-    case 6: return 1.0 - 0.8 * r;                                      // inverse conical
+    case 0: return 0.2 + 0.8 * r;                         // conical
+    case 1: return 0.2 + 0.8 * std::sin(kPi * r);         // spherical
+    case 2: return 0.2 + 0.8 * std::sin(0.5 * kPi * r);   // hemispherical
+    case 3: return 1.0;                                   // cylindrical
+    case 4: return 0.5 + 0.5 * r;                         // tapered cylindrical
+    case 5: return r <= 0.7 ? r / 0.7 : (1.0 - r) / 0.3;  // flame
+    case 6: return 1.0 - 0.8 * r;                         // inverse conical
     case 7: return r <= 0.7 ? 0.5 + 0.5 * r / 0.7 : 0.5 + 0.5 * (1.0 - r) / 0.3;  // tend flame
-    case 8: return envelope_ratio(r, envelope);                        // envelope
+    case 8: return envelope_ratio(r, envelope);                                   // envelope
     default: return 1.0;
   }
 }
@@ -50,8 +50,10 @@ bool inside_envelope(double x, double y, double z, double scale_tree, double bas
 double taper_radius(double taper, double radius, double length, double z) {
   // §4.4 stem radius.
   double unit_taper = 0.0;
-  if (taper < 1.0) unit_taper = taper;
-  else if (taper < 2.0) unit_taper = 2.0 - taper;
+  if (taper < 1.0)
+    unit_taper = taper;
+  else if (taper < 2.0)
+    unit_taper = 2.0 - taper;
   const double taper_z = radius * (1.0 - unit_taper * z);
   if (taper < 1.0) return taper_z;
   if (taper_z <= 0.0) return 0.0;

@@ -15,28 +15,51 @@ using L = WeberPennLevel;
 
 ParamInfo real(std::string_view name, double lo, double hi, double P::*m, std::string_view d) {
   ParamInfo i;
-  i.name = name; i.min = lo; i.max = hi; i.real = m; i.description = d;
+  i.name = name;
+  i.min = lo;
+  i.max = hi;
+  i.real = m;
+  i.description = d;
   return i;
 }
 ParamInfo whole(std::string_view name, double lo, double hi, int P::*m, std::string_view d) {
   ParamInfo i;
-  i.name = name; i.integer = true; i.min = lo; i.max = hi; i.whole = m; i.description = d;
+  i.name = name;
+  i.integer = true;
+  i.min = lo;
+  i.max = hi;
+  i.whole = m;
+  i.description = d;
   return i;
 }
 ParamInfo level_real(std::string_view name, double lo, double hi, double L::*m,
                      std::string_view d) {
   ParamInfo i;
-  i.name = name; i.min = lo; i.max = hi; i.level_real = m; i.description = d;
+  i.name = name;
+  i.min = lo;
+  i.max = hi;
+  i.level_real = m;
+  i.description = d;
   return i;
 }
-ParamInfo level_whole(std::string_view name, double lo, double hi, int L::*m,
-                      std::string_view d) {
+ParamInfo level_whole(std::string_view name, double lo, double hi, int L::*m, std::string_view d) {
   ParamInfo i;
-  i.name = name; i.integer = true; i.min = lo; i.max = hi; i.level_whole = m; i.description = d;
+  i.name = name;
+  i.integer = true;
+  i.min = lo;
+  i.max = hi;
+  i.level_whole = m;
+  i.description = d;
   return i;
 }
-ParamInfo only_level0(ParamInfo i) { i.level0_only = true; return i; }
-ParamInfo only_children(ParamInfo i) { i.children_only = true; return i; }
+ParamInfo only_level0(ParamInfo i) {
+  i.level0_only = true;
+  return i;
+}
+ParamInfo only_children(ParamInfo i) {
+  i.children_only = true;
+  return i;
+}
 
 std::string number(double v) {
   char buf[64];

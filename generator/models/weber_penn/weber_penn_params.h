@@ -18,9 +18,9 @@ struct WeberPennLevel {
   int base_splits = 0;                          // level 0 only: clones at the base
   double seg_splits = 0.0;                      // clones per segment
   double split_angle = 0.0, split_angle_v = 0.0;
-  int curve_res = 1;                            // segments per stem
+  int curve_res = 1;                                    // segments per stem
   double curve = 0.0, curve_back = 0.0, curve_v = 0.0;  // degrees; curve_v < 0: helix
-  double scale = 1.0, scale_v = 0.0;            // level 0 only: 0Scale, 0ScaleV
+  double scale = 1.0, scale_v = 0.0;                    // level 0 only: 0Scale, 0ScaleV
 };
 
 struct WeberPennParams {
@@ -59,8 +59,8 @@ struct ParamInfo {
   int WeberPennParams::*whole = nullptr;
   double WeberPennLevel::*level_real = nullptr;
   int WeberPennLevel::*level_whole = nullptr;
-  bool level0_only = false;   // only meaningful for the trunk (0BaseSplits, 0Scale, 0ScaleV)
-  bool children_only = false; // not meaningful for the trunk (DownAngle, Rotate, Branches)
+  bool level0_only = false;    // only meaningful for the trunk (0BaseSplits, 0Scale, 0ScaleV)
+  bool children_only = false;  // not meaningful for the trunk (DownAngle, Rotate, Branches)
   std::string_view description;
 };
 
