@@ -503,34 +503,4 @@ TEST(Sky, SamplingIsConsistentWithItsPdfAndRadiance) {
   }
 }
 
-TEST(Sampler, FirstSixteenSamplesFillEveryStratum) {
-  const PixelSampler s(1234, 7);
-  for (std::uint32_t dim = 0; dim < 8; ++dim) {
-    bool seen[4][4] = {};
-    for (std::uint32_t i = 0; i < 16; ++i) {
-      const glm::vec2 u = s.get2d(i, dim);
-      ASSERT_GE(u.x, 0.0f);
-      ASSERT_LT(u.x, 1.0f);
-      seen[static_cast<int>(u.x * 4)][static_cast<int>(u.y * 4)] = true;
-    }
-    for (auto& row : seen)
-      for (bool b : row) EXPECT_TRUE(b) << "dim " << dim;
-  }
-  EXPECT_NE(PixelSampler(1, 7).get2d(0, 0), PixelSampler(2, 7).get2d(0, 0));
-}
-
-TEST(Film, TentFilterSamplesTheTent) {
-  int bins[4] = {};
-  const int n = 100000;
-  for (int i = 0; i < n; ++i) {
-    const float x = sample_tent((i + 0.5f) / n);
-    ASSERT_GT(x, -1.0f);
-    ASSERT_LT(x, 1.0f);
-    ++bins[static_cast<int>((x + 1.0f) * 2.0f)];
-  }
-  // ∫ of (1 - |x|) over [-1,-0.5], [-0.5,0], …: 1/8, 3/8, 3/8, 1/8.
-  EXPECT_NEAR(bins[0] / double(n), 0.125, 1e-3);
-  EXPECT_NEAR(bins[1] / double(n), 0.375, 1e-3);
-}
-
 }  // namespace arbor::trace
