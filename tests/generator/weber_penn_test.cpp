@@ -2,9 +2,11 @@
 // family's effect on a grown tree.
 #include "generator/models/weber_penn/weber_penn.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -84,9 +86,32 @@ TEST(WeberPenn, SameSeedGivesSameTree) {
   }
 }
 
+// Seeds draw the paper's variations: eight seeds give eight different trees whose trunks
+// (§4.3: length_trunk = (0Length ± 0LengthV) × (Scale ± ScaleV)) all lie in the species' range and
+// spread over it, not one length with different twigs.
 TEST(WeberPenn, DifferentSeedsGiveDifferentTrees) {
   const WeberPennParams p = paper_species("black_tupelo");
-  EXPECT_FALSE(same_bytes(grow(p, 1), grow(p, 2)));
+  const WeberPennLevel& trunk = p.level[0];
+  const double lo = (trunk.length - trunk.length_v) * (p.scale - p.scale_v);
+  const double hi = (trunk.length + trunk.length_v) * (p.scale + p.scale_v);
+  ASSERT_GT(hi - lo, 1.0);  // the species varies its height: black tupelo's ScaleV is 5 m
+  std::vector<Skeleton> trees;
+  double shortest = hi, longest = lo;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    trees.push_back(grow(p, seed));
+    const double length = trees.back().stems.front().length;
+    EXPECT_GE(length, lo - 1e-4) << "seed " << seed;
+    EXPECT_LE(length, hi + 1e-4) << "seed " << seed;
+    shortest = std::min(shortest, length);
+    longest = std::max(longest, length);
+  }
+  for (std::size_t a = 0; a < trees.size(); ++a) {
+    for (std::size_t b = a + 1; b < trees.size(); ++b) {
+      EXPECT_FALSE(same_bytes(trees[a], trees[b])) << "seeds " << a + 1 << " and " << b + 1;
+    }
+  }
+  // Eight uniform draws over [lo, hi] span at least a quarter of it with probability > 0.999.
+  EXPECT_GT(longest - shortest, 0.25 * (hi - lo));
 }
 
 TEST(WeberPenn, PaperSpeciesSatisfyTheSkeletonInvariants) {
