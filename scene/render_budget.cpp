@@ -14,20 +14,18 @@ namespace arbor::trace {
 
 namespace {
 
-constexpr std::uint64_t kBytesPerPixel = 72;       // image and beauty, PNG included
-constexpr std::uint64_t kFilmBytesPerPixel = 152;  // the film's state and AOV sums (tracer/film.h)
-constexpr std::uint64_t kBytesPerChannel = 8;      // each EXR channel: its pixels and encoding
-constexpr std::uint64_t kRecordBytes = 15 * 8;     // a pass record of a pixel, beside its extras
-constexpr std::uint64_t kIdBytes = 16 * 8;  // the id slots (film.h kIdSlots, objects and materials)
+// Outside the film (which states its own, FilmCosts): calibrated, see render_budget.h.
+constexpr std::uint64_t kBytesPerPixel = 72;   // image and beauty, PNG included
+constexpr std::uint64_t kBytesPerChannel = 8;  // each EXR channel: its pixels and encoding
 constexpr std::uint64_t kBytesPerInstance = 1024;
-constexpr std::uint64_t kTreemakerChannels = 23;   // the treemaker AOVs (film.cpp)
 constexpr std::uint64_t kBaseline = 256ull << 20;  // libraries, OCIO, Embree's device
 
 double gigabytes(std::uint64_t bytes) { return static_cast<double>(bytes) / double(1ull << 30); }
 
 }  // namespace
 
-MemoryEstimate estimate_render_memory(const SceneDesc& s, std::uint64_t record_passes) {
+MemoryEstimate estimate_render_memory(const SceneDesc& s, const FilmCosts& film,
+                                      std::uint64_t record_passes) {
   MemoryEstimate e;
   std::uint64_t channels = 4, extras = 0;
   for (std::size_t i = 0; i < kAovCount; ++i) {
@@ -35,18 +33,19 @@ MemoryEstimate estimate_render_memory(const SceneDesc& s, std::uint64_t record_p
     if (!s.output.aovs.has(a)) continue;
     channels += a == Aov::Depth || a == Aov::Samples || a == Aov::ObjectId || a == Aov::MaterialId
                     ? 1
-                : a == Aov::Treemaker                                ? kTreemakerChannels
+                : a == Aov::Treemaker                                ? film.treemaker_extras
                 : a == Aov::CryptoObject || a == Aov::CryptoMaterial ? 12
                                                                      : 3;
-    if (a == Aov::Treemaker) extras = kTreemakerChannels;
+    if (a == Aov::Treemaker) extras = film.treemaker_extras;
   }
   // The id slots count like extras: in the film's sums and in every pass record.
-  if (s.output.wants_ids()) extras += kIdBytes / 8;
+  if (s.output.wants_ids()) extras += film.id_sums;
   const std::uint64_t pixels =
       static_cast<std::uint64_t>(s.render.width) * static_cast<std::uint64_t>(s.render.height);
-  const std::uint64_t film =
-      kFilmBytesPerPixel + 8 * extras + record_passes * (kRecordBytes + 8 * extras);
-  e.image_bytes = pixels * (kBytesPerPixel + film + kBytesPerChannel * channels);
+  const std::uint64_t sums = film.sums + extras;
+  const std::uint64_t kept =
+      film.state + film.sum * sums + record_passes * film.sum * (sums + film.record_extra);
+  e.image_bytes = pixels * (kBytesPerPixel + kept + kBytesPerChannel * channels);
   e.instances = s.trees.size();
   for (const ForestDesc& f : s.forests) e.instances += static_cast<std::uint64_t>(f.count);
   e.instance_bytes = e.instances * kBytesPerInstance;
@@ -67,16 +66,16 @@ std::uint64_t usable_memory_bytes() {
   return usable;
 }
 
-std::uint64_t geometry_budget(const SceneDesc& s, bool force, std::uint64_t usable,
-                              std::uint64_t record_passes) {
+std::uint64_t geometry_budget(const SceneDesc& s, const FilmCosts& film, bool force,
+                              std::uint64_t usable, std::uint64_t record_passes) {
   if (force) return 0;
-  const std::uint64_t used = estimate_render_memory(s, record_passes).total() + kBaseline;
+  const std::uint64_t used = estimate_render_memory(s, film, record_passes).total() + kBaseline;
   return usable > used ? usable - used : 1;
 }
 
-void check_render_memory(const SceneDesc& s, bool force, std::uint64_t usable,
-                         std::uint64_t record_passes) {
-  const MemoryEstimate e = estimate_render_memory(s, record_passes);
+void check_render_memory(const SceneDesc& s, const FilmCosts& film, bool force,
+                         std::uint64_t usable, std::uint64_t record_passes) {
+  const MemoryEstimate e = estimate_render_memory(s, film, record_passes);
   if (force || e.total() + kBaseline <= usable) return;
   SourceLocation where{s.path, 0, 0};
   int largest = 0;

@@ -8,6 +8,17 @@
 
 namespace arbor::trace {
 
+// What the film keeps a pixel, in bytes: the tracer's Film states it (film_costs() in
+// tracer/film.h), the estimate does not copy it.
+struct FilmCosts {
+  std::uint64_t state = 0;             // a pixel's running state
+  std::uint64_t sum = 8;               // each value it sums
+  std::uint64_t sums = 0;              // the values every pixel sums (colour, alpha, AOVs)
+  std::uint64_t id_sums = 0;           // more values when the compositing ids are kept
+  std::uint64_t record_extra = 0;      // a pass record holds the sums and this many values more
+  std::uint64_t treemaker_extras = 0;  // the treemaker AOVs' values
+};
+
 struct MemoryEstimate {
   std::uint64_t image_bytes = 0;     // the film, its AOVs and the encoded outputs
   std::uint64_t instance_bytes = 0;  // one Embree instance and placement per tree
@@ -23,7 +34,8 @@ struct MemoryEstimate {
 // 225 bytes a pixel over the baseline) and 1043 MB with the variance AOV; the estimate (240 and
 // 264) rounds each up. Tree geometry is not included: each tree has
 // its own size limit when it is grown.
-MemoryEstimate estimate_render_memory(const SceneDesc& scene, std::uint64_t record_passes = 0);
+MemoryEstimate estimate_render_memory(const SceneDesc& scene, const FilmCosts& film,
+                                      std::uint64_t record_passes = 0);
 
 // What this process may use: the machine's physical memory, or the address-space or data-size
 // limit (ulimit -v / -d) when it is lower.
@@ -31,13 +43,13 @@ std::uint64_t usable_memory_bytes();
 
 // InputError (at the largest forest, or the scene file) when the estimate exceeds `usable`
 // bytes, saying how much each part needs and that --force renders it anyway.
-void check_render_memory(const SceneDesc& scene, bool force,
+void check_render_memory(const SceneDesc& scene, const FilmCosts& film, bool force,
                          std::uint64_t usable = usable_memory_bytes(),
                          std::uint64_t record_passes = 0);
 
 // The bytes left for tree geometry once the image, the instances and the libraries have theirs
 // (0 with `force`: no limit). build_scene refuses a forest whose variants would not fit.
-std::uint64_t geometry_budget(const SceneDesc& scene, bool force,
+std::uint64_t geometry_budget(const SceneDesc& scene, const FilmCosts& film, bool force,
                               std::uint64_t usable = usable_memory_bytes(),
                               std::uint64_t record_passes = 0);
 

@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 
+#include "imaging/treemaker_channels.h"
+
 namespace arbor::trace {
 
 namespace {
@@ -80,6 +82,17 @@ void PixelAccumulator::add(const float rgb[3], const float alb[3], const glm::ve
     add_to_slots(s + kAovSums + extras_, object_id, 1.0);
     add_to_slots(s + kAovSums + extras_ + kIdSlots, material_id, 1.0);
   }
+}
+
+FilmCosts Film::costs() {
+  FilmCosts c;
+  c.state = sizeof(PixelState);
+  c.sum = sizeof(double);
+  c.sums = kAovSums;
+  c.id_sums = 2 * kIdSlots;
+  c.record_extra = kRecordExtra;
+  c.treemaker_extras = treemaker_channel_names().size();
+  return c;
 }
 
 Film::Film(Window window, std::size_t extras, int pass_begin, bool keep_records, bool ids)

@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include "imaging/image.h"
+#include "scene/render_budget.h"
 
 namespace arbor::trace {
 
@@ -123,6 +124,9 @@ struct AdaptiveSettings {
 // can fold them in pass order after the passes before it).
 class Film {
  public:
+  // What a film keeps a pixel (its state, sums and pass records), for the memory estimate.
+  static FilmCosts costs();
+
   // `ids`: keep the compositing id slots.
   Film(Window window, std::size_t extras, int pass_begin, bool keep_records, bool ids = false);
 
@@ -161,7 +165,8 @@ class Film {
   const std::vector<double>& records() const { return records_; }
   void set_next_pass(int pass) { next_pass_ = pass; }
   // Doubles per pixel and pass in records(): count, mean (3), m2 (3), the sums.
-  std::size_t record_size() const { return 7 + sum_stride(); }
+  static constexpr std::size_t kRecordExtra = 7;  // a pass record: its sums and these values
+  std::size_t record_size() const { return kRecordExtra + sum_stride(); }
   // Folds a pass record (as stored in records()) into pixel p: exactly what add_pass did.
   void fold_record(std::size_t p, const double* record);
 

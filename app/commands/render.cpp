@@ -324,9 +324,9 @@ RunResult build_and_render(const SceneDesc& scene, const RenderInput& input, con
       run.pass_begin > 0 ? static_cast<std::uint64_t>(run.pass_end - run.pass_begin) : 0;
   const EmbreeDevice device(r.threads > 0 ? "threads=" + std::to_string(r.threads) : "");
   Progress build_progress("build", 1);
-  const std::unique_ptr<const Scene> built =
-      build_scene(scene, color.config_path(), &build_progress,
-                  geometry_budget(scene, a.force, usable_memory_bytes(), unit_passes));
+  const std::unique_ptr<const Scene> built = build_scene(
+      scene, color.config_path(), &build_progress,
+      geometry_budget(scene, Film::costs(), a.force, usable_memory_bytes(), unit_passes));
   const World world(*built, device);
   build_progress.finish();
   if (treemaker) header.treemaker_weights = treemaker_weights_text(*built);
@@ -480,7 +480,7 @@ int render_command(const RenderRequest& a) {
   }
   FilmHeader header = film_header(scene, input, a, color, plan, run);
   check_render_memory(
-      scene, a.force, usable_memory_bytes(),
+      scene, Film::costs(), a.force, usable_memory_bytes(),
       run.pass_begin > 0 ? static_cast<std::uint64_t>(run.pass_end - run.pass_begin) : 0);
   const std::unique_ptr<Film> film = open_film(scene, input, a, run, header);
   if (!film) return 0;

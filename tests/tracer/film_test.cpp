@@ -31,3 +31,26 @@ TEST(Film, TentFilterSamplesTheTent) {
 
 }  // namespace
 }  // namespace arbor::trace
+
+namespace arbor::trace {
+namespace {
+
+// The memory estimate asks the film for its sizes (Film::costs()): they are what a film of any
+// kind keeps a pixel — its states and sums, and a pass record of record_size() values.
+TEST(Film, CostsAreWhatAFilmKeeps) {
+  const FilmCosts c = Film::costs();
+  for (const bool ids : {false, true}) {
+    for (const std::size_t extras : {std::size_t{0}, std::size_t{5}}) {
+      Film film({0, 0, 16, 8}, extras, 2, true, ids);
+      const std::size_t pixels = 16 * 8;
+      const std::uint64_t kept =
+          film.states().size() * sizeof(PixelState) + film.sums().size() * sizeof(double);
+      const std::uint64_t sums = c.sums + extras + (ids ? c.id_sums : 0);
+      EXPECT_EQ(kept, pixels * (c.state + c.sum * sums)) << "extras " << extras << " ids " << ids;
+      EXPECT_EQ(film.record_size(), sums + c.record_extra);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace arbor::trace
