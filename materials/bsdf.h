@@ -13,7 +13,8 @@ namespace arbor::mat {
 using Rgb = glm::dvec3;
 using Dir = glm::dvec3;
 
-enum LobeFlags : unsigned { kReflection = 1u, kTransmission = 2u, kDiffuse = 4u };
+// What a BSDF's lobes do: the integrator asks these, never which material made the BSDF.
+enum LobeFlags : unsigned { kReflection = 1u, kTransmission = 2u, kDiffuse = 4u, kGlossy = 8u };
 
 struct BsdfSample {
   Rgb value{0.0};  // f(wo, wi), no cosine

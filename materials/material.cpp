@@ -94,27 +94,32 @@ float GroundMaterial::patch(glm::vec2 xy) const {
 SurfaceBsdf Material::bsdf(const SurfacePoint& p) const {
   SurfaceBsdf b;
   b.normal = p.shading_normal;
+  OrenNayar diffuse;
   switch (kind) {
-    case Kind::Diffuse: b.diffuse.albedo = glm::dvec3(albedo); break;
-    case Kind::Ground: b.diffuse.albedo = glm::dvec3(albedo_at(p)); break;
+    case Kind::Diffuse: diffuse.albedo = glm::dvec3(albedo); break;
+    case Kind::Ground: diffuse.albedo = glm::dvec3(albedo_at(p)); break;
     case Kind::Bark:
-      b.diffuse.albedo = glm::dvec3(bark.albedo_at(p));
-      b.diffuse.sigma = bark.roughness;
+      diffuse.albedo = glm::dvec3(bark.albedo_at(p));
+      diffuse.sigma = bark.roughness;
       b.normal = bark.bumped_normal(p);
       break;
     case Kind::Leaf: {
-      b.leaf = true;
       const glm::vec3 t = leaf.tinted ? leaf.tint(p) : glm::vec3(1.0f);
       const glm::vec3 side = p.leaf_back ? leaf.back : leaf.front;
-      b.leaf_bsdf.reflectance = glm::dvec3(leaf.tinted ? side * t : side);
-      b.leaf_bsdf.transmittance =
-          glm::dvec3(leaf.tinted ? leaf.transmittance * t : leaf.transmittance);
-      b.leaf_bsdf.coat = leaf.cuticle.get();
+      LeafBsdf l;
+      l.reflectance = glm::dvec3(leaf.tinted ? side * t : side);
+      l.transmittance = glm::dvec3(leaf.tinted ? leaf.transmittance * t : leaf.transmittance);
+      l.coat = leaf.cuticle.get();
+      b.lobes = l;
+      b.albedo = glm::vec3(l.reflectance);
       break;
     }
   }
+  if (kind != Kind::Leaf) {
+    b.lobes = diffuse;
+    b.albedo = glm::vec3(diffuse.albedo);
+  }
   if (glm::dot(b.normal, p.geometric_normal) < 0.0f) b.normal = -b.normal;
-  b.albedo = b.leaf ? glm::vec3(b.leaf_bsdf.reflectance) : glm::vec3(b.diffuse.albedo);
   return b;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <variant>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -58,23 +59,34 @@ struct LeafMaterial {
 
 // A surface's BSDF at one point, in the shading frame of `normal`: opaque diffuse (bark, ground,
 // meshes) or a two-sided leaf.
+// The BSDF at a surface point: one of a closed set (Oren–Nayar reflection, the two-sided leaf),
+// which the integrator knows only by its lobe flags.
 struct SurfaceBsdf {
-  bool leaf = false;
-  OrenNayar diffuse;
-  LeafBsdf leaf_bsdf;
+  std::variant<OrenNayar, LeafBsdf> lobes;
   glm::vec3 normal{0.0f};  // shading normal, on the side the ray came from
   glm::vec3 albedo{0.0f};  // what the albedo AOV shows
 
+  unsigned flags() const {
+    if (const LeafBsdf* l = std::get_if<LeafBsdf>(&lobes)) {
+      return kReflection | kTransmission | kDiffuse | (l->coat ? kGlossy : 0u);
+    }
+    return kReflection | kDiffuse;
+  }
+  // Light may arrive and leave through the surface (both sides of a leaf).
+  bool transmits() const { return (flags() & kTransmission) != 0; }
+
   glm::vec3 eval(const glm::dvec3& wo, const glm::dvec3& wi) const {
-    return glm::vec3(leaf ? leaf_bsdf.eval(wo, wi) : diffuse.eval(wo, wi));
+    return glm::vec3(std::visit([&](const auto& b) { return b.eval(wo, wi); }, lobes));
   }
   float pdf(const glm::dvec3& wo, const glm::dvec3& wi) const {
-    return static_cast<float>(leaf ? leaf_bsdf.pdf(wo, wi) : diffuse.pdf(wo, wi));
+    return static_cast<float>(std::visit([&](const auto& b) { return b.pdf(wo, wi); }, lobes));
   }
   // u chooses the direction, u_lobe the leaf's lobe (reflect or transmit).
   BsdfSample sample(const glm::dvec3& wo, glm::vec2 u, float u_lobe) const {
-    return leaf ? leaf_bsdf.sample(wo, glm::dvec3(u_lobe, u.x, u.y))
-                : diffuse.sample(wo, glm::dvec2(u.x, u.y));
+    if (const LeafBsdf* l = std::get_if<LeafBsdf>(&lobes)) {
+      return l->sample(wo, glm::dvec3(u_lobe, u.x, u.y));
+    }
+    return std::get<OrenNayar>(lobes).sample(wo, glm::dvec2(u.x, u.y));
   }
 };
 

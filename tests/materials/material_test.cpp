@@ -113,12 +113,13 @@ TEST(Material, TheBsdfAndTheAlbedoAovComeFromOneDispatch) {
     for (const Material* m : {&bark, &leaf, &ground}) {
       const SurfaceBsdf b = m->bsdf(p);
       EXPECT_EQ(b.albedo, m->albedo_at(p));
-      EXPECT_EQ(b.leaf, m == &leaf);
+      EXPECT_EQ(b.transmits(), m == &leaf);
+      EXPECT_EQ(b.flags() & kReflection, kReflection);
       EXPECT_GE(glm::dot(b.normal, p.geometric_normal), 0.0f);  // kept on the geometry's side
       EXPECT_NEAR(glm::length(b.normal), 1.0f, 1e-5f);
     }
-    EXPECT_EQ(bark.bsdf(p).diffuse.sigma, 0.3f);
-    EXPECT_EQ(leaf.bsdf(p).leaf_bsdf.transmittance, glm::dvec3(glm::vec3(0.5f)));
+    EXPECT_EQ(std::get<OrenNayar>(bark.bsdf(p).lobes).sigma, 0.3f);
+    EXPECT_EQ(std::get<LeafBsdf>(leaf.bsdf(p).lobes).transmittance, glm::dvec3(glm::vec3(0.5f)));
   }
 }
 
@@ -163,7 +164,7 @@ TEST(GroundMaterial, TheAlbedoMixesTheTwoColoursByThePatch) {
     const float w = ground.ground.patch(p.ground);
     const glm::vec3 a = ground.albedo_at(p);
     EXPECT_NEAR(a.x, 0.16f + (0.06f - 0.16f) * w, 1e-6f);
-    EXPECT_EQ(glm::vec3(ground.bsdf(p).diffuse.albedo), a);
+    EXPECT_EQ(glm::vec3(std::get<OrenNayar>(ground.bsdf(p).lobes).albedo), a);
     saw_soil = saw_soil || w == 0.0f;
     saw_grass = saw_grass || w == 1.0f;
   }

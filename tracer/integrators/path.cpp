@@ -80,7 +80,7 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
                               : sky_.sample(sampler.get2d(index, dim + 1));
     ls.pdf *= pick_sun ? p_sun_ : 1.0f - p_sun_;
     if (ls.pdf > 0.0f && (ls.radiance.x > 0.0f || ls.radiance.y > 0.0f || ls.radiance.z > 0.0f) &&
-        (sh.leaf ||
+        (sh.transmits() ||
          glm::dot(ls.direction, s.geometric_normal) > 0.0f)) {  // not below an opaque surface
       const glm::dvec3 wi = frame.local(ls.direction);
       const glm::vec3 f = sh.eval(wo, wi);
@@ -102,7 +102,7 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
     const glm::vec3 dir = glm::normalize(frame.world(bs.wi));
     const float cos_g = glm::dot(dir, s.geometric_normal);
     // A direction the shading normal allows but the geometry does not would leak light.
-    if (!sh.leaf && cos_g <= 0.0f) break;
+    if (!sh.transmits() && cos_g <= 0.0f) break;
     beta *= glm::vec3(bs.value) * static_cast<float>(std::fabs(bs.wi.z) / bs.pdf);
     bsdf_pdf = static_cast<float>(bs.pdf);
     // Russian roulette after three bounces, survival by throughput.
