@@ -93,13 +93,46 @@ TEST(ArborCli, GrowPrintsTheContractStatistics) {
   }
 }
 
+// The number after "key": in a JSON line of `grow --stats --json`.
+long long json_integer(const std::string& json, const std::string& key) {
+  std::smatch m;
+  if (!std::regex_search(json, m, std::regex("\"" + key + "\": ([0-9]+)"))) return -1;
+  return std::stoll(m[1]);
+}
+
+// `grow -o tree.pbrt` keeps every limb segment as one cubic Bézier curve of 4 control points and
+// positive widths, and every triangle the statistics count (trunk grid and leaves) in a mesh.
 TEST(ArborCli, GrowWritesPbrtWithCurves) {
   const std::string out = ::testing::TempDir() + "tree.pbrt";
-  const CliRun r = run_arbor("grow " + species("black_tupelo.toml") + " --quality 0.1 -o " + out);
+  const std::string tree = species("black_tupelo.toml") + " --quality 0.1";
+  const CliRun r = run_arbor("grow " + tree + " -o " + out);
   ASSERT_EQ(r.code, 0) << r.err;
+  const CliRun stats = run_arbor("grow " + tree + " --stats --json");
+  ASSERT_EQ(stats.code, 0) << stats.err;
   const std::string text = slurp(out);
-  EXPECT_NE(text.find("Shape \"curve\" \"string basis\" \"bezier\""), std::string::npos);
-  EXPECT_NE(text.find("Shape \"trianglemesh\""), std::string::npos);
+  long long curves = 0, triangles = 0;
+  std::istringstream in(text);
+  const std::regex curve(
+      R"(Shape "curve" "string basis" "bezier" "string type" "cylinder" "point3 P" \[ ((?:\S+ ){12})\] "float width0" (\S+) "float width1" (\S+))");
+  for (std::string line; std::getline(in, line);) {
+    std::smatch m;
+    if (line.find("Shape \"curve\"") != std::string::npos) {
+      ASSERT_TRUE(std::regex_search(line, m, curve)) << line.substr(0, 300);
+      EXPECT_GT(std::stod(m[2]), 0.0);
+      EXPECT_GT(std::stod(m[3]), 0.0);
+      ++curves;
+    } else if (const std::size_t at = line.find("\"integer indices\" ["); at != std::string::npos) {
+      // Not by regex: the list holds hundreds of thousands of numbers.
+      std::istringstream numbers(line.substr(at + 20, line.find(']', at) - at - 20));
+      long long n = 0;
+      for (long long v; numbers >> v;) ++n;
+      EXPECT_EQ(n % 3, 0);
+      triangles += n / 3;
+    }
+  }
+  EXPECT_EQ(curves, json_integer(stats.out, "curve_segments"));
+  EXPECT_EQ(triangles, json_integer(stats.out, "triangles"));
+  EXPECT_GT(curves, 1000);
 }
 
 TEST(ArborCli, EveryShippedExampleOfEveryFormatGrowsWithStatistics) {
