@@ -1,0 +1,62 @@
+// build_scene (scene/scene.h): trees grown once per (species, seed, time) and shared as
+// prototypes, placed by their instances, named for compositing, the ground added.
+#include "scene/scene.h"
+
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+namespace arbor::trace {
+namespace {
+
+const std::string kOcio = std::string(ARBOR_SOURCE_DIR) + "/imaging/ocio/config.ocio";
+
+std::string tree(const char* species, int seed, double x) {
+  return "[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) + "/species/" + species +
+         "\"\nseed = " + std::to_string(seed) + "\nposition = [" + std::to_string(x) +
+         ", 0.0, 0.0]\n";
+}
+
+TEST(BuildScene, TreesOfOneSpeciesAndSeedShareOnePrototype) {
+  const SceneDesc desc =
+      parse_scene(tree("young_tree.skel", 1, 0.0) + tree("young_tree.skel", 1, 4.0) +
+                      tree("young_tree.skel", 2, 8.0) + tree("dogwood.tmpl", 1, 12.0),
+                  "/tmp/scene.toml");
+  const std::unique_ptr<const Scene> scene = build_scene(desc, kOcio);
+  ASSERT_EQ(scene->instances.size(), 4u);
+  // One prototype per (species, seed, time): the two trees of seed 1 share theirs; seed 2 and the
+  // dogwood have their own.
+  EXPECT_EQ(scene->prototypes.size(), 3u);
+  EXPECT_EQ(scene->stats.prototypes, 3u);
+  EXPECT_EQ(scene->instances[0].prototype, scene->instances[1].prototype);
+  EXPECT_NE(scene->instances[0].prototype, scene->instances[2].prototype);
+  EXPECT_NE(scene->instances[0].prototype, scene->instances[3].prototype);
+  EXPECT_NE(scene->instances[2].prototype, scene->instances[3].prototype);
+  // Each instance sits where its [[tree]] says.
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_NEAR(scene->instances[i].to_world[3][0], 4.0f * static_cast<float>(i), 1e-5f) << i;
+    EXPECT_NEAR(scene->instances[i].to_world[3][1], 0.0f, 1e-6f) << i;
+  }
+  // Compositing ids: one per tree in scene order, then the ground; names unique.
+  ASSERT_EQ(scene->object_names.size(), 5u);
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(scene->instances[i].object_id, i + 1) << i;
+  EXPECT_EQ(scene->object_names.back(), "ground");
+  EXPECT_TRUE(scene->has_ground);
+  for (std::size_t a = 0; a < scene->object_names.size(); ++a) {
+    for (std::size_t b = a + 1; b < scene->object_names.size(); ++b) {
+      EXPECT_NE(scene->object_names[a], scene->object_names[b]);
+    }
+  }
+}
+
+TEST(BuildScene, AGroundlessSceneHasNoGround) {
+  const SceneDesc desc = parse_scene(
+      "[ground]\nenabled = false\n" + tree("young_tree.skel", 1, 0.0), "/tmp/scene.toml");
+  const std::unique_ptr<const Scene> scene = build_scene(desc, kOcio);
+  EXPECT_FALSE(scene->has_ground);
+  EXPECT_EQ(scene->object_names.size(), 1u);
+}
+
+}  // namespace
+}  // namespace arbor::trace
