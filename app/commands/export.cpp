@@ -51,7 +51,7 @@ int export_command(const ExportRequest& a) {
   SceneDesc scene = load_scene(a.scene);
   // pbrt renders the exact image: --spp is the path integrator's sample count.
   RenderOverrides overrides = a.overrides;
-  overrides.integrator = "path";
+  overrides.integrator = name_of(Integrator::Path);
   apply_overrides(scene, overrides);
   // A frame of an animation: its clock (the scene's own outputs are not written here).
   scene.output.exr.clear();

@@ -61,7 +61,8 @@ void add_override_options(CLI::App* command, RenderOverrides& o, unsigned which,
     command
         ->add_option("--integrator", o.integrator,
                      "path (exact) or treemaker (TREE-MAKER's approximate shading)")
-        ->check(CLI::IsMember({"path", "treemaker"}));
+        ->check(CLI::IsMember(std::vector<std::string>(trace::kIntegratorNames.begin(),
+                                                       trace::kIntegratorNames.end())));
   }
   command->add_option("--time", o.time, "seconds of wind sway for every [[tree]]")
       ->check(finite_in(-1e6, 1e6));
