@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
   try {
     // The OCIO config of this run: $OCIO, or arbor's own beside the executable.
     render.ocio_config = compare.ocio_config = merge.ocio_config = exp.ocio_config =
-        arbor::trace::default_ocio_config();
+        arbor::imaging::default_ocio_config();
     if (*grow_cmd) return grow_command(grow);
     if (*render_cmd) return render_command(render);
     if (*compare_cmd) return compare_command(compare);

@@ -28,8 +28,9 @@ using namespace arbor;
 
 const std::string kOcioConfig = std::string(ARBOR_SOURCE_DIR) + "/imaging/ocio/config.ocio";
 
-trace::SceneDesc view(int spp, int threads) {
-  trace::SceneDesc s = trace::load_scene(std::string(ARBOR_SOURCE_DIR) + "/scenes/default.toml");
+formats::SceneDesc view(int spp, int threads) {
+  formats::SceneDesc s =
+      formats::load_scene(std::string(ARBOR_SOURCE_DIR) + "/scenes/default.toml");
   s.render.width = 120;
   s.render.height = 90;
   s.render.spp = spp;
@@ -37,28 +38,29 @@ trace::SceneDesc view(int spp, int threads) {
   return s;
 }
 
-trace::Image render(const trace::SceneDesc& s) {
-  const trace::EmbreeDevice device("threads=" + std::to_string(s.render.threads));
-  const std::unique_ptr<const trace::Scene> scene = trace::build_scene(s, kOcioConfig);
-  const trace::World world(*scene, device);
-  const trace::ColorPipeline color(kOcioConfig);
-  const trace::Sky sky(sky_spec(s.sky), sun_spec(s.sun), color.xyz_to_scene_linear());
-  trace::RenderStats stats;
-  return trace::render_image(render_input(s), world, sky, color.to_output(s.output.colorspace),
-                             stats);
+imaging::Image render(const formats::SceneDesc& s) {
+  const tracer::EmbreeDevice device("threads=" + std::to_string(s.render.threads));
+  const std::unique_ptr<const scene::Scene> scene = scene::build_scene(s, kOcioConfig);
+  const tracer::World world(*scene, device);
+  const imaging::ColorPipeline color(kOcioConfig);
+  const tracer::Sky sky(scene::sky_spec(s.sky), scene::sun_spec(s.sun),
+                        color.xyz_to_scene_linear());
+  imaging::RenderStats stats;
+  return tracer::render_image(scene::render_input(s), world, sky,
+                              color.to_output(s.output.colorspace), stats);
 }
 
-const trace::Image& reference() {
-  static const trace::Image ref = [] {
-    trace::SceneDesc s = view(1024, 2);
+const imaging::Image& reference() {
+  static const imaging::Image ref = [] {
+    formats::SceneDesc s = view(1024, 2);
     s.render.seed = 99;
     return render(s);
   }();
   return ref;
 }
 
-double p95_error(const trace::Image& img) {
-  const trace::Image& ref = reference();
+double p95_error(const imaging::Image& img) {
+  const imaging::Image& ref = reference();
   std::vector<double> e(img.beauty.size());
   for (std::size_t p = 0; p < e.size(); ++p) {
     double worst = 0;
@@ -72,7 +74,7 @@ double p95_error(const trace::Image& img) {
   return e[static_cast<std::size_t>(0.95 * double(e.size()))];
 }
 
-void report(benchmark::State& state, const trace::Image& img) {
+void report(benchmark::State& state, const imaging::Image& img) {
   double total = 0;
   for (float n : img.samples) total += n;
   state.counters["p95_error"] = p95_error(img);
@@ -81,18 +83,18 @@ void report(benchmark::State& state, const trace::Image& img) {
 
 void uniform(benchmark::State& state) {
   reference();
-  const trace::SceneDesc s = view(static_cast<int>(state.range(0)), 1);
-  trace::Image img;
+  const formats::SceneDesc s = view(static_cast<int>(state.range(0)), 1);
+  imaging::Image img;
   for (auto _ : state) img = render(s);
   report(state, img);
 }
 
 void adaptive(benchmark::State& state) {
   reference();
-  trace::SceneDesc s = view(static_cast<int>(state.range(1)), 1);
+  formats::SceneDesc s = view(static_cast<int>(state.range(1)), 1);
   s.render.noise_threshold = static_cast<double>(state.range(0)) / 1000.0;
   s.render.min_spp = 16;
-  trace::Image img;
+  imaging::Image img;
   for (auto _ : state) img = render(s);
   report(state, img);
 }

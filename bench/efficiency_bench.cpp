@@ -38,39 +38,39 @@
 
 namespace {
 
-using namespace arbor;
-
 const std::string kSource = ARBOR_SOURCE_DIR;
 const std::string kOcioConfig = kSource + "/imaging/ocio/config.ocio";
 
-trace::SceneDesc default_scene() {
-  trace::SceneDesc s = trace::load_scene(kSource + "/bench/scenes/issue13_default.toml");
+arbor::formats::SceneDesc default_scene() {
+  arbor::formats::SceneDesc s =
+      arbor::formats::load_scene(kSource + "/bench/scenes/issue13_default.toml");
   s.render.width = 240;
   s.render.height = 180;
   s.render.spp = 64;
   return s;
 }
 
-trace::SceneDesc default_glossy() {
-  trace::SceneDesc s = default_scene();
+arbor::formats::SceneDesc default_glossy() {
+  arbor::formats::SceneDesc s = default_scene();
   s.trees.at(0).leaf.cuticle_ior.reset();  // the species' own cuticle
   return s;
 }
 
 // The default scene's tree as an OBJ (written once per process) in a [[mesh]].
-trace::SceneDesc default_triangles() {
-  trace::SceneDesc s = default_scene();
-  const trace::TreeDesc tree = s.trees.at(0);
-  const gen::Species species = gen::load_species(tree.species);
-  gen::GrowOptions grow;
+arbor::formats::SceneDesc default_triangles() {
+  arbor::formats::SceneDesc s = default_scene();
+  const arbor::formats::TreeDesc tree = s.trees.at(0);
+  const arbor::generator::Species species = arbor::formats::load_species(tree.species);
+  arbor::generator::GrowOptions grow;
   grow.seed = tree.seed;
-  const gen::TreeGeometry geometry =
-      gen::build_tree_geometry(gen::grow_tree(species, grow), gen::geometry_options_for(species));
+  const arbor::generator::TreeGeometry geometry = arbor::generator::build_tree_geometry(
+      arbor::generator::grow_tree(species, grow), arbor::generator::geometry_options_for(species));
   const std::string obj = "/tmp/arbor_scene_bench_tree.obj";
-  gen::write_obj(gen::tessellate(geometry), obj, {species.name, species.bark, species.leaf});
-  trace::MeshDesc mesh;
+  arbor::generator::write_obj(arbor::generator::tessellate(geometry), obj,
+                              {species.name, species.bark, species.leaf});
+  arbor::formats::MeshDesc mesh;
   mesh.path = obj;
-  trace::MeshMaterialDesc bark, leaf;
+  arbor::formats::MeshMaterialDesc bark, leaf;
   bark.kind = "bark";
   bark.albedo = species.bark.albedo;
   leaf.kind = "leaf";
@@ -85,43 +85,46 @@ trace::SceneDesc default_triangles() {
   return s;
 }
 
-trace::SceneDesc willow() {
-  trace::SceneDesc s = default_scene();
+arbor::formats::SceneDesc willow() {
+  arbor::formats::SceneDesc s = default_scene();
   s.trees.at(0).species = kSource + "/species/weeping_willow.toml";
   s.camera.position = {16.0, -22.0, 3.0};
   s.camera.look_at = {0.0, 0.0, 5.5};
   return s;
 }
 
-trace::SceneDesc forest() {
-  trace::SceneDesc s = trace::load_scene(kSource + "/scenes/forest_10000.toml");
+arbor::formats::SceneDesc forest() {
+  arbor::formats::SceneDesc s = arbor::formats::load_scene(kSource + "/scenes/forest_10000.toml");
   s.render.spp = 8;
   return s;
 }
 
-void scene(benchmark::State& state, trace::SceneDesc (*make)()) {
-  trace::SceneDesc s = make();
+void scene(benchmark::State& state, arbor::formats::SceneDesc (*make)()) {
+  arbor::formats::SceneDesc s = make();
   s.render.threads = 2;
   s.render.noise_threshold = 0;
-  const trace::EmbreeDevice device("threads=2");
+  const arbor::tracer::EmbreeDevice device("threads=2");
   const auto build_start = std::chrono::steady_clock::now();
-  const std::unique_ptr<const trace::Scene> built = trace::build_scene(s, kOcioConfig);
-  const trace::World world(*built, device);
+  const std::unique_ptr<const arbor::scene::Scene> built =
+      arbor::scene::build_scene(s, kOcioConfig);
+  const arbor::tracer::World world(*built, device);
   const double build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
-  const trace::ColorPipeline color(kOcioConfig);
-  const trace::Sky sky(sky_spec(s.sky), sun_spec(s.sun), color.xyz_to_scene_linear());
-  const trace::ColorTransform to_output = color.to_output(s.output.colorspace);
+  const arbor::imaging::ColorPipeline color(kOcioConfig);
+  const arbor::tracer::Sky sky(arbor::scene::sky_spec(s.sky), arbor::scene::sun_spec(s.sun),
+                               color.xyz_to_scene_linear());
+  const arbor::imaging::ColorTransform to_output = color.to_output(s.output.colorspace);
   double seconds = 0, variance = 0;
   std::uint64_t samples = 0, rays = 0;
   int renders = 0;
   for (auto _ : state) {
-    trace::Image images[2];
+    arbor::imaging::Image images[2];
     for (int k = 0; k < 2; ++k) {
       s.render.seed = static_cast<std::uint64_t>(k + 1);
-      trace::RenderStats stats;
+      arbor::imaging::RenderStats stats;
       const auto start = std::chrono::steady_clock::now();
-      images[k] = trace::render_image(render_input(s), world, sky, to_output, stats);
+      images[k] =
+          arbor::tracer::render_image(arbor::scene::render_input(s), world, sky, to_output, stats);
       seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       samples += stats.samples;
       rays += stats.rays;

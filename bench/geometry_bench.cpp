@@ -14,19 +14,19 @@
 
 namespace {
 
-arbor::gen::Skeleton grow(const char* file) {
-  const arbor::gen::Species species =
-      arbor::gen::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + file);
-  arbor::gen::GrowOptions options;
+arbor::generator::Skeleton grow(const char* file) {
+  const arbor::generator::Species species =
+      arbor::formats::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + file);
+  arbor::generator::GrowOptions options;
   options.seed = 1;
-  return arbor::gen::grow_weber_penn(species.weber_penn(), options);
+  return arbor::generator::grow_weber_penn(species.weber_penn(), options);
 }
 
 void build_geometry(benchmark::State& state, const char* file) {
-  const arbor::gen::Skeleton skeleton = grow(file);
-  arbor::gen::GeometryStats stats;
+  const arbor::generator::Skeleton skeleton = grow(file);
+  arbor::generator::GeometryStats stats;
   for (auto _ : state) {
-    const arbor::gen::TreeGeometry g = arbor::gen::build_tree_geometry(skeleton);
+    const arbor::generator::TreeGeometry g = arbor::generator::build_tree_geometry(skeleton);
     stats = g.stats;
     benchmark::DoNotOptimize(g.curves.points.data());
   }
@@ -35,10 +35,10 @@ void build_geometry(benchmark::State& state, const char* file) {
 }
 
 void build_bvh(benchmark::State& state, const char* file) {
-  const arbor::gen::TreeGeometry g = arbor::gen::build_tree_geometry(grow(file));
-  const arbor::trace::EmbreeDevice device("threads=1");
+  const arbor::generator::TreeGeometry g = arbor::generator::build_tree_geometry(grow(file));
+  const arbor::tracer::EmbreeDevice device("threads=1");
   for (auto _ : state) {
-    const arbor::trace::TreePrototype tree(device, g);
+    const arbor::tracer::TreePrototype tree(device, g);
     benchmark::DoNotOptimize(tree.scene());
   }
 }
@@ -47,20 +47,20 @@ void build_bvh(benchmark::State& state, const char* file) {
 // same limbs as an indexed triangle mesh (positions, normals, uv, indices). Trunk grids are the
 // same in both and reported apart.
 void limb_bytes(benchmark::State& state, const char* file) {
-  const arbor::gen::TreeGeometry g = arbor::gen::build_tree_geometry(grow(file));
-  arbor::gen::TreeGeometry limbs_only = g;
+  const arbor::generator::TreeGeometry g = arbor::generator::build_tree_geometry(grow(file));
+  arbor::generator::TreeGeometry limbs_only = g;
   limbs_only.grids = {};
   limbs_only.leaves = {};
   std::size_t mesh_bytes = 0;
   for (auto _ : state) {
-    const arbor::gen::TreeMesh mesh = arbor::gen::tessellate(limbs_only);
+    const arbor::generator::TreeMesh mesh = arbor::generator::tessellate(limbs_only);
     mesh_bytes = mesh.positions.size() * (sizeof(glm::vec3) * 2 + sizeof(glm::vec2)) +
                  mesh.indices.size() * sizeof(std::uint32_t);
     benchmark::DoNotOptimize(mesh.indices.data());
   }
   const double curve_bytes = static_cast<double>(
       g.curves.points.size() * sizeof(glm::vec4) + g.curves.tangents.size() * sizeof(glm::vec4) +
-      g.curves.segments.size() * sizeof(arbor::gen::CurveSegment));
+      g.curves.segments.size() * sizeof(arbor::generator::CurveSegment));
   const double grid_bytes =
       static_cast<double>(g.grids.vertices.size() * (2 * sizeof(glm::vec3) + sizeof(glm::vec2)));
   state.counters["curve_MB"] = curve_bytes / 1e6;

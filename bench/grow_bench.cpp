@@ -14,13 +14,13 @@
 namespace {
 
 void grow_species(benchmark::State& state, const char* file) {
-  const arbor::gen::Species species =
-      arbor::gen::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + file);
-  arbor::gen::GrowOptions options;
+  const arbor::generator::Species species =
+      arbor::formats::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + file);
+  arbor::generator::GrowOptions options;
   options.seed = 1;
   size_t stems = 0, leaves = 0;
   for (auto _ : state) {
-    arbor::gen::Skeleton skeleton = arbor::gen::grow_tree(species, options);
+    arbor::generator::Skeleton skeleton = arbor::generator::grow_tree(species, options);
     stems = skeleton.stems.size();
     leaves = skeleton.leaves.size();
     benchmark::DoNotOptimize(skeleton.points.data());

@@ -37,13 +37,15 @@ std::string deeply_nested(int depth) {
 
 void BM_SkeletonManyChildrenOfOnePoint(benchmark::State& state) {
   const std::string text = many_children(static_cast<int>(state.range(0)));
-  for (auto _ : state) benchmark::DoNotOptimize(arbor::gen::parse_skeleton_file(text, "b.skel"));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(arbor::formats::parse_skeleton_file(text, "b.skel"));
 }
 BENCHMARK(BM_SkeletonManyChildrenOfOnePoint)->Arg(100000)->Unit(benchmark::kMillisecond);
 
 void BM_SkeletonNestedDeep(benchmark::State& state) {
   const std::string text = deeply_nested(static_cast<int>(state.range(0)));
-  for (auto _ : state) benchmark::DoNotOptimize(arbor::gen::parse_skeleton_file(text, "b.skel"));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(arbor::formats::parse_skeleton_file(text, "b.skel"));
 }
 BENCHMARK(BM_SkeletonNestedDeep)->Arg(20000)->Unit(benchmark::kMillisecond);
 
@@ -58,8 +60,9 @@ void BM_TreemakerEstimateOfTheLargestTemplate(benchmark::State& state) {
       "0.6 }\n"
       "leaf { p= 1 coord= limb out= 10 up= 10 color= green brightness= 0.5 to 0.6 tri= 0,0,0 1,0,1 "
       "-1,0,1 }\n";
-  const arbor::gen::TreeMakerTemplate t = arbor::gen::parse_treemaker_template(text, "b.tmpl");
-  for (auto _ : state) benchmark::DoNotOptimize(arbor::gen::treemaker_estimate(t));
+  const arbor::generator::TreeMakerTemplate t =
+      arbor::formats::parse_treemaker_template(text, "b.tmpl");
+  for (auto _ : state) benchmark::DoNotOptimize(arbor::generator::treemaker_estimate(t));
 }
 BENCHMARK(BM_TreemakerEstimateOfTheLargestTemplate)->Unit(benchmark::kMillisecond);
 
@@ -73,7 +76,7 @@ void BM_ObjHugePolygon(benchmark::State& state) {
   text += "f";
   for (int k = 1; k <= n; ++k) text += " " + std::to_string(k);
   text += "\n";
-  for (auto _ : state) benchmark::DoNotOptimize(arbor::trace::parse_obj(text, "b.obj"));
+  for (auto _ : state) benchmark::DoNotOptimize(arbor::formats::parse_obj(text, "b.obj"));
 }
 BENCHMARK(BM_ObjHugePolygon)->Arg(100000)->Unit(benchmark::kMillisecond);
 

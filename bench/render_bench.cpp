@@ -33,23 +33,24 @@ const std::string kOcioConfig = std::string(ARBOR_SOURCE_DIR) + "/imaging/ocio/c
 
 // The scene built and put in Embree, as `arbor render` does.
 struct BuiltWorld {
-  BuiltWorld(const trace::SceneDesc& desc, const trace::EmbreeDevice& device)
-      : scene(trace::build_scene(desc, kOcioConfig)), world(*scene, device) {}
-  std::unique_ptr<const trace::Scene> scene;
-  trace::World world;
+  BuiltWorld(const formats::SceneDesc& desc, const tracer::EmbreeDevice& device)
+      : scene(scene::build_scene(desc, kOcioConfig)), world(*scene, device) {}
+  std::unique_ptr<const scene::Scene> scene;
+  tracer::World world;
 };
 
-trace::SceneDesc default_scene() {
-  trace::SceneDesc s = trace::load_scene(std::string(ARBOR_SOURCE_DIR) + "/scenes/default.toml");
+formats::SceneDesc default_scene() {
+  formats::SceneDesc s =
+      formats::load_scene(std::string(ARBOR_SOURCE_DIR) + "/scenes/default.toml");
   s.render.threads = 1;
   return s;
 }
 
 void raw_embree_rays(benchmark::State& state) {
-  const trace::SceneDesc scene = default_scene();
-  const trace::EmbreeDevice device("threads=1");
+  const formats::SceneDesc scene = default_scene();
+  const tracer::EmbreeDevice device("threads=1");
   const BuiltWorld built(scene, device);
-  const trace::World& world = built.world;
+  const tracer::World& world = built.world;
   Rng rng(1);
   std::vector<RTCRayHit> rays(1 << 16);
   for (RTCRayHit& r : rays) {
@@ -84,21 +85,21 @@ void raw_embree_rays(benchmark::State& state) {
 // Renders the default scene's view at 160×120 with `spp` path samples (the treemaker integrator
 // at its own treemaker_spp) for every iteration; rays/s, samples/s and spp counters.
 void render_frames(benchmark::State& state, int spp, bool treemaker) {
-  trace::SceneDesc scene = default_scene();
+  formats::SceneDesc scene = default_scene();
   scene.render.width = 160;
   scene.render.height = 120;
   scene.render.spp = spp;
-  if (treemaker) scene.render.integrator = trace::Integrator::Treemaker;
-  const trace::EmbreeDevice device("threads=1");
+  if (treemaker) scene.render.integrator = formats::Integrator::Treemaker;
+  const tracer::EmbreeDevice device("threads=1");
   const BuiltWorld built(scene, device);
-  const trace::World& world = built.world;
-  const trace::Sky sky(sky_spec(scene.sky), sun_spec(scene.sun),
-                       trace::ColorPipeline(kOcioConfig).xyz_to_scene_linear());
+  const tracer::World& world = built.world;
+  const tracer::Sky sky(scene::sky_spec(scene.sky), scene::sun_spec(scene.sun),
+                        imaging::ColorPipeline(kOcioConfig).xyz_to_scene_linear());
   std::uint64_t rays = 0, samples = 0;
   for (auto _ : state) {
-    trace::RenderStats stats;
-    const trace::Image img = trace::render_image(
-        render_input(scene), world, sky, [](float*) {}, stats);
+    imaging::RenderStats stats;
+    const imaging::Image img = tracer::render_image(
+        scene::render_input(scene), world, sky, [](float*) {}, stats);
     benchmark::DoNotOptimize(img.beauty.data());
     rays += stats.rays;
     samples += stats.samples;
@@ -115,8 +116,8 @@ void path_tracer(benchmark::State& state) { render_frames(state, 16, false); }
 void frame(benchmark::State& state, bool treemaker) { render_frames(state, 64, treemaker); }
 
 void world_build(benchmark::State& state) {
-  const trace::SceneDesc scene = default_scene();
-  const trace::EmbreeDevice device("threads=1");
+  const formats::SceneDesc scene = default_scene();
+  const tracer::EmbreeDevice device("threads=1");
   for (auto _ : state) {
     const BuiltWorld built(scene, device);
     benchmark::DoNotOptimize(built.world.embree_scene());
@@ -124,14 +125,14 @@ void world_build(benchmark::State& state) {
 }
 
 void forest_1000(benchmark::State& state) {
-  trace::SceneDesc scene;
-  trace::ForestDesc f;
+  formats::SceneDesc scene;
+  formats::ForestDesc f;
   f.species = std::string(ARBOR_SOURCE_DIR) + "/species/black_tupelo.toml";
   f.count = 1000;
   f.variants = 8;
   f.area = {-200.0, -200.0, 200.0, 200.0};
   scene.forests.push_back(f);
-  const trace::EmbreeDevice device("threads=1");
+  const tracer::EmbreeDevice device("threads=1");
   for (auto _ : state) {
     const BuiltWorld built(scene, device);
     state.counters["instances"] = static_cast<double>(built.scene->stats.instances);

@@ -13,7 +13,7 @@
 #include "generator/species.h"
 #include "formats/species_file.h"
 
-namespace arbor::gen {
+namespace arbor::formats {
 
 namespace {
 
@@ -58,7 +58,7 @@ bool parse_number(std::string_view s, double& out) {
 
 }  // namespace
 
-Species parse_arbaro_xml(std::string_view text, const std::string& path) {
+generator::Species parse_arbaro_xml(std::string_view text, const std::string& path) {
   const LineIndex lines(text);
   auto where = [&](std::ptrdiff_t offset) {
     const auto [line, column] = lines.position(offset);
@@ -105,7 +105,7 @@ Species parse_arbaro_xml(std::string_view text, const std::string& path) {
   refuse_text(root, "in <arbaro>");
   refuse_text(species_node, "in <species>");
 
-  Species sp;
+  generator::Species sp;
   sp.path = path;
   sp.name = species_node.attribute("name").as_string();
   std::map<std::string, SourceLocation> positions;
@@ -128,11 +128,11 @@ Species parse_arbaro_xml(std::string_view text, const std::string& path) {
                                                   "model; ignored"));
       continue;
     }
-    const ParamInfo* info = nullptr;
+    const generator::ParamInfo* info = nullptr;
     int level = -1;
     if (!name.empty() && name[0] >= '0' && name[0] <= '9') {
       level = name[0] - '0';
-      info = find_level_param(std::string_view(name).substr(1));
+      info = generator::find_level_param(std::string_view(name).substr(1));
       if (info && level > 3) {
         throw InputError(at, "level " + std::to_string(level) + " in '" + name +
                                  "': levels are 0 to 3; deeper levels reuse level 3");
@@ -146,7 +146,7 @@ Species parse_arbaro_xml(std::string_view text, const std::string& path) {
         continue;
       }
     } else {
-      info = find_tree_param(name);
+      info = generator::find_tree_param(name);
     }
     if (!info) throw InputError(at, "unknown parameter '" + name + "'");
 
@@ -154,13 +154,13 @@ Species parse_arbaro_xml(std::string_view text, const std::string& path) {
     if (!parse_number(value, v)) {
       throw InputError(at, "the value of '" + name + "' is not a number: '" + value + "'");
     }
-    const std::string problem = set_param(sp.weber_penn(), *info, std::max(level, 0), v);
+    const std::string problem = generator::set_param(sp.weber_penn(), *info, std::max(level, 0), v);
     if (!problem.empty())
       throw InputError(at, (level >= 0 ? std::string(1, name[0]) : "") + problem);
     positions[name] = at;
   }
-  finish_species(sp, positions);
+  generator::finish_species(sp, positions);
   return sp;
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::formats

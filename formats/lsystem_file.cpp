@@ -8,7 +8,7 @@
 
 #include "common/text_cursor.h"
 
-namespace arbor::gen {
+namespace arbor::formats {
 
 namespace {
 
@@ -16,8 +16,8 @@ class Parser {
  public:
   Parser(const std::string& text, const std::string& path) : cursor_(text, path), path_(path) {}
 
-  LSystem parse() {
-    LSystem sys;
+  generator::LSystem parse() {
+    generator::LSystem sys;
     sys.path = path_;
     std::map<std::string, SourceLocation> seen;
     for (skip_space(); !at_end(); skip_space()) {
@@ -38,8 +38,8 @@ class Parser {
     if (sys.rules.empty()) throw InputError({path_, 1, 1}, "the L-system has no rules");
     // Every rule reference must name a rule.
     std::map<char, bool> defined;
-    for (const LRule& r : sys.rules) defined[r.name] = true;
-    for (const LRule& r : sys.rules) check_references(r.body, defined);
+    for (const generator::LRule& r : sys.rules) defined[r.name] = true;
+    for (const generator::LRule& r : sys.rules) check_references(r.body, defined);
     return sys;
   }
 
@@ -102,7 +102,7 @@ class Parser {
     return v;
   }
 
-  void directive(LSystem& sys, const std::string& name, const SourceLocation& where) {
+  void directive(generator::LSystem& sys, const std::string& name, const SourceLocation& where) {
     expect('=', "'=' after '" + name + "'");
     const SourceLocation value_at = (skip_space(), here());
     const double v = number();
@@ -153,8 +153,8 @@ class Parser {
                                   "leaf_length, leaf_width, leaf_shape)");
   }
 
-  LRule rule() {
-    LRule r;
+  generator::LRule rule() {
+    generator::LRule r;
     r.where = here();
     r.name = peek();
     advance();
@@ -171,8 +171,8 @@ class Parser {
     return r;
   }
 
-  std::vector<LAction> actions(bool in_branch) {
-    std::vector<LAction> out;
+  std::vector<generator::LAction> actions(bool in_branch) {
+    std::vector<generator::LAction> out;
     for (;;) {
       skip_space();
       if (at_end()) {
@@ -188,7 +188,7 @@ class Parser {
         if (!in_branch) throw InputError(here(), "']' without a matching '['");
         return out;
       }
-      LAction a;
+      generator::LAction a;
       a.where = here();
       advance();
       switch (c) {
@@ -199,7 +199,7 @@ class Parser {
         case '>':
         case 'v':
         case '^':
-          a.kind = static_cast<LAction::Kind>(c);
+          a.kind = static_cast<generator::LAction::Kind>(c);
           skip_space();
           if (!at_end() && peek() == '(') {
             a.has_number = true;
@@ -211,7 +211,7 @@ class Parser {
         case 'u':
         case 'l':
         case 'r':
-          a.kind = static_cast<LAction::Kind>(c);
+          a.kind = static_cast<generator::LAction::Kind>(c);
           a.has_number = true;
           a.number = parenthesized();
           if (c == 'r' && (a.number <= 0.0 || a.number > 1.0)) {
@@ -227,14 +227,14 @@ class Parser {
             throw InputError(a.where, "branches are nested more than " +
                                           std::to_string(kMaxBranchDepth) + " deep in one rule");
           }
-          a.kind = LAction::Branch;
+          a.kind = generator::LAction::Branch;
           a.branch = actions(true);
           expect(']', "']'");
           --branch_depth_;
           break;
         default:
           if (c >= 'A' && c <= 'Z') {
-            a.kind = LAction::Rule;
+            a.kind = generator::LAction::Rule;
             a.rule = c;
           } else {
             throw InputError(a.where, std::string("unknown action '") + c + "'");
@@ -244,12 +244,13 @@ class Parser {
     }
   }
 
-  void check_references(const std::vector<LAction>& body, const std::map<char, bool>& defined) {
-    for (const LAction& a : body) {
-      if (a.kind == LAction::Rule && !defined.count(a.rule)) {
+  void check_references(const std::vector<generator::LAction>& body,
+                        const std::map<char, bool>& defined) {
+    for (const generator::LAction& a : body) {
+      if (a.kind == generator::LAction::Rule && !defined.count(a.rule)) {
         throw InputError(a.where, std::string("rule ") + a.rule + " is used but never defined");
       }
-      if (a.kind == LAction::Branch) check_references(a.branch, defined);
+      if (a.kind == generator::LAction::Branch) check_references(a.branch, defined);
     }
   }
 
@@ -261,8 +262,8 @@ class Parser {
 
 }  // namespace
 
-LSystem parse_lsystem(const std::string& text, const std::string& path) {
+generator::LSystem parse_lsystem(const std::string& text, const std::string& path) {
   return Parser(text, path).parse();
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::formats

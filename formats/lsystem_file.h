@@ -5,9 +5,9 @@
 
 #include "generator/models/lsystem/lsystem.h"
 
-namespace arbor::gen {
+namespace arbor::formats {
 
 // Parses the language; throws InputError with path:line:col for every malformed input.
-LSystem parse_lsystem(const std::string& text, const std::string& path);
+generator::LSystem parse_lsystem(const std::string& text, const std::string& path);
 
-}  // namespace arbor::gen
+}  // namespace arbor::formats

@@ -9,7 +9,7 @@
 #include "generator/species.h"
 #include "formats/species_file.h"
 
-namespace arbor::trace {
+namespace arbor::formats {
 
 namespace {
 
@@ -237,4 +237,4 @@ ObjMesh load_obj(const std::string& path) {
   return parse_obj(read_text_input(path, "mesh", kMaxMeshBytes), path);
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::formats

@@ -9,7 +9,7 @@
 
 #include <glm/vec3.hpp>
 
-namespace arbor::trace {
+namespace arbor::formats {
 
 struct ObjMesh {
   // A run of faces under one group (`g`/`o`) and one material (`usemtl`).
@@ -38,4 +38,4 @@ ObjMesh parse_obj(std::string_view text, const std::string& path);
 // Reads an OBJ file; InputError when it cannot be read or is malformed.
 ObjMesh load_obj(const std::string& path);
 
-}  // namespace arbor::trace
+}  // namespace arbor::formats

@@ -14,7 +14,7 @@
 #include "common/math.h"
 #include "imaging/output_spec.h"
 
-namespace arbor::trace {
+namespace arbor::formats {
 
 using Vec3d = std::array<double, 3>;
 
@@ -153,13 +153,13 @@ struct MeshDesc {
 
 // The [output] table: the files, and the output specification they are written by
 // (imaging/output_spec.h: colour space, display and view, pixel type, AOVs, transparent sky).
-struct OutputDesc : OutputSpec {
+struct OutputDesc : imaging::OutputSpec {
   std::string exr;  // resolved; empty: none
   std::string png;
   double checkpoint_seconds = 0.0;     // rewrite the outputs this often as passes finish; 0: never
   SourceLocation treemaker_aov_where;  // where "treemaker" is listed (only that integrator has it)
   // The keys' positions, for errors found later (by the OCIO config); the file's when unset.
-  OutputKeys where;
+  imaging::OutputKeys where;
 };
 
 // An animation (docs/farm.md): frame N is rendered at clock N / fps seconds. Trees of models that
@@ -211,4 +211,4 @@ SceneDesc parse_scene(const std::string& text, const std::string& path);
 // Every file the scene reads: the scene itself, species, textures, the environment map, meshes.
 std::vector<std::string> scene_inputs(const SceneDesc& scene);
 
-}  // namespace arbor::trace
+}  // namespace arbor::formats

@@ -16,7 +16,7 @@
 #include "formats/scene_desc.h"
 #include "formats/species_file.h"
 
-namespace arbor::trace {
+namespace arbor::formats {
 
 namespace {
 
@@ -472,17 +472,18 @@ class SceneReader : TomlReader {
       } else if (k == "checkpoint_seconds")
         o.checkpoint_seconds = number(n, "output.checkpoint_seconds", 0.0, 1e7);
       else if (k == "pixel_type")
-        o.pixel_type =
-            static_cast<PixelType>(choice_index(n, "output.pixel_type", kPixelTypeNames));
+        o.pixel_type = static_cast<imaging::PixelType>(
+            choice_index(n, "output.pixel_type", imaging::kPixelTypeNames));
       else if (k == "transparent_sky")
         o.transparent_sky = boolean(n, "output.transparent_sky");
       else if (k == "aovs") {
         const toml::array* a = n.as_array();
         if (!a) fail(n, "output.aovs must be an array of strings");
         for (const toml::node& e : *a) {
-          const Aov aov = static_cast<Aov>(choice_index(e, "output.aovs", kAovNames));
+          const imaging::Aov aov =
+              static_cast<imaging::Aov>(choice_index(e, "output.aovs", imaging::kAovNames));
           o.aovs.add(aov);
-          if (aov == Aov::Treemaker) o.treemaker_aov_where = at(e.source());
+          if (aov == imaging::Aov::Treemaker) o.treemaker_aov_where = at(e.source());
         }
       } else
         unknown(key, "output");
@@ -569,4 +570,4 @@ std::vector<std::string> scene_inputs(const SceneDesc& s) {
   return in;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::formats

@@ -14,7 +14,7 @@
 #include "common/error.h"
 #include "generator/export/text_output.h"
 
-namespace arbor::gen {
+namespace arbor::formats {
 
 namespace {
 
@@ -45,7 +45,7 @@ class Reader {
  public:
   Reader(const std::string& text, const std::string& path) : text_(text), path_(path) {}
 
-  Skeleton read() {
+  generator::Skeleton read() {
     std::istringstream in(text_);
     std::string line;
     int number = 0;
@@ -185,7 +185,7 @@ class Reader {
     } else if (kind == "leaf") {
       count(14, 14);
       const int p = known(1);
-      Leaf l;
+      generator::Leaf l;
       l.position = glm::vec3(real(2), real(3), real(4));
       l.axis = glm::vec3(real(5), real(6), real(7));
       l.normal = glm::vec3(real(8), real(9), real(10));
@@ -204,14 +204,14 @@ class Reader {
       const int p = known(1);
       const int leaf = static_cast<int>(real(2));
       if (tri) {
-        LeafTriangle t;
+        generator::LeafTriangle t;
         for (int k = 0; k < 3; ++k)
           t.v[k] = glm::vec3(real(3 + 3 * k), real(4 + 3 * k), real(5 + 3 * k));
         t.color = glm::vec3(real(12), real(13), real(14));
         t.leaf = leaf;
         free_triangles_.emplace_back(p, t);
       } else {
-        LeafLine l;
+        generator::LeafLine l;
         l.a = glm::vec3(real(3), real(4), real(5));
         l.b = glm::vec3(real(6), real(7), real(8));
         l.radius = static_cast<float>(real(9));
@@ -246,7 +246,7 @@ class Reader {
     p.incoming_line = line_;
   }
 
-  Skeleton build() {
+  generator::Skeleton build() {
     if (points_.empty()) throw InputError({path_, 1, 1}, "the skeleton has no points");
     std::vector<int> roots;
     for (int i : order_) {
@@ -263,7 +263,7 @@ class Reader {
                            (roots.empty() ? "" : ": points " + list));
     }
     // Stems: the first outgoing connection of a point continues its stem; others start stems.
-    Skeleton sk;
+    generator::Skeleton sk;
     sk.trunk = trunk_;
     std::vector<int> reached;
     build_stems(sk, roots[0], reached);
@@ -281,7 +281,7 @@ class Reader {
       if (it == stem_of_point_.end())
         throw InputError({path_, 1, 1},
                          "a leaf names point " + std::to_string(p) + ", which is on no stem");
-      Leaf l = leaf;
+      generator::Leaf l = leaf;
       // Hand-written frames may be any length; arbor's own are unit already (kept bit for bit).
       if (std::fabs(glm::length(l.axis) - 1.0f) > 1e-5f) l.axis = glm::normalize(l.axis);
       if (std::fabs(glm::length(l.normal) - 1.0f) > 1e-5f) l.normal = glm::normalize(l.normal);
@@ -297,9 +297,9 @@ class Reader {
       sk.leaf_lines.push_back(l);
     }
     int levels = 1;
-    for (const Stem& s : sk.stems) levels = std::max(levels, s.level + 1);
+    for (const generator::Stem& s : sk.stems) levels = std::max(levels, s.level + 1);
     sk.levels = levels;
-    const std::string problem = validate(sk);
+    const std::string problem = generator::validate(sk);
     if (!problem.empty()) throw InputError({path_, 1, 1}, problem);
     return sk;
   }
@@ -315,7 +315,7 @@ class Reader {
 
   // Orders stems as the file lists them (by the line of the connection into each stem's second
   // point), when that keeps every parent before its children; otherwise depth-first order stays.
-  void keep_file_order(Skeleton& sk) {
+  void keep_file_order(generator::Skeleton& sk) {
     const std::size_t n = sk.stems.size();
     std::vector<std::size_t> order(n);
     for (std::size_t i = 0; i < n; ++i) order[i] = i;
@@ -327,7 +327,7 @@ class Reader {
       const int parent = sk.stems[order[i]].parent;
       if (parent >= 0 && new_index[static_cast<size_t>(parent)] >= static_cast<int>(i)) return;
     }
-    std::vector<Stem> sorted(n);
+    std::vector<generator::Stem> sorted(n);
     for (std::size_t i = 0; i < n; ++i) {
       sorted[i] = sk.stems[order[i]];
       if (sorted[i].parent >= 0)
@@ -346,7 +346,7 @@ class Reader {
   // Builds every stem, parents before children, in depth-first order (each stem's children in
   // file order). Iterative with an explicit stack, so a skeleton nested thousands of levels
   // deep cannot overflow the call stack; linear in the number of points and records.
-  void build_stems(Skeleton& sk, int root, std::vector<int>& reached) {
+  void build_stems(generator::Skeleton& sk, int root, std::vector<int>& reached) {
     // Branch records by the segment they start on, in file order.
     std::map<std::pair<int, int>, std::vector<int>> on_segment;
     for (int c : order_) {
@@ -365,7 +365,7 @@ class Reader {
   }
 
   // Builds one stem and lists, in order, the stems that start on it.
-  void add_stem(Skeleton& sk, const StemStart& from,
+  void add_stem(generator::Skeleton& sk, const StemStart& from,
                 const std::map<std::pair<int, int>, std::vector<int>>& on_segment,
                 std::vector<int>& reached, std::vector<StemStart>& children) {
     const int parent = from.parent, parent_point = from.parent_point, first = from.first;
@@ -396,7 +396,7 @@ class Reader {
                              "between them has no direction");
       }
     }
-    Stem st;
+    generator::Stem st;
     st.parent = parent;
     st.parent_point = parent_point;
     st.first_point = static_cast<std::uint32_t>(sk.points.size());
@@ -471,20 +471,20 @@ class Reader {
   std::map<int, PointRecord> points_;
   std::vector<int> order_;
   std::map<int, StemRecord> stems_;
-  std::vector<std::pair<int, Leaf>> leaves_;
-  std::vector<std::pair<int, LeafTriangle>> free_triangles_;
-  std::vector<std::pair<int, LeafLine>> free_lines_;
+  std::vector<std::pair<int, generator::Leaf>> leaves_;
+  std::vector<std::pair<int, generator::LeafTriangle>> free_triangles_;
+  std::vector<std::pair<int, generator::LeafLine>> free_lines_;
   std::map<int, int> stem_of_point_;
   std::vector<int> stem_lines_;  // per stem (depth-first index): line of its first connection
   std::vector<std::vector<float>> arc_to_point_;  // per stem: arc length to each of its points
-  TrunkDisplacement trunk_;
+  generator::TrunkDisplacement trunk_;
   float default_radius_ = 0.0f;
 };
 
 }  // namespace
 
-Skeleton parse_skeleton_file(const std::string& text, const std::string& path) {
+generator::Skeleton parse_skeleton_file(const std::string& text, const std::string& path) {
   return Reader(text, path).read();
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::formats

@@ -6,10 +6,10 @@
 
 #include "generator/skeleton.h"
 
-namespace arbor::gen {
+namespace arbor::formats {
 
 // Reads and validates a skeleton file (all points connected, at most one incoming limb per
 // point, exactly one root). Throws InputError naming the offending point and line.
-Skeleton parse_skeleton_file(const std::string& text, const std::string& path);
+generator::Skeleton parse_skeleton_file(const std::string& text, const std::string& path);
 
-}  // namespace arbor::gen
+}  // namespace arbor::formats

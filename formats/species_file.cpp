@@ -7,14 +7,14 @@
 #include "formats/skeleton_file.h"
 #include "formats/treemaker_template.h"
 
-namespace arbor::gen {
+namespace arbor::formats {
 
 std::string read_text_file(const std::string& path) { return read_text_input(path, "species"); }
 
 namespace {
 // A species read from a model's own file format: named after its file.
-Species from_file(const std::string& path, ModelParams params) {
-  Species sp;
+generator::Species from_file(const std::string& path, generator::ModelParams params) {
+  generator::Species sp;
   sp.path = path;
   sp.name = path;
   sp.params = std::move(params);
@@ -22,7 +22,7 @@ Species from_file(const std::string& path, ModelParams params) {
 }
 }  // namespace
 
-Species load_species(const std::string& path) {
+generator::Species load_species(const std::string& path) {
   if (ends_with(path, ".toml"))
     return parse_species_toml(read_text_input(path, "species", kMaxTomlBytes), path);
   if (ends_with(path, ".xml")) return parse_arbaro_xml(read_text_file(path), path);
@@ -33,7 +33,7 @@ Species load_species(const std::string& path) {
     return from_file(path, parse_skeleton_file(read_text_file(path), path));
   }
   if (ends_with(path, ".tmpl")) {
-    Species sp = from_file(path, parse_treemaker_template(read_text_file(path), path));
+    generator::Species sp = from_file(path, parse_treemaker_template(read_text_file(path), path));
     sp.treemaker_light = sp.treemaker().light;
     // Colours come from the template: the looks only scale them.
     sp.bark.albedo = {1.0, 1.0, 1.0};
@@ -46,4 +46,4 @@ Species load_species(const std::string& path) {
                    "unknown species format: expected .toml, .xml (Arbaro), .lsys, .skel or .tmpl");
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::formats

@@ -11,7 +11,7 @@
 #include "generator/species.h"
 #include "formats/species_file.h"
 
-namespace arbor::gen {
+namespace arbor::formats {
 
 namespace {
 
@@ -35,12 +35,13 @@ class TomlSpecies : TomlReader {
     return c;
   }
 
-  void param(Species& sp, const ParamInfo& info, int level, const toml::node& node,
-             const std::string& paper_name) {
+  void param(generator::Species& sp, const generator::ParamInfo& info, int level,
+             const toml::node& node, const std::string& paper_name) {
     if (info.integer && !node.is_integer()) {
       throw InputError(at(node.source()), paper_name + " must be a whole number");
     }
-    const std::string problem = set_param(sp.weber_penn(), info, level, number(node, paper_name));
+    const std::string problem =
+        generator::set_param(sp.weber_penn(), info, level, number(node, paper_name));
     if (!problem.empty()) {
       throw InputError(
           at(node.source()),
@@ -49,7 +50,7 @@ class TomlSpecies : TomlReader {
     positions_[paper_name] = at(node.source());
   }
 
-  void levels(Species& sp, const toml::table& levels) {
+  void levels(generator::Species& sp, const toml::table& levels) {
     for (auto&& [key, node] : levels) {
       const std::string k(key.str());
       if (k.size() != 1 || k[0] < '0' || k[0] > '3') {
@@ -60,7 +61,7 @@ class TomlSpecies : TomlReader {
       const int level = k[0] - '0';
       for (auto&& [pkey, pnode] : table(node, "level." + k)) {
         const std::string name(pkey.str());
-        const ParamInfo* info = find_level_param(name);
+        const generator::ParamInfo* info = generator::find_level_param(name);
         if (!info) {
           throw InputError(at(pkey.source()), "unknown key '" + name + "' in [level." + k + "]");
         }
@@ -76,7 +77,7 @@ class TomlSpecies : TomlReader {
     }
   }
 
-  void bark(Species& sp, const toml::table& t) {
+  void bark(generator::Species& sp, const toml::table& t) {
     for (auto&& [key, node] : t) {
       const std::string k(key.str());
       if (k == "albedo") {
@@ -97,7 +98,7 @@ class TomlSpecies : TomlReader {
     }
   }
 
-  void roots(Species& sp, const toml::table& t) {
+  void roots(generator::Species& sp, const toml::table& t) {
     for (auto&& [key, node] : t) {
       const std::string k(key.str());
       if (k != "buttresses" && k != "height" && k != "spread") {
@@ -120,7 +121,7 @@ class TomlSpecies : TomlReader {
     }
   }
 
-  void leaf(Species& sp, const toml::table& t) {
+  void leaf(generator::Species& sp, const toml::table& t) {
     for (auto&& [key, node] : t) {
       const std::string k(key.str());
       if (k == "reflectance")
@@ -158,40 +159,41 @@ class TomlSpecies : TomlReader {
   }
 
   // model = "fractal": Ünal's parameters (docs/fractal-format.md).
-  void fractal_key(Species& sp, const std::string& k, const toml::node& node,
+  void fractal_key(generator::Species& sp, const std::string& k, const toml::node& node,
                    const toml::key& key) {
-    FractalParams& f = sp.fractal();
+    generator::FractalParams& f = sp.fractal();
     struct Real {
       const char* name;
       double lo, hi;
-      double FractalParams::*field;
+      double generator::FractalParams::*field;
     };
     struct Whole {
       const char* name;
       int lo, hi;
-      int FractalParams::*field;
+      int generator::FractalParams::*field;
     };
-    static const Real reals[] = {{"cone_angle", 0, 180, &FractalParams::cone_angle},
-                                 {"size_ratio", 0.01, 1.5, &FractalParams::size_ratio},
-                                 {"taper", 0.01, 1, &FractalParams::taper},
-                                 {"length", 1e-3, 500, &FractalParams::length},
-                                 {"radius", 1e-5, 50, &FractalParams::radius},
-                                 {"twist", -360, 360, &FractalParams::twist},
-                                 {"prune", 0, 0.99, &FractalParams::prune},
-                                 {"length_variation", 0, 0.99, &FractalParams::length_variation},
-                                 {"angle_variation", 0, 0.99, &FractalParams::angle_variation},
-                                 {"wiggle", 0, 0.5, &FractalParams::wiggle},
-                                 {"radius_variation", 0, 0.5, &FractalParams::radius_variation},
-                                 {"years_per_level", 1e-3, 1e4, &FractalParams::years_per_level},
-                                 {"age", 0, 1e6, &FractalParams::age},
-                                 {"cone_widening", 0, 1, &FractalParams::cone_widening},
-                                 {"leaf_length", 1e-4, 10, &FractalParams::leaf_length},
-                                 {"leaf_width", 1e-4, 10, &FractalParams::leaf_width}};
-    static const Whole wholes[] = {{"depth", 1, 32, &FractalParams::depth},
-                                   {"branches", 1, 64, &FractalParams::branches},
-                                   {"discs", 2, 256, &FractalParams::discs},
-                                   {"leaves", 0, 1000, &FractalParams::leaves},
-                                   {"leaf_shape", 0, 5, &FractalParams::leaf_shape}};
+    static const Real reals[] = {
+        {"cone_angle", 0, 180, &generator::FractalParams::cone_angle},
+        {"size_ratio", 0.01, 1.5, &generator::FractalParams::size_ratio},
+        {"taper", 0.01, 1, &generator::FractalParams::taper},
+        {"length", 1e-3, 500, &generator::FractalParams::length},
+        {"radius", 1e-5, 50, &generator::FractalParams::radius},
+        {"twist", -360, 360, &generator::FractalParams::twist},
+        {"prune", 0, 0.99, &generator::FractalParams::prune},
+        {"length_variation", 0, 0.99, &generator::FractalParams::length_variation},
+        {"angle_variation", 0, 0.99, &generator::FractalParams::angle_variation},
+        {"wiggle", 0, 0.5, &generator::FractalParams::wiggle},
+        {"radius_variation", 0, 0.5, &generator::FractalParams::radius_variation},
+        {"years_per_level", 1e-3, 1e4, &generator::FractalParams::years_per_level},
+        {"age", 0, 1e6, &generator::FractalParams::age},
+        {"cone_widening", 0, 1, &generator::FractalParams::cone_widening},
+        {"leaf_length", 1e-4, 10, &generator::FractalParams::leaf_length},
+        {"leaf_width", 1e-4, 10, &generator::FractalParams::leaf_width}};
+    static const Whole wholes[] = {{"depth", 1, 32, &generator::FractalParams::depth},
+                                   {"branches", 1, 64, &generator::FractalParams::branches},
+                                   {"discs", 2, 256, &generator::FractalParams::discs},
+                                   {"leaves", 0, 1000, &generator::FractalParams::leaves},
+                                   {"leaf_shape", 0, 5, &generator::FractalParams::leaf_shape}};
     for (const Real& r : reals) {
       if (k != r.name) continue;
       const double v = number(node, k);
@@ -218,15 +220,15 @@ class TomlSpecies : TomlReader {
     throw InputError(at(key.source()), "unknown key '" + k + "' for model = \"fractal\"");
   }
 
-  Species read(std::string_view source) {
+  generator::Species read(std::string_view source) {
     const toml::table root = parse(source);
-    Species sp;
+    generator::Species sp;
     sp.path = path();
     bool has_model = false;
     if (const toml::node* m = root.get("model")) {
       const std::string model = text(*m, "model");
       if (model == "fractal")
-        sp.params = FractalParams{};
+        sp.params = generator::FractalParams{};
       else if (model != "weber-penn") {
         throw InputError(at(m->source()),
                          "model '" + model + "' is not known; known: weber-penn, fractal");
@@ -236,8 +238,8 @@ class TomlSpecies : TomlReader {
       const std::string k(key.str());
       if (k == "model") {
         has_model = true;
-      } else if (sp.model() == Model::Fractal && k != "name" && k != "bark" && k != "leaf" &&
-                 k != "roots") {
+      } else if (sp.model() == generator::Model::Fractal && k != "name" && k != "bark" &&
+                 k != "leaf" && k != "roots") {
         fractal_key(sp, k, node, key);
       } else if (k == "name") {
         sp.name = text(node, "name");
@@ -249,9 +251,9 @@ class TomlSpecies : TomlReader {
         leaf(sp, table(node, "leaf"));
       } else if (k == "roots") {
         roots(sp, table(node, "roots"));
-      } else if (const ParamInfo* info = find_tree_param(k)) {
+      } else if (const generator::ParamInfo* info = generator::find_tree_param(k)) {
         param(sp, *info, -1, node, k);
-      } else if (find_level_param(k)) {
+      } else if (generator::find_level_param(k)) {
         throw InputError(at(key.source()),
                          "'" + k + "' is a per-level parameter: put it in a [level.N] table");
       } else {
@@ -261,7 +263,7 @@ class TomlSpecies : TomlReader {
     if (!has_model) {
       throw InputError({path(), 1, 1}, "missing key 'model' (for example model = \"weber-penn\")");
     }
-    finish_species(sp, positions_);
+    generator::finish_species(sp, positions_);
     return sp;
   }
 
@@ -271,8 +273,8 @@ class TomlSpecies : TomlReader {
 
 }  // namespace
 
-Species parse_species_toml(std::string_view text, const std::string& path) {
+generator::Species parse_species_toml(std::string_view text, const std::string& path) {
   return TomlSpecies(path).read(text);
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::formats

@@ -13,7 +13,7 @@
 
 #include "common/error.h"
 
-namespace arbor {
+namespace arbor::formats {
 
 class TomlReader {
  public:
@@ -159,4 +159,4 @@ class TomlReader {
   std::string path_;
 };
 
-}  // namespace arbor
+}  // namespace arbor::formats

@@ -10,7 +10,7 @@
 
 #include "common/text_cursor.h"
 
-namespace arbor::gen {
+namespace arbor::formats {
 
 namespace {
 
@@ -87,8 +87,8 @@ class Parser {
     take();
   }
 
-  TreeMakerTemplate parse() {
-    TreeMakerTemplate t;
+  generator::TreeMakerTemplate parse() {
+    generator::TreeMakerTemplate t;
     t.path = path_;
     std::map<std::string, SourceLocation> once;
     while (tok_.kind != Token::End) {
@@ -176,9 +176,9 @@ class Parser {
     take();
     return v;
   }
-  TmRange range() {
+  generator::TmRange range() {
     const Token first = tok_;
-    TmRange r;
+    generator::TmRange r;
     r.lo = r.hi = number();
     if (tok_.kind == Token::Word && tok_.text == "to") {
       take();
@@ -197,7 +197,7 @@ class Parser {
     return v;
   }
 
-  void light(TmLight& l) {
+  void light(generator::TmLight& l) {
     while (tok_.kind == Token::Word) {
       const Token k = tok_;
       take();
@@ -220,9 +220,9 @@ class Parser {
     }
   }
 
-  void color(TreeMakerTemplate& t) {
+  void color(generator::TreeMakerTemplate& t) {
     const Token name = tok_;
-    TmColor c;
+    generator::TmColor c;
     c.name = word();
     expect("=");
     c.rgb = vec3();
@@ -233,8 +233,8 @@ class Parser {
     t.colors.push_back(c);
   }
 
-  void branch(TreeMakerTemplate& t, const SourceLocation& where) {
-    TmBranchRule r;
+  void branch(generator::TreeMakerTemplate& t, const SourceLocation& where) {
+    generator::TmBranchRule r;
     r.where = where;
     key("level");
     const double level = number();
@@ -247,7 +247,7 @@ class Parser {
       fail_at(last_, "the number of branches must be in [0, 100]");
     while (is("(")) {
       take();
-      TmBranchChoice c;
+      generator::TmBranchChoice c;
       key("p");
       c.p = number();
       if (c.p < 0.0 || c.p > 1.0) fail_at(last_, "a probability must be in [0, 1]");
@@ -264,22 +264,24 @@ class Parser {
     if (r.choices.empty())
       throw InputError(where, "a branching rule needs at least one (p angle dir factor) triplet");
     double sum = 0.0;
-    for (const TmBranchChoice& c : r.choices) sum += c.p;
+    for (const generator::TmBranchChoice& c : r.choices) sum += c.p;
     if (std::fabs(sum - 1.0) > 1e-6)
       throw InputError(where, "the probabilities of this branching rule add up to " +
                                   std::to_string(sum) + ", not 1 (Figure 6, note 5)");
-    for (const TmBranchRule& other : t.branches) {
+    for (const generator::TmBranchRule& other : t.branches) {
       if (other.level == r.level)
         throw InputError(where,
                          "level " + std::to_string(r.level) + " already has a branching rule");
     }
     t.branches.push_back(r);
     std::sort(t.branches.begin(), t.branches.end(),
-              [](const TmBranchRule& a, const TmBranchRule& b) { return a.level < b.level; });
+              [](const generator::TmBranchRule& a, const generator::TmBranchRule& b) {
+                return a.level < b.level;
+              });
   }
 
-  void particle(TreeMakerTemplate& t) {
-    TmParticle p;
+  void particle(generator::TreeMakerTemplate& t) {
+    generator::TmParticle p;
     while (tok_.kind == Token::Word) {
       const Token k = tok_;
       take();
@@ -319,18 +321,18 @@ class Parser {
     t.particles.push_back(p);
   }
 
-  TmRange brightness() {
+  generator::TmRange brightness() {
     const Token at = tok_;
-    const TmRange b = range();
+    const generator::TmRange b = range();
     if (b.lo < 0.0 || b.hi > 1.0) fail_at(at, "brightness must be in [0, 1]");
     return b;
   }
 
-  void leaf(TreeMakerTemplate& t, const SourceLocation& where) {
-    TmLeaf l;
+  void leaf(generator::TreeMakerTemplate& t, const SourceLocation& where) {
+    generator::TmLeaf l;
     l.where = where;
     std::string color;
-    TmRange bright{1.0, 1.0};
+    generator::TmRange bright{1.0, 1.0};
     while (tok_.kind == Token::Word) {
       const Token k = tok_;
       take();
@@ -355,7 +357,7 @@ class Parser {
         bright = brightness();
       else if (k.text == "tri" || k.text == "ln") {
         if (color.empty()) fail_at(k, "give the element's color= before its tri= or ln=");
-        TmElement e;
+        generator::TmElement e;
         e.line = k.text == "ln";
         e.color = color;
         e.brightness = bright;
@@ -371,13 +373,13 @@ class Parser {
     t.leaves.push_back(l);
   }
 
-  void check(const TreeMakerTemplate& t) const {
+  void check(const generator::TreeMakerTemplate& t) const {
     const SourceLocation end{path_, 1, 1};
     if (t.branches.empty()) throw InputError(end, "a template needs at least one branching rule");
     if (t.particles.empty()) throw InputError(end, "a template needs at least one particle");
     if (t.leaves.empty()) throw InputError(end, "a template needs at least one leaf definition");
     double sum = 0.0;
-    for (const TmLeaf& l : t.leaves) sum += l.p;
+    for (const generator::TmLeaf& l : t.leaves) sum += l.p;
     if (std::fabs(sum - 1.0) > 1e-6) {
       throw InputError(
           t.leaves.back().where,
@@ -392,8 +394,9 @@ class Parser {
 
 }  // namespace
 
-TreeMakerTemplate parse_treemaker_template(const std::string& text, const std::string& path) {
+generator::TreeMakerTemplate parse_treemaker_template(const std::string& text,
+                                                      const std::string& path) {
   return Parser(text, path).parse();
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::formats

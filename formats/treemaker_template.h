@@ -6,9 +6,10 @@
 
 #include "generator/models/treemaker/treemaker_template.h"
 
-namespace arbor::gen {
+namespace arbor::formats {
 
 // Parses a template; every malformed input is an InputError with path:line:col.
-TreeMakerTemplate parse_treemaker_template(const std::string& text, const std::string& path);
+generator::TreeMakerTemplate parse_treemaker_template(const std::string& text,
+                                                      const std::string& path);
 
-}  // namespace arbor::gen
+}  // namespace arbor::formats

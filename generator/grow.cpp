@@ -10,7 +10,7 @@
 #include "generator/models/treemaker/treemaker.h"
 #include "generator/models/weber_penn/weber_penn.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 void refuse_estimate(bool force, double estimate, double limit, const char* subject,
                      const char* things) {
@@ -67,4 +67,4 @@ Skeleton grow_tree(const Species& species, const GrowOptions& options) {
   return sk;
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

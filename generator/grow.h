@@ -6,10 +6,10 @@
 #include "generator/species.h"
 #include "generator/grow_options.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // Grows the species' tree with its own model. Throws RuntimeFailure when the size estimate is
 // over the options' limits (and !force).
 Skeleton grow_tree(const Species& species, const GrowOptions& options);
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -7,7 +7,7 @@ namespace arbor {
 class Progress;
 }
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 struct GrowOptions {
   std::uint64_t seed = 1;
@@ -28,4 +28,4 @@ void refuse_estimate(bool force, double estimate, double limit, const char* subj
                      const char* things);
 void refuse_growth(bool force, double count, double limit, const char* subject, const char* things);
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

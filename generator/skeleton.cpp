@@ -8,7 +8,7 @@
 
 #include "generator/models/weber_penn/weber_penn_formulas.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 float Skeleton::radius_at(const Stem& s, double z) const {
   if (s.taper >= 0.0f) {
@@ -138,4 +138,4 @@ std::string validate(const Skeleton& sk) {
   return "";
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -7,7 +7,7 @@
 
 #include <glm/vec3.hpp>
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // A point on a limb's axis with the limb's radius there (metres).
 struct SkeletonPoint {
@@ -97,4 +97,4 @@ std::string scale_problem(const Skeleton& skeleton);
 
 std::string validate(const Skeleton& skeleton);
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

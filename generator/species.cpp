@@ -1,7 +1,7 @@
 // The checks every species reader ends with.
 #include "generator/species.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 void finish_species(Species& sp, const std::map<std::string, SourceLocation>& positions) {
   std::string key;
@@ -14,4 +14,4 @@ void finish_species(Species& sp, const std::map<std::string, SourceLocation>& po
   if (sp.name.empty()) sp.name = sp.path;
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -17,7 +17,7 @@
 #include "generator/models/treemaker/treemaker_template.h"
 #include "generator/models/weber_penn/weber_penn_params.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // Default bark of the species (scene files may override it).
 struct BarkLook {
@@ -84,4 +84,4 @@ struct Species {
 // after its file. Throws InputError.
 void finish_species(Species& species, const std::map<std::string, SourceLocation>& positions);
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

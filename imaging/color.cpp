@@ -16,7 +16,7 @@
 
 namespace OCIO = OCIO_NAMESPACE;
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 namespace {
 
@@ -432,4 +432,4 @@ std::vector<float> ColorPipeline::chromaticities(const std::string& colorspace) 
   return c;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

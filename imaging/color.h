@@ -9,7 +9,7 @@
 
 #include "imaging/output_spec.h"
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 // Converts a colour in place (thread-safe).
 using ColorTransform = std::function<void(float rgb[3])>;
@@ -70,4 +70,4 @@ ColorTransform rgb_to_rgb(const std::vector<float>& from, const std::vector<floa
 // the build tree has the same layout). Read once, by the program, and passed on.
 std::string default_ocio_config();
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

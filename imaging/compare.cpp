@@ -16,7 +16,7 @@
 #include "imaging/image_file.h"
 #include "imaging/statistics.h"
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 namespace {
 
@@ -376,4 +376,4 @@ void write_compare_pictures(const CompareImage& a, const CompareImage& b,
   }
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

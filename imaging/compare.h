@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 // The RGB of an EXR (or any image OIIO reads) and, when present, its variance.{R,G,B}
 // channels: the variance of each pixel's mean, as arbor writes it.
@@ -90,4 +90,4 @@ struct ComparePictures {
 void write_compare_pictures(const CompareImage& a, const CompareImage& b,
                             const ComparePictures& pictures);
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

@@ -6,7 +6,7 @@
 
 #include "common/json.h"
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 namespace {
 std::uint32_t rotl(std::uint32_t x, int r) { return (x << r) | (x >> (32 - r)); }
@@ -80,4 +80,4 @@ std::string cryptomatte_manifest(const std::vector<std::string>& names) {
   return manifest.str();
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 // MurmurHash3_x86_32 of the bytes of `text` (Appleby's reference algorithm).
 std::uint32_t murmur3_32(const std::string& text, std::uint32_t seed = 0);
@@ -26,4 +26,4 @@ std::string cryptomatte_key(const std::string& layer);
 // {"name": "hex8 of its hash", …} in the order given.
 std::string cryptomatte_manifest(const std::vector<std::string>& names);
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

@@ -8,7 +8,7 @@
 
 #include <glm/vec3.hpp>
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 struct Image {
   int width = 0, height = 0;            // the pixels held: the whole image, or a crop of it
@@ -41,4 +41,4 @@ struct RenderStats {
   std::uint64_t nonfinite = 0;  // samples whose radiance was NaN or infinite (left out, counted)
 };
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

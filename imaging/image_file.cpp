@@ -8,7 +8,7 @@
 #include "common/error.h"
 #include "common/input_file.h"
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 int ImageChannels::index(const std::string& name) const {
   for (int c = 0; c < spec.nchannels; ++c) {
@@ -51,4 +51,4 @@ ImageChannels read_image_channels(const std::string& path) {
   return image;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

@@ -10,7 +10,7 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imageio.h>
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 // Encodes an image (the format by the extension of `path`) and writes it atomically through
 // AtomicFile: write_pixels writes the pixels to the opened output and says whether it could.
@@ -32,4 +32,4 @@ struct ImageChannels {
 // InputError (naming the file) when it cannot be read or has an unsupported size.
 ImageChannels read_image_channels(const std::string& path);
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

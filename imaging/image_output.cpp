@@ -31,7 +31,7 @@
 #include "imaging/cryptomatte.h"
 #include "imaging/image_file.h"
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 namespace {
 
@@ -387,4 +387,4 @@ void write_imagebuf_atomic(const OIIO::ImageBuf& buf, const std::string& path,
   write_image_atomic(path, spec, [&](OIIO::ImageOutput& out) { return buf.write(&out); });
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

@@ -9,7 +9,7 @@
 #include "imaging/color.h"
 #include "imaging/image.h"
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 struct ExrMetadata {
   std::string scene;
@@ -51,4 +51,4 @@ void write_exr(const Image& image, const OutputSpec& output, const ExrMetadata& 
 void write_png(const Image& image, const OutputSpec& output, const ColorPipeline& color,
                const std::string& path);
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

@@ -1,6 +1,6 @@
 #include "imaging/output_spec.h"
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 const char* name_of(PixelType type) { return kPixelTypeNames[static_cast<std::size_t>(type)]; }
 
@@ -28,4 +28,4 @@ std::string AovSet::text() const {
   return s;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

@@ -12,7 +12,7 @@
 
 #include "common/error.h"
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 // The type of the colour channels (depth, variance, ids and the treemaker AOVs are always float).
 enum class PixelType { Half, Float };
@@ -80,4 +80,4 @@ struct OutputKeys {
   SourceLocation colorspace, display, view;
 };
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

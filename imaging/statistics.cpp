@@ -5,7 +5,7 @@
 
 #include "common/error.h"
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 namespace {
 
@@ -118,4 +118,4 @@ double chi_square_upper_tail(double x, double dof) {
   return upper_incomplete_gamma(0.5 * dof, 0.5 * x);
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

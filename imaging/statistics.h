@@ -3,7 +3,7 @@
 // gamma functions by their continued fractions and series).
 #pragma once
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 // The two-sided standard-normal critical value: P(|Z| > z) = p.
 double normal_two_sided_critical(double p);
@@ -17,4 +17,4 @@ double student_t_two_sided_tail(double t, double dof);
 // P(X > x) for X chi-square with `dof` degrees of freedom.
 double chi_square_upper_tail(double x, double dof);
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 // The factors in Figure 3's order: 1, N·L, h/h0, r/r0, sin(q/2).
 inline constexpr const char* kTreemakerTermNames[5] = {"ambient", "lambert", "height", "radius",
@@ -25,4 +25,4 @@ inline std::vector<std::string> treemaker_channel_names() {
   return names;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

@@ -10,7 +10,7 @@
 #include "imaging/image_file.h"
 #include "imaging/treemaker_channels.h"
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 namespace {
 
@@ -224,4 +224,4 @@ TreemakerFit fit_treemaker(const CompareImage& exact, const TreemakerAovs& tm) {
   return fit;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

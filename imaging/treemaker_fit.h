@@ -8,7 +8,7 @@
 
 #include "imaging/compare.h"
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 // A treemaker render's AOVs as `arbor render --integrator treemaker` writes them with
 // output.aovs = ["treemaker"]: per pixel the beauty, the tree's coverage (term_ambient.X), each
@@ -50,4 +50,4 @@ struct TreemakerFit {
 // pixel shows a tree.
 TreemakerFit fit_treemaker(const CompareImage& exact, const TreemakerAovs& approximate);
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

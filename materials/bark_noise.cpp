@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 namespace {
 
@@ -70,4 +70,4 @@ double bark_height(double along, double azimuth, double radius) {
   return h / total;
 }
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials

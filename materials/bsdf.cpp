@@ -6,7 +6,7 @@
 
 #include "common/math.h"
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 Dir sample_cosine_hemisphere(const glm::dvec2& u) {
   // The concentric map of the square to the disk, lifted to the hemisphere (Malley).
@@ -15,4 +15,4 @@ Dir sample_cosine_hemisphere(const glm::dvec2& u) {
   return {x, y, std::sqrt(std::max(0.0, 1.0 - x * x - y * y))};
 }
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials

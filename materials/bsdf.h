@@ -8,7 +8,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 using Rgb = glm::dvec3;
 using Dir = glm::dvec3;
@@ -29,4 +29,4 @@ inline bool same_hemisphere(const Dir& a, const Dir& b) { return a.z * b.z > 0.0
 // Cosine-weighted direction on the +z hemisphere from two uniform numbers (Malley's method).
 Dir sample_cosine_hemisphere(const glm::dvec2& u);
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials

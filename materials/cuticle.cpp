@@ -12,7 +12,7 @@
 
 #include "common/math.h"
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 namespace {
 
@@ -121,4 +121,4 @@ Dir CuticleCoat::sample(const Dir& wo, const glm::dvec2& u) const {
   return 2.0 * glm::dot(wo, h) * h - wo;
 }
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials

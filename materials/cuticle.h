@@ -13,7 +13,7 @@
 
 #include "materials/bsdf.h"
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 class CuticleCoat {
  public:
@@ -51,4 +51,4 @@ class CuticleCoat {
   double mean_albedo_ = 0.0;
 };
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials

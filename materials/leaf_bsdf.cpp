@@ -6,7 +6,7 @@
 #include <cmath>
 #include "common/math.h"
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 namespace {
 double luminance(const Rgb& c) { return arbor::luminance(c.x, c.y, c.z); }
@@ -88,4 +88,4 @@ BsdfSample LeafBsdf::sample(const Dir& wo, const glm::dvec3& u) const {
   return s;
 }
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials

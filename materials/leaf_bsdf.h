@@ -6,7 +6,7 @@
 #include "materials/bsdf.h"
 #include "materials/cuticle.h"
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 struct LeafBsdf {
   Rgb reflectance{0.1};               // of the side the ray came from
@@ -22,4 +22,4 @@ struct LeafBsdf {
   double coat_probability(const Dir& wo) const;  // 0 without a coat
 };
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials

@@ -10,7 +10,7 @@
 #include "common/math.h"
 #include "materials/bark_noise.h"
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 namespace {
 // Whole repeats of a tile round a limb of `radius` (the nearest to circumference / tile, so
@@ -136,4 +136,4 @@ glm::vec3 Material::albedo_at(const SurfacePoint& p) const {
   return albedo;
 }
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials

@@ -12,7 +12,7 @@
 #include "materials/oren_nayar.h"
 #include "materials/textures.h"
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 // What a material needs to know of the surface point it shades (world space, unit vectors).
 struct SurfacePoint {
@@ -121,4 +121,4 @@ struct Material {
   glm::vec3 albedo_at(const SurfacePoint& p) const;
 };
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials

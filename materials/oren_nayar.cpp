@@ -6,7 +6,7 @@
 #include <cmath>
 #include "common/math.h"
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 Rgb OrenNayar::eval(const Dir& wo, const Dir& wi) const {
   if (!same_hemisphere(wo, wi)) return Rgb(0.0);
@@ -45,4 +45,4 @@ BsdfSample OrenNayar::sample(const Dir& wo, const glm::dvec2& u) const {
   return s;
 }
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials

@@ -4,7 +4,7 @@
 
 #include "materials/bsdf.h"
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 struct OrenNayar {
   Rgb albedo{0.5};
@@ -15,4 +15,4 @@ struct OrenNayar {
   BsdfSample sample(const Dir& wo, const glm::dvec2& u) const;
 };
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials

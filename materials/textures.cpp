@@ -12,7 +12,7 @@
 #include "common/input_file.h"
 #include "common/math.h"
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 namespace {
 // Bilinear lookup of a width × height image that repeats in both directions (period 1 in u, v).
@@ -114,4 +114,4 @@ glm::vec3 ColorMap::sample(double u, double v) const {
   return wrapped_bilinear(values_, width_, height_, u, v);
 }
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials

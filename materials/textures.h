@@ -6,7 +6,7 @@
 
 #include <glm/vec3.hpp>
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 // A single-channel image (the luminance of colour images), repeating in both directions.
 class HeightMap {
@@ -39,4 +39,4 @@ class ColorMap {
   int width_ = 0, height_ = 0;
 };
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials

@@ -3,10 +3,10 @@
 // (docs/treemaker-format.md). A template's `light {}` section or a scene may set others.
 #pragma once
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 struct TreemakerWeights {
   double ambient = 0.1, lambert = 0.4, height = 0.2, radius = 0.2, angle = 0.1;
 };
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials

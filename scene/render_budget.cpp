@@ -10,7 +10,7 @@
 
 #include "common/error.h"
 
-namespace arbor::trace {
+namespace arbor::scene {
 
 namespace {
 
@@ -24,19 +24,20 @@ double gigabytes(std::uint64_t bytes) { return static_cast<double>(bytes) / doub
 
 }  // namespace
 
-MemoryEstimate estimate_render_memory(const SceneDesc& s, const FilmCosts& film,
+MemoryEstimate estimate_render_memory(const formats::SceneDesc& s, const FilmCosts& film,
                                       std::uint64_t record_passes) {
   MemoryEstimate e;
   std::uint64_t channels = 4, extras = 0;
-  for (std::size_t i = 0; i < kAovCount; ++i) {
-    const Aov a = static_cast<Aov>(i);
+  for (std::size_t i = 0; i < imaging::kAovCount; ++i) {
+    const imaging::Aov a = static_cast<imaging::Aov>(i);
     if (!s.output.aovs.has(a)) continue;
-    channels += a == Aov::Depth || a == Aov::Samples || a == Aov::ObjectId || a == Aov::MaterialId
+    channels += a == imaging::Aov::Depth || a == imaging::Aov::Samples ||
+                        a == imaging::Aov::ObjectId || a == imaging::Aov::MaterialId
                     ? 1
-                : a == Aov::Treemaker                                ? film.treemaker_extras
-                : a == Aov::CryptoObject || a == Aov::CryptoMaterial ? 12
-                                                                     : 3;
-    if (a == Aov::Treemaker) extras = film.treemaker_extras;
+                : a == imaging::Aov::Treemaker ? film.treemaker_extras
+                : a == imaging::Aov::CryptoObject || a == imaging::Aov::CryptoMaterial ? 12
+                                                                                       : 3;
+    if (a == imaging::Aov::Treemaker) extras = film.treemaker_extras;
   }
   // The id slots count like extras: in the film's sums and in every pass record.
   if (s.output.wants_ids()) extras += film.id_sums;
@@ -47,7 +48,7 @@ MemoryEstimate estimate_render_memory(const SceneDesc& s, const FilmCosts& film,
       film.state + film.sum * sums + record_passes * film.sum * (sums + film.record_extra);
   e.image_bytes = pixels * (kBytesPerPixel + kept + kBytesPerChannel * channels);
   e.instances = s.trees.size();
-  for (const ForestDesc& f : s.forests) e.instances += static_cast<std::uint64_t>(f.count);
+  for (const formats::ForestDesc& f : s.forests) e.instances += static_cast<std::uint64_t>(f.count);
   e.instance_bytes = e.instances * kBytesPerInstance;
   return e;
 }
@@ -66,20 +67,20 @@ std::uint64_t usable_memory_bytes() {
   return usable;
 }
 
-std::uint64_t geometry_budget(const SceneDesc& s, const FilmCosts& film, bool force,
+std::uint64_t geometry_budget(const formats::SceneDesc& s, const FilmCosts& film, bool force,
                               std::uint64_t usable, std::uint64_t record_passes) {
   if (force) return 0;
   const std::uint64_t used = estimate_render_memory(s, film, record_passes).total() + kBaseline;
   return usable > used ? usable - used : 1;
 }
 
-void check_render_memory(const SceneDesc& s, const FilmCosts& film, bool force,
+void check_render_memory(const formats::SceneDesc& s, const FilmCosts& film, bool force,
                          std::uint64_t usable, std::uint64_t record_passes) {
   const MemoryEstimate e = estimate_render_memory(s, film, record_passes);
   if (force || e.total() + kBaseline <= usable) return;
   SourceLocation where{s.path, 0, 0};
   int largest = 0;
-  for (const ForestDesc& f : s.forests) {
+  for (const formats::ForestDesc& f : s.forests) {
     if (f.count > largest && e.instance_bytes > e.image_bytes) {
       largest = f.count;
       where = f.where;
@@ -96,4 +97,4 @@ void check_render_memory(const SceneDesc& s, const FilmCosts& film, bool force,
   throw InputError(where, buf);
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::scene

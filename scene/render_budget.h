@@ -6,7 +6,7 @@
 
 #include "formats/scene_desc.h"
 
-namespace arbor::trace {
+namespace arbor::scene {
 
 // What the film keeps a pixel, in bytes: the tracer's Film states it (film_costs() in
 // tracer/film.h), the estimate does not copy it.
@@ -34,7 +34,7 @@ struct MemoryEstimate {
 // 225 bytes a pixel over the baseline) and 1043 MB with the variance AOV; the estimate (240 and
 // 264) rounds each up. Tree geometry is not included: each tree has
 // its own size limit when it is grown.
-MemoryEstimate estimate_render_memory(const SceneDesc& scene, const FilmCosts& film,
+MemoryEstimate estimate_render_memory(const formats::SceneDesc& scene, const FilmCosts& film,
                                       std::uint64_t record_passes = 0);
 
 // What this process may use: the machine's physical memory, or the address-space or data-size
@@ -43,14 +43,14 @@ std::uint64_t usable_memory_bytes();
 
 // InputError (at the largest forest, or the scene file) when the estimate exceeds `usable`
 // bytes, saying how much each part needs and that --force renders it anyway.
-void check_render_memory(const SceneDesc& scene, const FilmCosts& film, bool force,
+void check_render_memory(const formats::SceneDesc& scene, const FilmCosts& film, bool force,
                          std::uint64_t usable = usable_memory_bytes(),
                          std::uint64_t record_passes = 0);
 
 // The bytes left for tree geometry once the image, the instances and the libraries have theirs
 // (0 with `force`: no limit). build_scene refuses a forest whose variants would not fit.
-std::uint64_t geometry_budget(const SceneDesc& scene, const FilmCosts& film, bool force,
+std::uint64_t geometry_budget(const formats::SceneDesc& scene, const FilmCosts& film, bool force,
                               std::uint64_t usable = usable_memory_bytes(),
                               std::uint64_t record_passes = 0);
 
-}  // namespace arbor::trace
+}  // namespace arbor::scene

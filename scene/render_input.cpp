@@ -1,23 +1,23 @@
 #include "scene/render_input.h"
 
-namespace arbor::trace {
+namespace arbor::scene {
 
 namespace {
 
-glm::dvec3 vec(const Vec3d& v) { return {v[0], v[1], v[2]}; }
+glm::dvec3 vec(const formats::Vec3d& v) { return {v[0], v[1], v[2]}; }
 
 }  // namespace
 
-CameraSpec camera_spec(const CameraDesc& c) {
+CameraSpec camera_spec(const formats::CameraDesc& c) {
   return {vec(c.position),   vec(c.look_at),   vec(c.up), c.fov,
           c.aperture_radius, c.focus_distance, c.exposure};
 }
 
-SunSpec sun_spec(const SunDesc& s) {
+SunSpec sun_spec(const formats::SunDesc& s) {
   return {s.enabled, s.elevation, s.azimuth, s.irradiance, s.angular_diameter};
 }
 
-SkySpec sky_spec(const SkyDesc& s) {
+SkySpec sky_spec(const formats::SkyDesc& s) {
   SkySpec sky;
   sky.model = s.model;
   sky.turbidity = s.turbidity;
@@ -32,10 +32,10 @@ SkySpec sky_spec(const SkyDesc& s) {
   return sky;
 }
 
-RenderInput render_input(const SceneDesc& d) {
+RenderInput render_input(const formats::SceneDesc& d) {
   RenderInput in;
   in.scene = d.path;
-  const RenderSettings& r = d.render;
+  const formats::RenderSettings& r = d.render;
   in.render = {r.width,
                r.height,
                r.spp,
@@ -48,7 +48,8 @@ RenderInput render_input(const SceneDesc& d) {
                r.noise_threshold,
                r.min_spp,
                r.threads};
-  check_camera(d.camera);  // the reader checked it; a description made in code is checked here
+  formats::check_camera(
+      d.camera);  // the reader checked it; a description made in code is checked here
   in.camera = camera_spec(d.camera);
   in.sun = sun_spec(d.sun);
   in.sky = sky_spec(d.sky);
@@ -56,4 +57,4 @@ RenderInput render_input(const SceneDesc& d) {
   return in;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::scene

@@ -15,13 +15,13 @@
 #include "formats/scene_desc.h"
 #include "imaging/output_spec.h"
 
-namespace arbor::trace {
+namespace arbor::scene {
 
 struct RenderSpec {
   int width = 0, height = 0;
   int spp = 0;  // of the path integrator
   std::uint64_t seed = 0;
-  Integrator integrator = Integrator::Path;
+  formats::Integrator integrator = formats::Integrator::Path;
   int max_depth = 0;
   int treemaker_spp = 0;  // of the treemaker integrator (anti-aliasing)
   int pass_spp = 0;
@@ -30,7 +30,7 @@ struct RenderSpec {
   int min_spp = 0;
   int threads = 0;  // 0: all cores
   // The sample count of the integrator in use.
-  int samples() const { return integrator == Integrator::Treemaker ? treemaker_spp : spp; }
+  int samples() const { return integrator == formats::Integrator::Treemaker ? treemaker_spp : spp; }
 };
 
 struct CameraSpec {
@@ -49,7 +49,7 @@ struct SunSpec {
 };
 
 struct SkySpec {
-  SkyModel model = SkyModel::None;
+  formats::SkyModel model = formats::SkyModel::None;
   double turbidity = 0.0;                                                             // preetham
   double air_density = 1.0, dust_density = 1.0, ozone_density = 1.0, altitude = 0.0;  // nishita
   glm::dvec3 color{1.0};                                                              // constant
@@ -63,16 +63,16 @@ struct RenderInput {
   CameraSpec camera;
   SunSpec sun;
   SkySpec sky;
-  OutputSpec output;
+  imaging::OutputSpec output;
 };
 
 // The typed values of the scene description's parts.
-CameraSpec camera_spec(const CameraDesc& camera);
-SunSpec sun_spec(const SunDesc& sun);
-SkySpec sky_spec(const SkyDesc& sky);
+CameraSpec camera_spec(const formats::CameraDesc& camera);
+SunSpec sun_spec(const formats::SunDesc& sun);
+SkySpec sky_spec(const formats::SkyDesc& sky);
 
 // The typed input of the scene description `desc` (its choices already checked by the reader);
 // InputError when its camera cannot form an image.
-RenderInput render_input(const SceneDesc& desc);
+RenderInput render_input(const formats::SceneDesc& desc);
 
-}  // namespace arbor::trace
+}  // namespace arbor::scene

@@ -20,7 +20,7 @@
 #include "formats/species_file.h"
 #include "generator/grow.h"
 
-namespace arbor::trace {
+namespace arbor::scene {
 
 namespace {
 
@@ -41,16 +41,16 @@ glm::vec3 to_vec3(const Rgb& c) { return glm::vec3(c[0], c[1], c[2]); }
 // TREE-MAKER's h0 and r0 (§III) from the skeleton's points, measured from the root stem's first
 // point. A tree whose points all lie on one vertical line (r0 = 0), or at one height (h0 = 0),
 // takes that measure from its geometry's bounds instead, so h/h0 and r/r0 stay finite.
-TreeExtent tree_extent(const gen::Skeleton& sk, const gen::TreeGeometry& g) {
+TreeExtent tree_extent(const generator::Skeleton& sk, const generator::TreeGeometry& g) {
   TreeExtent e;
-  for (const gen::Stem& stem : sk.stems) {
+  for (const generator::Stem& stem : sk.stems) {
     if (stem.parent < 0 && stem.point_count > 0) {
       e.base = sk.points[stem.first_point].position;
       break;
     }
   }
   float h0 = 0.0f, r0 = 0.0f;
-  for (const gen::SkeletonPoint& p : sk.points) {
+  for (const generator::SkeletonPoint& p : sk.points) {
     h0 = std::max(h0, p.position.z - e.base.z);
     r0 = std::max(r0, glm::length(glm::vec2(p.position - e.base)));
   }
@@ -67,8 +67,8 @@ TreeExtent tree_extent(const gen::Skeleton& sk, const gen::TreeGeometry& g) {
 
 // The materials of one placed tree (species defaults with the scene's overrides).
 struct TreeLook {
-  mat::Material bark, leaf;
-  mat::TreemakerWeights treemaker;
+  materials::Material bark, leaf;
+  materials::TreemakerWeights treemaker;
 };
 
 class SceneBuilder {
@@ -76,12 +76,12 @@ class SceneBuilder {
   SceneBuilder(Scene& scene, std::string ocio_config)
       : s_(scene), ocio_config_(std::move(ocio_config)) {}
 
-  const gen::Species& species(const std::string& path) {
+  const generator::Species& species(const std::string& path) {
     for (const auto& [p, sp] : species_) {
       if (p == path) return *sp;
     }
     // A species file's errors name the species file, line and column themselves.
-    species_.emplace_back(path, std::make_unique<gen::Species>(gen::load_species(path)));
+    species_.emplace_back(path, std::make_unique<generator::Species>(formats::load_species(path)));
     return *species_.back().second;
   }
 
@@ -91,19 +91,19 @@ class SceneBuilder {
     for (const auto& [k, index] : prototype_keys_) {
       if (k == key) return index;
     }
-    const gen::Species& sp = species(path);
-    gen::GrowOptions options;
+    const generator::Species& sp = species(path);
+    generator::GrowOptions options;
     options.seed = seed;
     options.time = time;
-    gen::Skeleton skeleton;
+    generator::Skeleton skeleton;
     try {
-      skeleton = gen::grow_tree(sp, options);
+      skeleton = generator::grow_tree(sp, options);
     } catch (const RuntimeFailure& e) {
       throw InputError(where, std::string(e.what()));
     }
     TreePrototypeData p;
-    p.geometry = std::make_unique<gen::TreeGeometry>(
-        gen::build_tree_geometry(skeleton, gen::geometry_options_for(sp)));
+    p.geometry = std::make_unique<generator::TreeGeometry>(
+        generator::build_tree_geometry(skeleton, generator::geometry_options_for(sp)));
     p.extent = tree_extent(skeleton, *p.geometry);
     s_.stats.curve_segments += p.geometry->stats.curve_segments;
     s_.stats.triangles += p.geometry->stats.leaf_triangles + p.geometry->stats.grid_triangles;
@@ -114,53 +114,55 @@ class SceneBuilder {
     return index;
   }
 
-  const mat::ColorMap* albedo_map(const std::string& path) {
+  const materials::ColorMap* albedo_map(const std::string& path) {
     for (const auto& [p, map] : s_.albedo_maps) {
       if (p == path) return map.get();
     }
-    s_.albedo_maps.emplace_back(path, std::make_unique<mat::ColorMap>(path, ocio_config_));
+    s_.albedo_maps.emplace_back(path, std::make_unique<materials::ColorMap>(path, ocio_config_));
     return s_.albedo_maps.back().second.get();
   }
 
-  const mat::HeightMap* bump_map(const std::string& path) {
+  const materials::HeightMap* bump_map(const std::string& path) {
     for (const auto& [p, map] : s_.bump_maps) {
       if (p == path) return map.get();
     }
-    s_.bump_maps.emplace_back(path, std::make_unique<mat::HeightMap>(path));
+    s_.bump_maps.emplace_back(path, std::make_unique<materials::HeightMap>(path));
     return s_.bump_maps.back().second.get();
   }
 
   // One coat per (ior, roughness): its albedo table is computed once however many trees share it.
-  std::shared_ptr<const mat::CuticleCoat> cuticle(double ior, double roughness) {
+  std::shared_ptr<const materials::CuticleCoat> cuticle(double ior, double roughness) {
     for (const auto& [key, coat] : cuticles_) {
       if (key.first == ior && key.second == roughness) return coat;
     }
-    cuticles_.emplace_back(std::make_pair(ior, roughness), mat::CuticleCoat::make(ior, roughness));
+    cuticles_.emplace_back(std::make_pair(ior, roughness),
+                           materials::CuticleCoat::make(ior, roughness));
     return cuticles_.back().second;
   }
 
-  TreeLook look_for(const gen::Species& sp, const BarkOverride& bark, const LeafOverride& leaf,
-                    const TreemakerOverride& tm, const SourceLocation& where) {
+  TreeLook look_for(const generator::Species& sp, const formats::BarkOverride& bark,
+                    const formats::LeafOverride& leaf, const formats::TreemakerOverride& tm,
+                    const SourceLocation& where) {
     TreeLook look;
     // The species' own weights (a template's light {}), else arbor's defaults
     // (treemaker-format.md), then the scene's [tree.treemaker] / [forest.treemaker].
-    const gen::TmLight& own = sp.treemaker_light;
-    mat::TreemakerWeights& w = look.treemaker;
+    const generator::TmLight& own = sp.treemaker_light;
+    materials::TreemakerWeights& w = look.treemaker;
     w.ambient = tm.ambient.value_or(own.ambient.value_or(w.ambient));
     w.lambert = tm.lambert.value_or(own.lambert.value_or(w.lambert));
     w.height = tm.height.value_or(own.height.value_or(w.height));
     w.radius = tm.radius.value_or(own.radius.value_or(w.radius));
     w.angle = tm.angle.value_or(own.angle.value_or(w.angle));
-    mat::BarkMaterial& b = look.bark.bark;
-    look.bark.kind = mat::Material::Kind::Bark;
+    materials::BarkMaterial& b = look.bark.bark;
+    look.bark.kind = materials::Material::Kind::Bark;
     b.albedo = to_vec3(bark.albedo.value_or(sp.bark.albedo));
     b.bump_height = static_cast<float>(bark.bump_height.value_or(sp.bark.bump_height));
     b.roughness = static_cast<float>(bark.roughness.value_or(sp.bark.roughness) * kPi / 180.0);
     b.bump_tile = static_cast<float>(bark.bump_tile);
     if (!bark.albedo_map.empty()) b.albedo_map = albedo_map(bark.albedo_map);
     if (!bark.bump_map.empty()) b.bump_map = bump_map(bark.bump_map);
-    mat::LeafMaterial& l = look.leaf.leaf;
-    look.leaf.kind = mat::Material::Kind::Leaf;
+    materials::LeafMaterial& l = look.leaf.leaf;
+    look.leaf.kind = materials::Material::Kind::Leaf;
     if (!leaf.albedo_map.empty()) l.albedo_map = albedo_map(leaf.albedo_map);
     l.front = to_vec3(leaf.reflectance.value_or(sp.leaf.reflectance));
     l.back = to_vec3(leaf.back_reflectance.value_or(sp.leaf.back_reflectance));
@@ -192,7 +194,7 @@ class SceneBuilder {
     return material_ids_[name] = static_cast<std::uint32_t>(s_.material_names.size());
   }
 
-  void add_instance(int prototype, const Placement& pl, const TreeLook& look,
+  void add_instance(int prototype, const formats::Placement& pl, const TreeLook& look,
                     const std::string& species) {
     TreeInstance inst;
     const std::string name = file_stem(species);
@@ -216,21 +218,21 @@ class SceneBuilder {
     s_.instances.push_back(inst);
   }
 
-  void add_mesh(const MeshDesc& d);
+  void add_mesh(const formats::MeshDesc& d);
 
  private:
   Scene& s_;
   std::string ocio_config_;
-  std::vector<std::pair<std::string, std::unique_ptr<gen::Species>>> species_;
+  std::vector<std::pair<std::string, std::unique_ptr<generator::Species>>> species_;
   std::vector<std::pair<std::string, int>> prototype_keys_;
-  std::vector<std::pair<std::pair<double, double>, std::shared_ptr<const mat::CuticleCoat>>>
+  std::vector<std::pair<std::pair<double, double>, std::shared_ptr<const materials::CuticleCoat>>>
       cuticles_;
   std::map<std::string, int> object_count_;
   std::map<std::string, std::uint32_t> material_ids_;
 };
 
-void SceneBuilder::add_mesh(const MeshDesc& d) {
-  const ObjMesh obj = load_obj(d.path);
+void SceneBuilder::add_mesh(const formats::MeshDesc& d) {
+  const formats::ObjMesh obj = formats::load_obj(d.path);
   MeshObject mesh;
   mesh.object_id = new_object(file_stem(d.path));
   // Placement: the file's up axis to z, then scale, rotation about z, position.
@@ -245,13 +247,13 @@ void SceneBuilder::add_mesh(const MeshDesc& d) {
     if (mesh.materials.size() >= 65535) {
       throw InputError(d.where, "mesh " + d.path + ": more than 65535 materials");
     }
-    mat::Material material;
+    materials::Material material;
     const auto it = d.materials.find(name);
     if (it != d.materials.end()) {
-      const MeshMaterialDesc& md = it->second;
+      const formats::MeshMaterialDesc& md = it->second;
       // A mesh's bark is its albedo, unmapped and unbumped; its leaves are untinted.
       if (md.kind == "leaf") {
-        material.kind = mat::Material::Kind::Leaf;
+        material.kind = materials::Material::Kind::Leaf;
         material.leaf.tinted = false;
         material.leaf.front = to_vec3(md.reflectance);
         material.leaf.back = to_vec3(md.back_reflectance);
@@ -270,7 +272,7 @@ void SceneBuilder::add_mesh(const MeshDesc& d) {
   // every face is diffuse grey.
   std::vector<std::uint16_t> material_of_part(obj.parts.size());
   for (std::size_t i = 0; i < obj.parts.size(); ++i) {
-    const ObjMesh::Part& part = obj.parts[i];
+    const formats::ObjMesh::Part& part = obj.parts[i];
     std::string key;
     if (!d.materials.empty()) {
       if (!part.material.empty() && d.materials.count(part.material))
@@ -292,7 +294,7 @@ void SceneBuilder::add_mesh(const MeshDesc& d) {
   mesh.normals.reserve(obj.normals.size());
   for (const glm::vec3& n : obj.normals)
     mesh.normals.push_back(glm::normalize(to_world_normal * n));
-  static_assert(MeshObject::kNoNormal == ObjMesh::kNoNormal,
+  static_assert(MeshObject::kNoNormal == formats::ObjMesh::kNoNormal,
                 "a mesh keeps the OBJ reader's \"no normal\"");
   mesh.normal_indices = obj.normal_indices;
   mesh.material.reserve(obj.part.size());
@@ -308,7 +310,7 @@ void SceneBuilder::add_mesh(const MeshDesc& d) {
 
 }  // namespace
 
-glm::mat4 placement_matrix(const Placement& pl) {
+glm::mat4 placement_matrix(const formats::Placement& pl) {
   glm::mat4 m(1.0f);
   m = glm::translate(m, glm::vec3(pl.position[0], pl.position[1], pl.position[2]));
   m = glm::rotate(m, static_cast<float>(pl.rotation * kPi / 180.0), glm::vec3(0, 0, 1));
@@ -316,30 +318,31 @@ glm::mat4 placement_matrix(const Placement& pl) {
   return m;
 }
 
-std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::string& ocio_config,
-                                         Progress* progress, std::uint64_t geometry_budget) {
+std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
+                                         const std::string& ocio_config, Progress* progress,
+                                         std::uint64_t geometry_budget) {
   const auto start = std::chrono::steady_clock::now();
   auto scene = std::make_unique<Scene>();
   SceneBuilder b(*scene, ocio_config);
   std::size_t total = desc.trees.size(), done = 0;
-  for (const ForestDesc& f : desc.forests) total += static_cast<std::size_t>(f.variants);
+  for (const formats::ForestDesc& f : desc.forests) total += static_cast<std::size_t>(f.variants);
   if (progress) progress->set_total(total);
   // The animation's clock: seconds of wind for models that sway, years of growth for the fractal
   // model (formats/scene_desc.h, AnimationDesc).
   const auto animated = [&](const std::string& species, double time) {
     if (desc.clock == 0.0) return time;
-    return b.species(species).model() == gen::Model::Fractal
+    return b.species(species).model() == generator::Model::Fractal
                ? time + desc.clock * desc.animation.years_per_second
                : time + desc.clock;
   };
-  for (const TreeDesc& t : desc.trees) {
+  for (const formats::TreeDesc& t : desc.trees) {
     const int p = b.prototype_for(t.species, t.seed, animated(t.species, t.time), t.where);
     b.add_instance(p, t.placement,
                    b.look_for(b.species(t.species), t.bark, t.leaf, t.treemaker, t.where),
                    t.species);
     if (progress) progress->update(++done);
   }
-  for (const ForestDesc& f : desc.forests) {
+  for (const formats::ForestDesc& f : desc.forests) {
     const TreeLook look = b.look_for(b.species(f.species), f.bark, f.leaf, f.treemaker, f.where);
     std::vector<int> variants;
     for (int v = 0; v < f.variants; ++v) {
@@ -368,7 +371,7 @@ std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::strin
     }
     for (int i = 0; i < f.count; ++i) {
       Rng rng(derive_key(f.seed ^ 0xf0e57u, static_cast<std::uint64_t>(i)));
-      Placement pl;
+      formats::Placement pl;
       pl.position = {f.area[0] + (f.area[2] - f.area[0]) * rng.uniform(),
                      f.area[1] + (f.area[3] - f.area[1]) * rng.uniform(), 0.0};
       pl.rotation = 360.0 * rng.uniform();
@@ -376,7 +379,7 @@ std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::strin
       b.add_instance(variants[static_cast<size_t>(i % f.variants)], pl, look, f.species);
     }
   }
-  for (const MeshDesc& m : desc.meshes) b.add_mesh(m);
+  for (const formats::MeshDesc& m : desc.meshes) b.add_mesh(m);
   if (desc.ground.enabled) {
     scene->has_ground = true;
     scene->object_names.emplace_back("ground");
@@ -384,7 +387,7 @@ std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::strin
     scene->ground_material_id = b.material_named("ground");
     scene->ground.albedo = to_vec3(desc.ground.albedo);
     if (desc.ground.patch_cover > 0.0) {
-      scene->ground.kind = mat::Material::Kind::Ground;
+      scene->ground.kind = materials::Material::Kind::Ground;
       scene->ground.ground.patch_albedo = to_vec3(desc.ground.patch_albedo);
       scene->ground.ground.set_cover(static_cast<float>(desc.ground.patch_cover));
       scene->ground.ground.scale = static_cast<float>(desc.ground.patch_scale);
@@ -397,4 +400,4 @@ std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::strin
   return scene;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::scene

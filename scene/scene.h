@@ -22,7 +22,7 @@ namespace arbor {
 class Progress;
 }
 
-namespace arbor::trace {
+namespace arbor::scene {
 
 // A placed tree's extent as TREE-MAKER's shading measures it (§III), in world space: the first
 // particle's position (the base of the trunk), the height h0 of the highest skeleton point above
@@ -35,7 +35,7 @@ struct TreeExtent {
 
 // One grown tree, shared by every instance of the same (species, seed, time).
 struct TreePrototypeData {
-  std::unique_ptr<gen::TreeGeometry> geometry;
+  std::unique_ptr<generator::TreeGeometry> geometry;
   TreeExtent extent;  // in the prototype's own space
 };
 
@@ -44,9 +44,9 @@ struct TreeInstance {
   int prototype = 0;
   glm::mat4 to_world{1.0f}, to_object{1.0f};
   glm::mat3 normal_to_world{1.0f};
-  mat::Material bark, leaf;         // species defaults with the scene's overrides
-  mat::TreemakerWeights treemaker;  // the TREE-MAKER shading weights (§III) of this tree
-  TreeExtent extent;                // world space
+  materials::Material bark, leaf;         // species defaults with the scene's overrides
+  materials::TreemakerWeights treemaker;  // the TREE-MAKER shading weights (§III) of this tree
+  TreeExtent extent;                      // world space
   // Compositing ids (1-based into Scene::object_names / material_names; docs/outputs.md).
   std::uint32_t object_id = 0;
   std::uint32_t bark_id = 0, leaf_front_id = 0, leaf_back_id = 0;
@@ -63,7 +63,7 @@ struct MeshObject {
   std::vector<glm::vec3> normals;
   std::vector<std::uint32_t> normal_indices;
   std::vector<std::uint16_t> material;  // per triangle, into materials
-  std::vector<mat::Material> materials;
+  std::vector<materials::Material> materials;
   std::uint32_t object_id = 0;              // compositing ids, as for a TreeInstance
   std::vector<std::uint32_t> material_ids;  // per material
 };
@@ -80,7 +80,7 @@ struct Scene {
   std::vector<TreeInstance> instances;
   std::vector<MeshObject> meshes;
   bool has_ground = false;
-  mat::Material ground;
+  materials::Material ground;
   std::uint32_t ground_object_id = 0, ground_material_id = 0;
   // The names of the compositing ids (id k is names[k - 1]; 0 is nothing, the sky): objects are
   // "<species>.<n>" (the n-th tree of that species in scene order), "<mesh file stem>.<n>" and
@@ -89,8 +89,8 @@ struct Scene {
   std::vector<std::string> object_names, material_names;
   SceneStats stats;
   // The textures the materials point to.
-  std::vector<std::pair<std::string, std::unique_ptr<mat::HeightMap>>> bump_maps;
-  std::vector<std::pair<std::string, std::unique_ptr<mat::ColorMap>>> albedo_maps;
+  std::vector<std::pair<std::string, std::unique_ptr<materials::HeightMap>>> bump_maps;
+  std::vector<std::pair<std::string, std::unique_ptr<materials::ColorMap>>> albedo_maps;
 };
 
 // Builds the scene: loads each species once, grows each tree once, assembles materials (albedo
@@ -99,11 +99,12 @@ struct Scene {
 // 0: none), a forest whose variants would need more is refused once its first variant is grown
 // (InputError at the forest): each variant is taken at the first one's size, twice over for
 // Embree's structures over it.
-std::unique_ptr<const Scene> build_scene(const SceneDesc& desc, const std::string& ocio_config,
+std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
+                                         const std::string& ocio_config,
                                          Progress* progress = nullptr,
                                          std::uint64_t geometry_budget = 0);
 
 // The affine map of a placement: translate · rotate about z · uniform scale.
-glm::mat4 placement_matrix(const Placement& placement);
+glm::mat4 placement_matrix(const formats::Placement& placement);
 
-}  // namespace arbor::trace
+}  // namespace arbor::scene

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Checks the layout's invariants (docs/architecture.md): every #include of an arbor header goes to
 # a folder its own folder may use, Embree is included only in tracer/embree/, tracer/ and imaging/
-# include no tree model, the command line (CLI11, the commands) lives only in app/, no source file
+# include no tree model, every folder declares in its own namespace (arbor::FOLDER), the command line (CLI11, the commands) lives only in app/, no source file
 # is over 600 lines, and no function outside tests is over 80 lines unless it is listed, with its
 # reason, in tools/long-functions.txt. Prints each violation; exits 1 when there is any.
 #
@@ -44,6 +44,20 @@ for f in $sources; do
   fi
   lines=$(wc -l < "$f")
   [ "$lines" -gt 600 ] && fail "$f has $lines lines (at most 600)"
+done
+# A folder is a namespace: what folder F declares is in arbor::F (common/: arbor), or in a
+# namespace nested in it. A file may reopen the namespace of a folder it may use only to declare
+# that folder's names ahead (class Progress;).
+ns_of() { [ "$1" = common ] && echo arbor || echo "arbor::$1"; }
+for f in $sources; do
+  own=${f%%/*}
+  mine=$(ns_of "$own")
+  while IFS= read -r ns; do
+    [[ $ns == "$mine" || $ns == "$mine"::* ]] && continue
+    ok=0
+    for used in ${may[$own]}; do [ "$ns" = "$(ns_of "$used")" ] && ok=1; done
+    [ "$ok" -eq 1 ] || fail "$f opens namespace $ns; $own/ declares in $mine"
+  done < <(grep -oE '^namespace [A-Za-z_:]+ \{' "$f" | awk '{print $2}')
 done
 # The command line is app/'s: commands in app/commands/, CLI11 nowhere else.
 for f in $sources; do

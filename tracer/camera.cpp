@@ -8,9 +8,9 @@
 #include "common/error.h"
 #include "common/math.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
-Camera::Camera(const CameraSpec& d, int width, int height) : width_(width), height_(height) {
+Camera::Camera(const scene::CameraSpec& d, int width, int height) : width_(width), height_(height) {
   origin_ = glm::vec3(d.position[0], d.position[1], d.position[2]);
   const glm::vec3 target(d.look_at[0], d.look_at[1], d.look_at[2]);
   const glm::vec3 up(d.up[0], d.up[1], d.up[2]);
@@ -40,4 +40,4 @@ Ray Camera::generate(glm::vec2 film, glm::vec2 lens) const {
   return ray;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

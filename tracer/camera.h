@@ -7,11 +7,11 @@
 #include "scene/render_input.h"
 #include "tracer/ray.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 class Camera {
  public:
-  Camera(const CameraSpec& spec, int width, int height);
+  Camera(const scene::CameraSpec& spec, int width, int height);
   // A ray through film position (x, y) in pixels (0,0 top-left corner), `lens` in [0,1)².
   Ray generate(glm::vec2 film, glm::vec2 lens) const;
   const glm::vec3& forward() const { return forward_; }
@@ -22,4 +22,4 @@ class Camera {
   int width_ = 1, height_ = 1;
 };
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -7,7 +7,7 @@
 
 #include "imaging/treemaker_channels.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 namespace {
 // Below this magnitude a channel's error counts as absolute (docs/rendering.md): near-black
@@ -19,8 +19,8 @@ float sample_tent(float u) {
   return u < 0.5f ? std::sqrt(2.0f * u) - 1.0f : 1.0f - std::sqrt(2.0f - 2.0f * u);
 }
 
-Image make_image(int width, int height, std::size_t extras) {
-  Image img;
+imaging::Image make_image(int width, int height, std::size_t extras) {
+  imaging::Image img;
   img.width = width;
   img.height = height;
   img.full_width = width;
@@ -84,14 +84,14 @@ void PixelAccumulator::add(const float rgb[3], const float alb[3], const glm::ve
   }
 }
 
-FilmCosts Film::costs() {
-  FilmCosts c;
+scene::FilmCosts Film::costs() {
+  scene::FilmCosts c;
   c.state = sizeof(PixelState);
   c.sum = sizeof(double);
   c.sums = kAovSums;
   c.id_sums = 2 * kIdSlots;
   c.record_extra = kRecordExtra;
-  c.treemaker_extras = treemaker_channel_names().size();
+  c.treemaker_extras = imaging::treemaker_channel_names().size();
   return c;
 }
 
@@ -198,8 +198,8 @@ void Film::finish_pass(const AdaptiveSettings& adaptive) {
   }
 }
 
-Image Film::image(std::size_t extras_wanted) const {
-  Image img = make_image(window_.width(), window_.height(), extras_wanted);
+imaging::Image Film::image(std::size_t extras_wanted) const {
+  imaging::Image img = make_image(window_.width(), window_.height(), extras_wanted);
   img.x0 = window_.x0;
   img.y0 = window_.y0;
   const std::size_t stride = sum_stride();
@@ -253,4 +253,4 @@ Image Film::image(std::size_t extras_wanted) const {
   return img;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -12,14 +12,14 @@
 #include "imaging/image.h"
 #include "scene/render_budget.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 // Tent filter of radius 1 pixel: maps u in [0,1) to an offset in (-1, 1) distributed ∝ 1 - |x|.
 float sample_tent(float u);
 
 // An image of width × height with its AOV arrays allocated (zero) and `extras` integrator AOV
 // floats a pixel.
-Image make_image(int width, int height, std::size_t extras);
+imaging::Image make_image(int width, int height, std::size_t extras);
 
 // The passes of a render: `spp` samples a pixel in passes of `pass_spp` (the last one shorter
 // when pass_spp does not divide spp). By default the passes take consecutive points of one
@@ -125,7 +125,7 @@ struct AdaptiveSettings {
 class Film {
  public:
   // What a film keeps a pixel (its state, sums and pass records), for the memory estimate.
-  static FilmCosts costs();
+  static scene::FilmCosts costs();
 
   // `ids`: keep the compositing id slots.
   Film(Window window, std::size_t extras, int pass_begin, bool keep_records, bool ids = false);
@@ -151,7 +151,7 @@ class Film {
   void finish_pass(const AdaptiveSettings& adaptive);
 
   // The pixel means and variance estimates as an image of the window.
-  Image image(std::size_t extras_wanted) const;
+  imaging::Image image(std::size_t extras_wanted) const;
 
   // The relative standard error adaptive sampling compares with its threshold.
   double relative_error(std::size_t p) const;
@@ -183,4 +183,4 @@ class Film {
   std::vector<double> records_;  // record_size() a pixel a pass, passes in order
 };
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

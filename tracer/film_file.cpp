@@ -15,7 +15,7 @@
 #include "common/error.h"
 #include "common/input_file.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 namespace {
 
@@ -196,14 +196,16 @@ FilmFile read_film_state(const std::string& path) {
   h.fingerprint = keys["fingerprint"];
   h.settings = keys["settings"];
   h.scene = keys["scene"];
-  const std::optional<Integrator> integrator = integrator_named(keys["integrator"]);
+  const std::optional<formats::Integrator> integrator =
+      formats::integrator_named(keys["integrator"]);
   if (!integrator)
     throw bad("its integrator \"" + keys["integrator"] + "\" is not path or treemaker");
   h.integrator = *integrator;
   h.output.colorspace = keys["colorspace"];
   h.output.display = keys["display"];
   h.output.view = keys["view"];
-  const std::optional<PixelType> pixel_type = pixel_type_named(keys["pixel_type"]);
+  const std::optional<imaging::PixelType> pixel_type =
+      imaging::pixel_type_named(keys["pixel_type"]);
   if (!pixel_type) throw bad("its pixel type \"" + keys["pixel_type"] + "\" is not half or float");
   h.output.pixel_type = *pixel_type;
   h.output.transparent_sky = keys["transparent_sky"] == "1";
@@ -213,7 +215,7 @@ FilmFile read_film_state(const std::string& path) {
   {
     std::istringstream aovs(keys["aovs"]);
     for (std::string a; aovs >> a;) {
-      const std::optional<Aov> aov = aov_named(a);
+      const std::optional<imaging::Aov> aov = imaging::aov_named(a);
       if (!aov) throw bad("its AOV \"" + a + "\" is not one arbor writes");
       h.output.aovs.add(*aov);
     }
@@ -297,4 +299,4 @@ FilmFile read_film_state(const std::string& path) {
   return f;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

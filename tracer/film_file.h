@@ -13,7 +13,7 @@
 #include "scene/render_input.h"
 #include "tracer/film.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 struct FilmHeader {
   std::string fingerprint;  // of the scene, its inputs and the settings that decide the pixels
@@ -27,9 +27,9 @@ struct FilmHeader {
   double seconds = 0;  // render time spent so far
   std::uint64_t nonfinite = 0, rays = 0;
   // What the outputs are written with (a merge writes them again without the scene).
-  Integrator integrator = Integrator::Path;
+  formats::Integrator integrator = formats::Integrator::Path;
   std::uint64_t seed = 0;
-  OutputSpec output;
+  imaging::OutputSpec output;
   std::string treemaker_weights;
   // The compositing ids' names (Scene::object_names, material_names).
   std::vector<std::string> object_names, material_names;
@@ -59,4 +59,4 @@ std::string settings_difference(const std::string& a, const std::string& b, cons
 std::uint64_t fnv1a(const std::string& text, std::uint64_t hash = 0xcbf29ce484222325ull);
 std::string fingerprint_hex(std::uint64_t hash);
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

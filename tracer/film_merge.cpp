@@ -7,7 +7,7 @@
 
 #include "common/error.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 namespace {
 
@@ -135,4 +135,4 @@ FilmFile merge_film_parts(std::vector<FilmPart> parts) {
   return merged;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

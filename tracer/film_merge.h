@@ -7,7 +7,7 @@
 
 #include "tracer/film_file.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 // One part: the EXR it was written as (for messages) and its film state, read.
 struct FilmPart {
@@ -27,4 +27,4 @@ std::string passes_text(int begin, int end);
 // leave a gap. The parts must be finished (end() == their header's pass_end).
 FilmFile merge_film_parts(std::vector<FilmPart> parts);
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

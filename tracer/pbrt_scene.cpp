@@ -22,7 +22,7 @@
 #include "scene/scene.h"
 #include "tracer/lights/sky.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 namespace {
 
@@ -37,7 +37,7 @@ const PbrtColorSpace kPbrtSpaces[] = {
 
 std::string number(double v) {
   std::string s;
-  gen::put_number(s, static_cast<float>(v));
+  generator::put_number(s, static_cast<float>(v));
   return s;
 }
 
@@ -48,7 +48,7 @@ std::string triple(const glm::vec3& v) {
 // Colours in pbrt's space; reflectances must lie in [0, 1] there (pbrt-v4 refuses others), so a
 // component pushed past by the change of primaries is clamped and reported.
 struct Colors {
-  ColorTransform to_pbrt;  // empty: the same space
+  imaging::ColorTransform to_pbrt;  // empty: the same space
   std::vector<std::string>* clamped = nullptr;
 
   glm::vec3 light(const glm::vec3& c) const {
@@ -66,7 +66,7 @@ struct Colors {
     return kept;
   }
   std::string rgb(const char* name, const glm::vec3& c, const std::string& what) const {
-    return gen::pbrt_rgb(name, to_rgb(reflectance(c, what)));
+    return generator::pbrt_rgb(name, to_rgb(reflectance(c, what)));
   }
   static Rgb to_rgb(const glm::vec3& c) { return {c.x, c.y, c.z}; }
 };
@@ -77,21 +77,21 @@ class Materials {
   explicit Materials(const Colors& colors) : colors_(colors) {}
 
   // The name of the material for `m` (in scene space), made on first use.
-  std::string name_of(const mat::Material& m, const std::string& label) {
+  std::string name_of(const materials::Material& m, const std::string& label) {
     std::string body;
     switch (m.kind) {
-      case mat::Material::Kind::Leaf: {
-        const mat::LeafMaterial& l = m.leaf;
-        body = gen::pbrt_leaf_material(
+      case materials::Material::Kind::Leaf: {
+        const materials::LeafMaterial& l = m.leaf;
+        body = generator::pbrt_leaf_material(
             Colors::to_rgb(colors_.reflectance(l.front, label + " front")),
             Colors::to_rgb(colors_.reflectance(l.back, label + " back")),
             Colors::to_rgb(colors_.reflectance(l.transmittance, label + " transmittance")));
         break;
       }
-      case mat::Material::Kind::Bark:
+      case materials::Material::Kind::Bark:
         body = "\"diffuse\" " + colors_.rgb("reflectance", m.bark.albedo, label);
         break;
-      case mat::Material::Kind::Ground: {
+      case materials::Material::Kind::Ground: {
         // The patches' noise has no pbrt counterpart: their cover-weighted mean, for the ground
         // beyond the baked square around the camera (write_ground_exr).
         const float c = m.ground.cover;
@@ -99,7 +99,7 @@ class Materials {
                colors_.rgb("reflectance", (1.0f - c) * m.albedo + c * m.ground.patch_albedo, label);
         break;
       }
-      case mat::Material::Kind::Diffuse:
+      case materials::Material::Kind::Diffuse:
         body = "\"diffuse\" " + colors_.rgb("reflectance", m.albedo, label);
         break;
     }
@@ -133,7 +133,7 @@ std::string transform_of(const glm::mat4& m) {
 // 0.31-0.67x dark).
 void write_sky_exr(const Sky& sky, const Colors& colors, const PbrtColorSpace& space, int n,
                    bool fill_below, const std::string& path) {
-  Image img;
+  imaging::Image img;
   img.width = img.full_width = n;
   img.height = img.full_height = n;
   const std::size_t count = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
@@ -157,18 +157,18 @@ void write_sky_exr(const Sky& sky, const Colors& colors, const PbrtColorSpace& s
                  static_cast<std::size_t>(x)] = colors.light(sky.radiance(d));
     }
   }
-  OutputSpec output;
+  imaging::OutputSpec output;
   // Linear radiance in pbrt's colour space `space` (its chromaticities say which): OIIO's name for
   // linear, not pbrt's "srgb", which OIIO reads as the sRGB curve (oiiotool darkened it 5x).
   output.colorspace = "Linear";
-  output.pixel_type = PixelType::Float;
-  ExrMetadata meta;
+  output.pixel_type = imaging::PixelType::Float;
+  imaging::ExrMetadata meta;
   meta.scene = "arbor sky for pbrt-v4 (equal-area octahedral map), linear in pbrt's colour space " +
                std::string(space.name) +
                (fill_below ? "; below the horizon, the horizon's radiance" : "");
   meta.chromaticities = space.chromaticities;
   meta.render_attributes = false;
-  write_exr(img, output, meta, path);
+  imaging::write_exr(img, output, meta, path);
 }
 
 }  // namespace
@@ -216,9 +216,9 @@ constexpr float kGroundHalf = 128.0f;
 // The ground's albedo over the square centred at `centre`, in pbrt's colour space, as pbrt's
 // imagemap reads it: row 0 at the square's +y edge (pbrt flips v: texture (0,0) is the image's
 // lower left), column 0 at its −x edge.
-void write_ground_exr(const mat::Material& ground, const Colors& colors,
+void write_ground_exr(const materials::Material& ground, const Colors& colors,
                       const PbrtColorSpace& space, glm::vec2 centre, const std::string& path) {
-  Image img;
+  imaging::Image img;
   img.width = img.full_width = img.height = img.full_height = kGroundTexels;
   img.beauty.resize(static_cast<std::size_t>(kGroundTexels) * kGroundTexels);
   img.alpha.assign(img.beauty.size(), 1.0f);
@@ -232,21 +232,21 @@ void write_ground_exr(const mat::Material& ground, const Colors& colors,
           ground.albedo + (ground.ground.patch_albedo - ground.albedo) * w, "the ground's patches");
     }
   }
-  OutputSpec output;
+  imaging::OutputSpec output;
   output.colorspace = "Linear";
-  output.pixel_type = PixelType::Half;
-  ExrMetadata meta;
+  output.pixel_type = imaging::PixelType::Half;
+  imaging::ExrMetadata meta;
   meta.scene = "arbor ground albedo for pbrt-v4 (its patches), linear in pbrt's colour space " +
                std::string(space.name);
   meta.chromaticities = space.chromaticities;
   meta.render_attributes = false;
-  write_exr(img, output, meta, path);
+  imaging::write_exr(img, output, meta, path);
 }
 
 // The opening comment, colour space, camera, film, sampler and integrator, up to WorldBegin.
-std::string camera_text(const RenderInput& input, const PbrtColorSpace& space, bool converted,
-                        const std::string& out) {
-  const RenderSpec& r = input.render;
+std::string camera_text(const scene::RenderInput& input, const PbrtColorSpace& space,
+                        bool converted, const std::string& out) {
+  const scene::RenderSpec& r = input.render;
   std::string text = "# pbrt-v4 scene written by arbor from " + input.scene + "\n";
   text +=
       "# Units are metres, z is up; colours are in pbrt's \"" + std::string(space.name) +
@@ -260,7 +260,7 @@ std::string camera_text(const RenderInput& input, const PbrtColorSpace& space, b
       "# sampling (pbrt samples its own way).\n";
   text += "ColorSpace \"" + std::string(space.name) + "\"\n";
   // pbrt's camera space is left-handed: mirroring x keeps arbor's right-handed image unmirrored.
-  const CameraSpec& cam = input.camera;
+  const scene::CameraSpec& cam = input.camera;
   text += "Scale -1 1 1\nLookAt " + number(cam.position[0]) + " " + number(cam.position[1]) + " " +
           number(cam.position[2]) + "  " + number(cam.look_at[0]) + " " + number(cam.look_at[1]) +
           " " + number(cam.look_at[2]) + "  " + number(cam.up[0]) + " " + number(cam.up[1]) + " " +
@@ -290,7 +290,7 @@ std::string camera_text(const RenderInput& input, const PbrtColorSpace& space, b
 }
 
 // The sun and the sky; the camera's exposure scales them (pbrt's film has no exposure of its own).
-std::string lights_text(const RenderInput& input, const Sky& sky, const Colors& colors,
+std::string lights_text(const scene::RenderInput& input, const Sky& sky, const Colors& colors,
                         const std::string& sky_path) {
   const float exposure = std::exp2(static_cast<float>(input.camera.exposure));
   std::string text;
@@ -299,7 +299,7 @@ std::string lights_text(const RenderInput& input, const Sky& sky, const Colors& 
     text +=
         "# the sun: irradiance on a plane facing it\nLightSource \"distant\" \"point3 from\" [ " +
         triple(sky.sun_direction()) + " ] \"point3 to\" [ 0 0 0 ] " +
-        gen::pbrt_rgb("L", Colors::to_rgb(e)) + " \"float scale\" " + number(exposure) + "\n";
+        generator::pbrt_rgb("L", Colors::to_rgb(e)) + " \"float scale\" " + number(exposure) + "\n";
   }
   if (!sky.empty()) {
     text +=
@@ -318,9 +318,9 @@ struct TreeObjects {
   std::string instances;
 };
 
-TreeObjects tree_objects(const Scene& built, Materials& materials) {
+TreeObjects tree_objects(const scene::Scene& built, Materials& materials) {
   TreeObjects trees;
-  for (const TreeInstance& inst : built.instances) {
+  for (const scene::TreeInstance& inst : built.instances) {
     const std::string label = built.object_names.at(inst.object_id - 1);
     const std::string species = label.substr(0, label.rfind('.'));
     const std::string bark = materials.name_of(inst.bark, species + " bark");
@@ -334,26 +334,28 @@ TreeObjects tree_objects(const Scene& built, Materials& materials) {
 }
 
 // The objects' shapes, then the instances, appended to `out` (flushed to `file` as it grows).
-void write_trees(const Scene& built, const TreeObjects& trees, std::string& out, AtomicFile& file) {
+void write_trees(const scene::Scene& built, const TreeObjects& trees, std::string& out,
+                 AtomicFile& file) {
   for (const auto& [key, name] : trees.objects) {
-    const gen::TreeGeometry& g =
+    const generator::TreeGeometry& g =
         *built.prototypes.at(static_cast<std::size_t>(std::get<0>(key))).geometry;
     out += "ObjectBegin \"" + name + "\"\n";
-    gen::append_pbrt_shapes(g, "NamedMaterial \"" + std::get<1>(key) + "\"",
-                            "NamedMaterial \"" + std::get<2>(key) + "\"", gen::UpAxis::Z, out,
-                            file);
+    generator::append_pbrt_shapes(g, "NamedMaterial \"" + std::get<1>(key) + "\"",
+                                  "NamedMaterial \"" + std::get<2>(key) + "\"",
+                                  generator::UpAxis::Z, out, file);
     out += "ObjectEnd\n";
-    gen::flush_if_large(out, file);
+    generator::flush_if_large(out, file);
   }
   out += "\n" + trees.instances;
 }
 
 // The OBJ meshes, one trianglemesh per mesh and material, with the materials named in
 // `mesh_materials`.
-void write_meshes(const Scene& built, const std::vector<std::vector<std::string>>& mesh_materials,
-                  std::string& out, AtomicFile& file) {
+void write_meshes(const scene::Scene& built,
+                  const std::vector<std::vector<std::string>>& mesh_materials, std::string& out,
+                  AtomicFile& file) {
   for (std::size_t i = 0; i < built.meshes.size(); ++i) {
-    const MeshObject& m = built.meshes[i];
+    const scene::MeshObject& m = built.meshes[i];
     const bool has_normals = !m.normals.empty();
     for (std::size_t k = 0; k < m.materials.size(); ++k) {
       // Each triangle's corners on their own (the OBJ's normals are indexed apart from its points).
@@ -381,7 +383,7 @@ void write_meshes(const Scene& built, const std::vector<std::vector<std::string>
       out += "\n    \"integer indices\" [ ";
       for (std::size_t c = 0; c < corners; ++c) out += std::to_string(c) + " ";
       out += "]\nAttributeEnd\n";
-      gen::flush_if_large(out, file);
+      generator::flush_if_large(out, file);
     }
   }
 }
@@ -427,7 +429,7 @@ std::string ground_text(const std::string& ground, bool patches, glm::vec2 centr
 
 }  // namespace
 
-PbrtColorSpace pbrt_color_space_of(const ColorPipeline& color) {
+PbrtColorSpace pbrt_color_space_of(const imaging::ColorPipeline& color) {
   const std::vector<float> linear = color.chromaticities("scene_linear");
   if (linear.empty()) {
     throw InputError(
@@ -438,8 +440,8 @@ PbrtColorSpace pbrt_color_space_of(const ColorPipeline& color) {
   return pbrt_color_space_for(linear);
 }
 
-PbrtExport write_pbrt_scene(const Scene& scene, const RenderInput& input,
-                            const ColorPipeline& color, const std::string& out,
+PbrtExport write_pbrt_scene(const scene::Scene& scene, const scene::RenderInput& input,
+                            const imaging::ColorPipeline& color, const std::string& out,
                             int sky_resolution) {
   const std::vector<float> linear = color.chromaticities("scene_linear");
   PbrtExport result;
@@ -447,7 +449,8 @@ PbrtExport write_pbrt_scene(const Scene& scene, const RenderInput& input,
   result.space = space.name;
   Colors colors;
   colors.clamped = &result.clamped;
-  if (space.chromaticities != linear) colors.to_pbrt = rgb_to_rgb(linear, space.chromaticities);
+  if (space.chromaticities != linear)
+    colors.to_pbrt = imaging::rgb_to_rgb(linear, space.chromaticities);
 
   const Sky sky(input.sky, input.sun, color.xyz_to_scene_linear());
   const std::string sky_path = sky_path_for(out), ground_path = ground_path_for(out);
@@ -459,7 +462,7 @@ PbrtExport write_pbrt_scene(const Scene& scene, const RenderInput& input,
   Materials materials(colors);
   const TreeObjects trees = tree_objects(scene, materials);
   std::vector<std::vector<std::string>> mesh_materials;
-  for (const MeshObject& m : scene.meshes) {
+  for (const scene::MeshObject& m : scene.meshes) {
     std::vector<std::string> names;
     for (std::size_t k = 0; k < m.materials.size(); ++k) {
       names.push_back(
@@ -472,7 +475,7 @@ PbrtExport write_pbrt_scene(const Scene& scene, const RenderInput& input,
   write_trees(scene, trees, text, file);
   write_meshes(scene, mesh_materials, text, file);
   const bool ground_patches = scene.has_ground &&
-                              scene.ground.kind == mat::Material::Kind::Ground &&
+                              scene.ground.kind == materials::Material::Kind::Ground &&
                               scene.ground.ground.cover > 0.0f;
   // Centred on the camera, on a whole metre (the same export twice gives the same files).
   const glm::vec2 ground_centre(std::round(static_cast<float>(input.camera.position[0])),
@@ -495,4 +498,4 @@ PbrtExport write_pbrt_scene(const Scene& scene, const RenderInput& input,
   return result;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -12,7 +12,7 @@
 #include "scene/render_input.h"
 #include "scene/scene.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 // What write_pbrt_scene wrote and what it had to change.
 struct PbrtExport {
@@ -26,8 +26,9 @@ struct PbrtExport {
 // (sky_path_for) as an equal-area square `sky_resolution` texels a side, and the ground's
 // patches near the camera (ground_path_for) when it has them; each file atomically, the images
 // first. InputError when the OCIO config's scene_linear has no known primaries.
-PbrtExport write_pbrt_scene(const Scene& scene, const RenderInput& input,
-                            const ColorPipeline& color, const std::string& out, int sky_resolution);
+PbrtExport write_pbrt_scene(const scene::Scene& scene, const scene::RenderInput& input,
+                            const imaging::ColorPipeline& color, const std::string& out,
+                            int sky_resolution);
 
 // The sky image beside OUT.pbrt: OUT.sky.exr for OUT.pbrt.
 std::string sky_path_for(const std::string& pbrt_path);
@@ -49,6 +50,6 @@ struct PbrtColorSpace {
 // (ACES AP0 holds every real colour, so no value turns negative).
 PbrtColorSpace pbrt_color_space_for(const std::vector<float>& c);
 // The pbrt-v4 space for the config's scene_linear; InputError when its primaries are unknown.
-PbrtColorSpace pbrt_color_space_of(const ColorPipeline& color);
+PbrtColorSpace pbrt_color_space_of(const imaging::ColorPipeline& color);
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -10,7 +10,7 @@
 #include "generator/geometry/tree_geometry.h"
 #include "materials/material.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 struct Ray {
   glm::vec3 origin{0.0f};
@@ -30,8 +30,8 @@ struct SurfaceHit {
   glm::vec3 position{0.0f};
   glm::vec3 geometric_normal{0.0f};  // unit, facing the side the ray came from for leaves
   glm::vec3 shading_normal{0.0f};    // unit; follows the displaced surface on trunk grids
-  std::uint16_t material = 0;        // gen::MaterialId (leaf front or back by the side hit)
-  gen::BarkCoordinates bark;         // for curves and grids
+  std::uint16_t material = 0;        // generator::MaterialId (leaf front or back by the side hit)
+  generator::BarkCoordinates bark;   // for curves and grids
   glm::vec3 tangent{0.0f};           // along the limb (curves and grids), for bump mapping
   std::int32_t leaf = -1;            // Skeleton leaf index for leaf hits
   glm::vec2 uv{0.0f};                // over the unit leaf, for leaf hits
@@ -45,13 +45,13 @@ struct WorldHit {
   bool ground = false;
   bool mesh = false;       // a [[mesh]] face
   bool mesh_front = true;  // the side a mesh face's counter-clockwise normal faces
-  const mat::Material* material = nullptr;
+  const materials::Material* material = nullptr;
   // Compositing ids (Scene::object_names / material_names, 1-based).
   std::uint32_t object_id = 0, material_id = 0;
 
   // The point as the material layer sees it.
-  mat::SurfacePoint point() const {
-    mat::SurfacePoint p;
+  materials::SurfacePoint point() const {
+    materials::SurfacePoint p;
     p.shading_normal = surface.shading_normal;
     p.geometric_normal = surface.geometric_normal;
     p.tangent = surface.tangent;
@@ -61,9 +61,9 @@ struct WorldHit {
     p.uv = surface.uv;
     p.color = surface.color;
     if (ground) p.ground = glm::vec2(surface.position.x, surface.position.y);
-    p.leaf_back = mesh ? !mesh_front : surface.material == gen::kMaterialLeafBack;
+    p.leaf_back = mesh ? !mesh_front : surface.material == generator::kMaterialLeafBack;
     return p;
   }
 };
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -17,7 +17,7 @@
 #include "tracer/camera.h"
 #include "tracer/integrators/treemaker.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 namespace {
 constexpr int kTile = 16;
@@ -32,10 +32,10 @@ double seconds_since(Clock::time_point t) {
 // in their output form, to `extra`. `full_width` numbers the pixels of the whole image, which
 // key their samples: a crop renders each pixel exactly as the whole image does.
 template <class Trace>
-RenderOutcome render_passes(const RenderInput& input, const RenderJob& job, Film& film,
-                            const Trace& trace, const ColorTransform& to_output, Progress* progress,
-                            RenderStats& stats) {
-  const RenderSpec& rs = input.render;
+RenderOutcome render_passes(const scene::RenderInput& input, const RenderJob& job, Film& film,
+                            const Trace& trace, const imaging::ColorTransform& to_output,
+                            Progress* progress, imaging::RenderStats& stats) {
+  const scene::RenderSpec& rs = input.render;
   const Window win = film.window();
   const int ww = win.width(), wh = win.height();
   const std::size_t extras = film.extras();
@@ -150,17 +150,18 @@ RenderOutcome render_passes(const RenderInput& input, const RenderJob& job, Film
 
 }  // namespace
 
-std::vector<std::string> integrator_aov_names(const RenderInput& input) {
+std::vector<std::string> integrator_aov_names(const scene::RenderInput& input) {
   // The treemaker AOVs cost 23 values a pixel: kept only when the output asks for them.
-  if (input.render.integrator == Integrator::Treemaker && input.output.aovs.has(Aov::Treemaker)) {
-    return treemaker_channel_names();
+  if (input.render.integrator == formats::Integrator::Treemaker &&
+      input.output.aovs.has(imaging::Aov::Treemaker)) {
+    return imaging::treemaker_channel_names();
   }
   return {};
 }
 
-RenderOutcome render_path(const RenderInput& input, const World& world, const Sky& sky,
-                          const ColorTransform& to_output, const RenderJob& job, Film& film,
-                          Progress* progress, RenderStats& stats) {
+RenderOutcome render_path(const scene::RenderInput& input, const World& world, const Sky& sky,
+                          const imaging::ColorTransform& to_output, const RenderJob& job,
+                          Film& film, Progress* progress, imaging::RenderStats& stats) {
   const PathIntegrator integrator(world, sky, input.render.max_depth);
   auto trace = [&](const Ray& ray, const PixelSampler& sampler, std::uint32_t index, float*) {
     return integrator.trace(ray, sampler, index);
@@ -168,9 +169,9 @@ RenderOutcome render_path(const RenderInput& input, const World& world, const Sk
   return render_passes(input, job, film, trace, to_output, progress, stats);
 }
 
-RenderOutcome render_treemaker(const RenderInput& input, const World& world, const Sky& sky,
-                               const ColorTransform& to_output, const RenderJob& job, Film& film,
-                               Progress* progress, RenderStats& stats) {
+RenderOutcome render_treemaker(const scene::RenderInput& input, const World& world, const Sky& sky,
+                               const imaging::ColorTransform& to_output, const RenderJob& job,
+                               Film& film, Progress* progress, imaging::RenderStats& stats) {
   const TreemakerIntegrator integrator(world, sky);
   const float exposure = std::exp2(static_cast<float>(input.camera.exposure));
   const bool keep = film.extras() > 0;
@@ -192,14 +193,14 @@ const char* name_of(StopReason reason) {
   return "";
 }
 
-PassPlan pass_plan_for(const RenderSpec& r) {
+PassPlan pass_plan_for(const scene::RenderSpec& r) {
   return {r.samples(), r.pass_spp, r.independent_passes};
 }
 
-Image render_image(const RenderInput& input, const World& world, const Sky& sky,
-                   const ColorTransform& to_output, RenderStats& stats) {
-  const RenderSpec& r = input.render;
-  const bool treemaker = r.integrator == Integrator::Treemaker;
+imaging::Image render_image(const scene::RenderInput& input, const World& world, const Sky& sky,
+                            const imaging::ColorTransform& to_output, imaging::RenderStats& stats) {
+  const scene::RenderSpec& r = input.render;
+  const bool treemaker = r.integrator == formats::Integrator::Treemaker;
   RenderJob job;
   job.plan = pass_plan_for(r);
   job.pass_end = job.plan.passes();
@@ -211,11 +212,11 @@ Image render_image(const RenderInput& input, const World& world, const Sky& sky,
   } else {
     render_path(input, world, sky, to_output, job, film, nullptr, stats);
   }
-  Image img = film.image(names.size());
+  imaging::Image img = film.image(names.size());
   img.extra_names = names;
   img.object_names = world.scene().object_names;
   img.material_names = world.scene().material_names;
   return img;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -18,7 +18,7 @@ namespace arbor {
 class Progress;
 }
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 // Which passes to render and when to stop early.
 struct RenderJob {
@@ -32,7 +32,7 @@ struct RenderJob {
 };
 
 // The passes of the scene's render: the sample count of its integrator in passes of pass_spp.
-PassPlan pass_plan_for(const RenderSpec& render);
+PassPlan pass_plan_for(const scene::RenderSpec& render);
 
 // Why a render's outputs hold fewer passes than it asked for: it did not stop early, a signal
 // stopped it, its time limit did, or it is a checkpoint of a render still running.
@@ -47,22 +47,22 @@ struct RenderOutcome {
 
 // The integrator AOV names of the scene's render ("treemaker" asked of the treemaker
 // integrator), which size the film's extras.
-std::vector<std::string> integrator_aov_names(const RenderInput& input);
+std::vector<std::string> integrator_aov_names(const scene::RenderInput& input);
 
 // Renders with the path integrator. Deterministic: each pixel's samples depend only on (pixel,
 // pass, sample index, seed), and each pixel is accumulated in sample and pass order by one task.
-RenderOutcome render_path(const RenderInput& input, const World& world, const Sky& sky,
-                          const ColorTransform& to_output, const RenderJob& job, Film& film,
-                          Progress* progress, RenderStats& stats);
+RenderOutcome render_path(const scene::RenderInput& input, const World& world, const Sky& sky,
+                          const imaging::ColorTransform& to_output, const RenderJob& job,
+                          Film& film, Progress* progress, imaging::RenderStats& stats);
 
 // Renders with the treemaker integrator (its samples only anti-alias: its shade has no noise);
 // fills the film's extras with the "treemaker" AOVs when integrator_aov_names asks for them.
-RenderOutcome render_treemaker(const RenderInput& input, const World& world, const Sky& sky,
-                               const ColorTransform& to_output, const RenderJob& job, Film& film,
-                               Progress* progress, RenderStats& stats);
+RenderOutcome render_treemaker(const scene::RenderInput& input, const World& world, const Sky& sky,
+                               const imaging::ColorTransform& to_output, const RenderJob& job,
+                               Film& film, Progress* progress, imaging::RenderStats& stats);
 
 // A whole image at the scene's settings in one go, for tests and benchmarks.
-Image render_image(const RenderInput& input, const World& world, const Sky& sky,
-                   const ColorTransform& to_output, RenderStats& stats);
+imaging::Image render_image(const scene::RenderInput& input, const World& world, const Sky& sky,
+                            const imaging::ColorTransform& to_output, imaging::RenderStats& stats);
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

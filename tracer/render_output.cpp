@@ -10,26 +10,26 @@
 #include "imaging/image_output.h"
 #include "imaging/treemaker_channels.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 bool film_complete(const FilmHeader& h, const Film& film) {
   return film.window() == Window{0, 0, h.full_width, h.full_height} && film.pass_begin() == 0 &&
          film.next_pass() == h.plan.passes();
 }
 
-Image film_image(const FilmHeader& h, const Film& film) {
-  Image img = film.image(film.extras());
+imaging::Image film_image(const FilmHeader& h, const Film& film) {
+  imaging::Image img = film.image(film.extras());
   img.full_width = h.full_width;
   img.full_height = h.full_height;
-  if (film.extras() > 0) img.extra_names = treemaker_channel_names();
+  if (film.extras() > 0) img.extra_names = imaging::treemaker_channel_names();
   img.object_names = h.object_names;
   img.material_names = h.material_names;
   return img;
 }
 
 void write_render(const FilmHeader& h, const Film& film, const RenderWrite& what) {
-  const OutputSpec& out = h.output;
-  const Image img = film_image(h, film);
+  const imaging::OutputSpec& out = h.output;
+  const imaging::Image img = film_image(h, film);
   if (!what.exr.empty()) {
     const std::string state = state_path(what.exr);
     if (!film_complete(h, film)) {
@@ -41,7 +41,7 @@ void write_render(const FilmHeader& h, const Film& film, const RenderWrite& what
         throw RuntimeFailure("cannot remove the finished render's film state " + state);
       }
     }
-    ExrMetadata meta;
+    imaging::ExrMetadata meta;
     meta.scene = h.scene;
     meta.seed = h.seed;
     meta.integrator = name_of(h.integrator);
@@ -67,9 +67,9 @@ void write_render(const FilmHeader& h, const Film& film, const RenderWrite& what
     meta.mean_spp = img.samples.empty() ? 0.0 : total / double(img.samples.size());
     meta.interop_id = what.color->interop_id(h.output.colorspace);
     meta.chromaticities = what.color->chromaticities(h.output.colorspace);
-    write_exr(img, out, meta, what.exr);
+    imaging::write_exr(img, out, meta, what.exr);
   }
-  if (!what.png.empty()) write_png(img, out, *what.color, what.png);
+  if (!what.png.empty()) imaging::write_png(img, out, *what.color, what.png);
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

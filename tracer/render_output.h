@@ -11,11 +11,11 @@
 #include "tracer/film_file.h"
 #include "tracer/render.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 struct RenderWrite {
-  std::string exr, png;                  // empty: not written
-  const ColorPipeline* color = nullptr;  // for the PNG
+  std::string exr, png;                           // empty: not written
+  const imaging::ColorPipeline* color = nullptr;  // for the PNG
   StopReason stopped = StopReason::None;
 };
 
@@ -23,11 +23,11 @@ struct RenderWrite {
 bool film_complete(const FilmHeader& header, const Film& film);
 
 // The image of the film, its whole-image size set.
-Image film_image(const FilmHeader& header, const Film& film);
+imaging::Image film_image(const FilmHeader& header, const Film& film);
 
 // Writes the state (unless complete; a stale one is then removed), the EXR, then the PNG, each
 // atomically. The state goes first: a kill between the writes leaves a state at least as far
 // along as the EXR, which is what --resume continues from.
 void write_render(const FilmHeader& header, const Film& film, const RenderWrite& what);
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

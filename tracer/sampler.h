@@ -8,7 +8,7 @@
 
 #include <glm/vec2.hpp>
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 constexpr std::uint32_t reverse_bits(std::uint32_t x) {
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
@@ -91,4 +91,4 @@ class PixelSampler {
   std::uint32_t key_;
 };
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -16,8 +16,6 @@
 
 namespace arbor::app {
 
-using namespace arbor::trace;
-
 namespace {
 
 void check_image_output(const std::string& path, const CompareRequest& a, const char* option) {
@@ -33,14 +31,15 @@ void check_image_output(const std::string& path, const CompareRequest& a, const 
 // --fit-treemaker: whichever image carries the treemaker AOVs is the approximate render, the
 // other the exact one.
 struct FitReport {
-  TreemakerFit fit;
+  imaging::TreemakerFit fit;
   std::string exact_path, approx_path;
 };
 
-FitReport fit_if_asked(const CompareRequest& args, const CompareImage& a, const CompareImage& b) {
+FitReport fit_if_asked(const CompareRequest& args, const imaging::CompareImage& a,
+                       const imaging::CompareImage& b) {
   FitReport r;
   if (!args.fit_treemaker) return r;
-  const bool a_tm = has_treemaker_aovs(args.a), b_tm = has_treemaker_aovs(args.b);
+  const bool a_tm = imaging::has_treemaker_aovs(args.a), b_tm = imaging::has_treemaker_aovs(args.b);
   if (a_tm == b_tm) {
     throw InputError({},
                      std::string("--fit-treemaker needs one exact render and one treemaker render "
@@ -49,21 +48,21 @@ FitReport fit_if_asked(const CompareRequest& args, const CompareImage& a, const 
   }
   r.exact_path = a_tm ? args.b : args.a;
   r.approx_path = a_tm ? args.a : args.b;
-  const CompareImage& exact = a_tm ? b : a;
+  const imaging::CompareImage& exact = a_tm ? b : a;
   if (exact.colorspace.empty()) {
     std::fprintf(stderr,
                  "arbor compare: note: %s does not say its colour space (no arbor:colorspace); "
                  "the fit takes it to be scene-linear in the treemaker render's space\n",
                  r.exact_path.c_str());
   }
-  r.fit = fit_treemaker(exact, read_treemaker_aovs(r.approx_path));
+  r.fit = imaging::fit_treemaker(exact, imaging::read_treemaker_aovs(r.approx_path));
   return r;
 }
 
-void print_json(const CompareRequest& args, const CompareMetrics& m, const ZTest& z,
-                const FitReport& report) {
-  const auto& names = kTreemakerTermNames;
-  const TreemakerFit& fit = report.fit;
+void print_json(const CompareRequest& args, const imaging::CompareMetrics& m,
+                const imaging::ZTest& z, const FitReport& report) {
+  const auto& names = imaging::kTreemakerTermNames;
+  const imaging::TreemakerFit& fit = report.fit;
   JsonObject j;
   j.number("rmse", m.rmse).number("mean_abs", m.mean_abs).number("rel_mse", m.rel_mse);
   j.number("max_abs", m.max_abs).integers("max_at", {m.max_x, m.max_y}).number("psnr", m.psnr);
@@ -96,10 +95,10 @@ void print_json(const CompareRequest& args, const CompareMetrics& m, const ZTest
   std::printf("%s\n", j.str().c_str());
 }
 
-void print_text(const CompareRequest& args, const CompareMetrics& m, const ZTest& z,
-                const FitReport& f) {
-  const auto& names = kTreemakerTermNames;
-  const TreemakerFit& fit = f.fit;
+void print_text(const CompareRequest& args, const imaging::CompareMetrics& m,
+                const imaging::ZTest& z, const FitReport& f) {
+  const auto& names = imaging::kTreemakerTermNames;
+  const imaging::TreemakerFit& fit = f.fit;
   std::printf("rmse      %.6g\nmean_abs  %.6g\nrel_mse   %.6g\nmax_abs   %.6g at (%d, %d)\n",
               m.rmse, m.mean_abs, m.rel_mse, m.max_abs, m.max_x, m.max_y);
   if (std::isfinite(m.psnr)) {
@@ -153,8 +152,8 @@ void print_text(const CompareRequest& args, const CompareMetrics& m, const ZTest
 }
 
 // Notes and warnings on stderr about what limits the test's power or its false-alarm rate.
-void print_notes(const CompareRequest& args, const CompareImage& a, const CompareImage& b,
-                 const ZTest& z) {
+void print_notes(const CompareRequest& args, const imaging::CompareImage& a,
+                 const imaging::CompareImage& b, const imaging::ZTest& z) {
   if (args.reference_test && z.a_has_variance && a.passes >= 2 && a.passes < 8) {
     std::fprintf(
         stderr,
@@ -172,7 +171,7 @@ void print_notes(const CompareRequest& args, const CompareImage& a, const Compar
         args.b.c_str(), b.passes, b.passes == 1 ? "" : "es", std::max(0, b.passes - 1),
         b.passes == 2 ? "" : "s");
   }
-  for (const CompareImage* im : {&a, &b}) {
+  for (const imaging::CompareImage* im : {&a, &b}) {
     if (args.reference_test && im->sequence_passes && !im->variance.empty()) {
       std::fprintf(
           stderr,
@@ -220,23 +219,23 @@ int compare_command(const CompareRequest& args) {
   check_image_output(args.heatmap, args, "--heatmap");
   check_image_output(args.side_by_side, args, "--side-by-side");
   if (!args.heatmap.empty()) refuse_overwriting("--heatmap", args.heatmap, {}, {args.side_by_side});
-  const CompareImage a = read_compare_image(args.a);
-  const CompareImage b = read_compare_image(args.b);
+  const imaging::CompareImage a = imaging::read_compare_image(args.a);
+  const imaging::CompareImage b = imaging::read_compare_image(args.b);
   if (a.display_encoded != b.display_encoded) {
     // Issue 15: a PNG against its own EXR measured 17.6 dB of "error" that was only the encoding.
-    const CompareImage& shown = a.display_encoded ? a : b;
-    const CompareImage& linear = a.display_encoded ? b : a;
+    const imaging::CompareImage& shown = a.display_encoded ? a : b;
+    const imaging::CompareImage& linear = a.display_encoded ? b : a;
     throw InputError({}, shown.path +
                              " holds display-encoded integer pixels (a PNG's sRGB values) and " +
                              linear.path +
                              " scene-linear floats (an EXR): they are different quantities. "
                              "Compare the EXRs, or two PNGs (render both with --png)");
   }
-  const CompareMetrics m = compare_images(a, b);
-  ZTest z;
-  if (args.reference_test) z = reference_z_test(a, b);
+  const imaging::CompareMetrics m = imaging::compare_images(a, b);
+  imaging::ZTest z;
+  if (args.reference_test) z = imaging::reference_z_test(a, b);
   const FitReport fit = fit_if_asked(args, a, b);
-  write_compare_pictures(
+  imaging::write_compare_pictures(
       a, b, {args.heatmap, args.side_by_side, args.display, args.view, args.ocio_config});
   if (args.json) {
     print_json(args, m, z, fit);

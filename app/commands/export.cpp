@@ -19,7 +19,7 @@
 
 namespace arbor::app {
 
-using namespace arbor::trace;
+using namespace arbor::tracer;
 
 CLI::App* add_export_command(CLI::App& app, ExportRequest& exp) {
   CLI::App* cmd = app.add_subcommand("export",
@@ -48,30 +48,30 @@ int export_command(const ExportRequest& a) {
     throw InputError(
         {}, "--sky-resolution " + std::to_string(a.sky_resolution) + " must be 16 to 8192");
   }
-  SceneDesc scene = load_scene(a.scene);
+  formats::SceneDesc scene = formats::load_scene(a.scene);
   // pbrt renders the exact image: --spp is the path integrator's sample count.
   RenderOverrides overrides = a.overrides;
-  overrides.integrator = name_of(Integrator::Path);
+  overrides.integrator = name_of(formats::Integrator::Path);
   apply_overrides(scene, overrides);
   // A frame of an animation: its clock (the scene's own outputs are not written here).
   scene.output.exr.clear();
   scene.output.png.clear();
-  apply_frame(scene, a.frame);
+  scene::apply_frame(scene, a.frame);
   const std::string sky_path = sky_path_for(a.out), ground_path = ground_path_for(a.out);
-  const std::vector<std::string> inputs = scene_inputs(scene);
+  const std::vector<std::string> inputs = formats::scene_inputs(scene);
   refuse_overwriting("-o", a.out, inputs);
   refuse_overwriting("the sky beside -o", sky_path, inputs, {a.out});
   refuse_overwriting("the ground's image beside -o", ground_path, inputs, {a.out, sky_path});
-  const ColorPipeline color(a.ocio_config);
+  const imaging::ColorPipeline color(a.ocio_config);
   pbrt_color_space_of(color);  // refused before anything is made
   prepare_output_folder(a.out);
 
   Progress build_progress("build", 1);
-  const std::unique_ptr<const Scene> built =
-      build_scene(scene, color.config_path(), &build_progress);
+  const std::unique_ptr<const scene::Scene> built =
+      scene::build_scene(scene, color.config_path(), &build_progress);
   build_progress.finish();
   const PbrtExport result =
-      write_pbrt_scene(*built, render_input(scene), color, a.out, a.sky_resolution);
+      write_pbrt_scene(*built, scene::render_input(scene), color, a.out, a.sky_resolution);
   for (const std::string& c : result.clamped) {
     std::fprintf(stderr, "arbor: warning: %s is outside [0, 1] in pbrt's %s space; clamped\n",
                  c.c_str(), result.space.c_str());

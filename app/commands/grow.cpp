@@ -59,7 +59,10 @@ CLI::App* add_grow_command(CLI::App& app, GrowRequest& grow) {
   return cmd;
 }
 
-int grow_command(const GrowRequest& a) {
+namespace {
+
+// Refuses a request that cannot be carried out before any work, and returns its up axis.
+generator::UpAxis validate(const GrowRequest& a) {
   if (a.out.empty() && !a.stats && !a.json) {
     throw InputError(
         {}, "grow has nothing to do: give -o OUT (.obj, .ply, .pbrt, .skel), --stats or --json");
@@ -70,71 +73,79 @@ int grow_command(const GrowRequest& a) {
   }
   if (a.up != "z" && a.up != "y")
     throw InputError({}, "--up " + a.up + ": the up axis must be z or y");
-  const gen::UpAxis up = a.up == "y" ? gen::UpAxis::Y : gen::UpAxis::Z;
-  if (up == gen::UpAxis::Y && ends_with(a.out, ".skel")) {
+  const generator::UpAxis up = a.up == "y" ? generator::UpAxis::Y : generator::UpAxis::Z;
+  if (up == generator::UpAxis::Y && ends_with(a.out, ".skel")) {
     throw InputError({},
                      "--up y: a skeleton file is arbor's own input and always z-up; --up is for "
                      ".obj, .ply and .pbrt");
   }
   if (!a.out.empty()) {
     refuse_overwriting("-o", a.out, {a.species});
-    if (ends_with(a.out, ".obj")) refuse_overwriting("-o", gen::mtl_path_for(a.out), {a.species});
+    if (ends_with(a.out, ".obj"))
+      refuse_overwriting("-o", generator::mtl_path_for(a.out), {a.species});
     prepare_output_folder(a.out);
   }
-  gen::Species species = gen::load_species(a.species);
+  return up;
+}
+
+}  // namespace
+
+int grow_command(const GrowRequest& a) {
+  const generator::UpAxis up = validate(a);
+  generator::Species species = formats::load_species(a.species);
   for (const std::string& w : species.warnings) std::fprintf(stderr, "%s\n", w.c_str());
 
   Progress progress("grow", 1);
-  gen::GrowOptions options;
+  generator::GrowOptions options;
   options.seed = a.seed;
   options.time = a.time;
   options.quality = a.quality;
   options.force = a.force;
   options.progress = &progress;
   const auto start = std::chrono::steady_clock::now();
-  gen::Skeleton skeleton;
+  generator::Skeleton skeleton;
   try {
-    skeleton = gen::grow_tree(species, options);
+    skeleton = generator::grow_tree(species, options);
   } catch (const RuntimeFailure& e) {
     // Refusing an absurd size is about the input: report it against the species file.
     throw InputError({a.species, 0, 0}, e.what());
   }
   progress.finish();
-  gen::TreeStats stats = gen::compute_stats(skeleton);
+  generator::TreeStats stats = generator::compute_stats(skeleton);
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   long long mesh_triangles = -1;
   if (!a.out.empty() || a.stats || a.json) {
     const auto geometry_start = std::chrono::steady_clock::now();
-    const gen::TreeGeometry geometry =
-        gen::build_tree_geometry(skeleton, gen::geometry_options_for(species));
-    gen::add_geometry_stats(
+    const generator::TreeGeometry geometry =
+        generator::build_tree_geometry(skeleton, generator::geometry_options_for(species));
+    generator::add_geometry_stats(
         stats, geometry.stats,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - geometry_start).count());
     if (ends_with(a.out, ".skel")) {
-      gen::write_skeleton_file(skeleton, a.out);
+      generator::write_skeleton_file(skeleton, a.out);
     } else if (ends_with(a.out, ".pbrt")) {
-      gen::write_pbrt(geometry, species.bark, species.leaf, a.out, up);
+      generator::write_pbrt(geometry, species.bark, species.leaf, a.out, up);
     } else if (!a.out.empty()) {
-      const gen::TreeMesh mesh = gen::tessellate(geometry);
+      const generator::TreeMesh mesh = generator::tessellate(geometry);
       mesh_triangles = static_cast<long long>(mesh.triangle_count());
-      const gen::MeshLooks looks{species.name, species.bark, species.leaf};
+      const generator::MeshLooks looks{species.name, species.bark, species.leaf};
       if (ends_with(a.out, ".obj"))
-        gen::write_obj(mesh, a.out, looks, up);
+        generator::write_obj(mesh, a.out, looks, up);
       else
-        gen::write_ply(mesh, a.out, looks, up);
+        generator::write_ply(mesh, a.out, looks, up);
     }
   }
   if (a.json) {
-    std::fputs(gen::stats_json(stats, species.name, a.seed, mesh_triangles).c_str(), stdout);
+    std::fputs(generator::stats_json(stats, species.name, a.seed, mesh_triangles).c_str(), stdout);
   } else if (a.stats) {
     std::printf("%s (seed %llu)\n%s", species.name.c_str(), static_cast<unsigned long long>(a.seed),
-                gen::stats_text(stats).c_str());
+                generator::stats_text(stats).c_str());
   }
   if (!a.out.empty() && !a.json) {
     if (ends_with(a.out, ".obj")) {
       std::fprintf(stderr, "arbor: wrote %s and %s\n", a.out.c_str(),
-                   gen::mtl_path_for(a.out).c_str());
+                   generator::mtl_path_for(a.out).c_str());
     } else {
       std::fprintf(stderr, "arbor: wrote %s\n", a.out.c_str());
     }

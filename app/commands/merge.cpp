@@ -15,7 +15,7 @@
 
 namespace arbor::app {
 
-using namespace arbor::trace;
+using namespace arbor::tracer;
 
 namespace {
 
@@ -94,7 +94,7 @@ int merge_command(const MergeRequest& req) {
   std::vector<FilmPart> parts = read_parts(req.parts);
   const std::size_t count = parts.size();
   const FilmFile merged = merge_film_parts(std::move(parts));
-  const ColorPipeline color(req.ocio_config);
+  const imaging::ColorPipeline color(req.ocio_config);
   write_render(merged.header, *merged.film, {req.exr, req.png, &color, StopReason::None});
   const Window& box = merged.film->window();
   std::fprintf(stderr, "arbor: merged %zu parts: %dx%d at (%d, %d), %s of %d%s\n", count,

@@ -17,7 +17,7 @@
 
 namespace arbor::app {
 
-using namespace arbor::trace;
+using namespace arbor::tracer;
 
 namespace {
 
@@ -37,7 +37,7 @@ std::string json_strings(const std::vector<std::string>& v) {
 
 // The frames of the plan: --frames A:B, checked against the [animation] and the outputs' '#'
 // runs; {-1} for a still.
-std::vector<int> plan_frames(const SceneDesc& scene, const PlanRequest& a) {
+std::vector<int> plan_frames(const formats::SceneDesc& scene, const PlanRequest& a) {
   std::vector<int> frames;
   if (!a.frames.empty()) {
     if (scene.animation.frames == 0)
@@ -128,8 +128,8 @@ namespace {
 
 // InputError unless the image splits into `columns` × `rows` tiles and its passes into
 // --pass-groups runs.
-void check_split(const PlanRequest& a, const RenderSettings& r, const PassPlan& passes, int columns,
-                 int rows) {
+void check_split(const PlanRequest& a, const formats::RenderSettings& r, const PassPlan& passes,
+                 int columns, int rows) {
   const int width = r.width, height = r.height, spp = passes.spp;
   if (columns < 1 || rows < 1 || columns > width || rows > height) {
     throw InputError({}, "--tiles " + a.tiles + ": the " + std::to_string(width) + "x" +
@@ -162,11 +162,11 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
   const std::vector<int> grid =
       parse_integers(a.tiles, 'x', 2, "--tiles", "CxR (columns x rows, e.g. 4x2)");
   const int columns = grid[0], rows = grid[1];
-  SceneDesc scene = load_scene(a.scene);
+  formats::SceneDesc scene = formats::load_scene(a.scene);
   apply_overrides(scene, a.overrides);
-  const RenderSettings& r = scene.render;
+  const formats::RenderSettings& r = scene.render;
   const int width = r.width, height = r.height;
-  const PassPlan passes = pass_plan_for(render_input(scene).render);
+  const PassPlan passes = pass_plan_for(scene::render_input(scene).render);
   check_split(a, r, passes, columns, rows);
   const std::vector<int> frames = plan_frames(scene, a);
   // A plan is a list a person and a scheduler read: bounded (docs/farm.md, "Limits").
@@ -181,7 +181,7 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
                 " parts per merge); a plan has at most " + std::to_string(kMaxPlanUnits) +
                 " units and " + std::to_string(kMaxMergeParts) + " parts per merge");
   }
-  const std::vector<std::string> inputs = scene_inputs(scene);
+  const std::vector<std::string> inputs = formats::scene_inputs(scene);
   const std::string arbor = a.arbor.empty() ? executable_path() : a.arbor;
   if (arbor.empty()) throw RuntimeFailure("cannot find the path of this arbor (/proc/self/exe)");
   std::vector<std::string> common = {arbor, "render", absolute(a.scene)};
@@ -189,7 +189,7 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
 
   std::vector<PlanStep> units, merges;
   for (const int frame : frames) {
-    const std::string out = absolute(frame >= 0 ? frame_path(a.exr, frame) : a.exr);
+    const std::string out = absolute(frame >= 0 ? formats::frame_path(a.exr, frame) : a.exr);
     refuse_overwriting("-o", out, inputs);
     const std::string folder = out.substr(0, out.size() - 4) + ".parts/";
     PlanStep merge;
@@ -210,7 +210,7 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
     merge.argv = {arbor, "merge", "-o", out};
     if (!a.png.empty()) {
       merge.argv.push_back("--png");
-      merge.argv.push_back(absolute(frame >= 0 ? frame_path(a.png, frame) : a.png));
+      merge.argv.push_back(absolute(frame >= 0 ? formats::frame_path(a.png, frame) : a.png));
     }
     for (const std::string& p : merge.inputs) merge.argv.push_back(p);
     merges.push_back(merge);

@@ -40,15 +40,15 @@
 
 namespace arbor::app {
 
-using namespace arbor::trace;
+using namespace arbor::tracer;
 
 namespace {
 
 // The weights for the EXR's arbor:treemaker_weights: one set when every tree shares it.
-std::string treemaker_weights_text(const Scene& scene) {
+std::string treemaker_weights_text(const scene::Scene& scene) {
   std::string text;
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
-    const mat::TreemakerWeights& w = scene.instances[i].treemaker;
+    const materials::TreemakerWeights& w = scene.instances[i].treemaker;
     char buf[160];
     std::snprintf(buf, sizeof buf, "ambient=%.9g lambert=%.9g height=%.9g radius=%.9g angle=%.9g",
                   w.ambient, w.lambert, w.height, w.radius, w.angle);
@@ -69,9 +69,9 @@ namespace {
 // the OCIO config.
 // Also sets `settings` to the same, readable: "name value" items joined by "; ", so that a
 // refused resume or merge can say which differ (settings_difference).
-std::string render_fingerprint(const SceneDesc& scene, const RenderRequest& a,
+std::string render_fingerprint(const formats::SceneDesc& scene, const RenderRequest& a,
                                const std::string& ocio, std::string& settings) {
-  const RenderSettings& r = scene.render;
+  const formats::RenderSettings& r = scene.render;
   std::ostringstream s;
   s.precision(17);
   s << "size " << r.width << "x" << r.height << "; spp " << r.spp << "; pass_spp " << r.pass_spp
@@ -83,7 +83,7 @@ std::string render_fingerprint(const SceneDesc& scene, const RenderRequest& a,
     << (scene.output.wants_ids() ? "kept" : "none") << "; --time "
     << (a.overrides.time ? std::to_string(*a.overrides.time) : std::string("none"));
   if (a.frame) s << "; frame " << *a.frame << "; clock " << scene.clock;
-  std::vector<std::string> files = scene_inputs(scene);
+  std::vector<std::string> files = formats::scene_inputs(scene);
   files.push_back(ocio);
   // The inputs by their place in the scene and their bytes, not by how their paths are spelt
   // (scene.toml and ./scene.toml are one render; the scene's own text names its inputs).
@@ -113,7 +113,7 @@ namespace {
 
 // An installed scene (<prefix>/share/arbor/scenes/) names its outputs relative to itself, in a
 // folder users do not write in: those outputs go under the current folder instead, with a note.
-void relocate_installed_outputs(SceneDesc& scene, const RenderRequest& a) {
+void relocate_installed_outputs(formats::SceneDesc& scene, const RenderRequest& a) {
   char shared[PATH_MAX], folder[PATH_MAX];
   const std::size_t slash = scene.path.find_last_of('/');
   const std::string scene_folder =
@@ -147,8 +147,8 @@ void relocate_installed_outputs(SceneDesc& scene, const RenderRequest& a) {
 // The scene as this command renders it: loaded, its installed outputs moved under the current
 // folder, the overrides, -o/--png, the frame and the checkpoint interval applied; InputError
 // when it has nothing to write or an output of the wrong kind.
-SceneDesc prepared_scene(const RenderRequest& a) {
-  SceneDesc scene = load_scene(a.scene);
+formats::SceneDesc prepared_scene(const RenderRequest& a) {
+  formats::SceneDesc scene = formats::load_scene(a.scene);
   relocate_installed_outputs(scene, a);
   apply_overrides(scene, a.overrides);
   scene.render.threads = a.threads;
@@ -158,7 +158,7 @@ SceneDesc prepared_scene(const RenderRequest& a) {
     scene.output.png.clear();
   }
   if (!a.png.empty()) scene.output.png = a.png;
-  apply_frame(scene, a.frame);
+  scene::apply_frame(scene, a.frame);
   if (a.checkpoint_seconds) scene.output.checkpoint_seconds = *a.checkpoint_seconds;
   const std::string& exr = scene.output.exr;
   if (exr.empty() && scene.output.png.empty()) {
@@ -180,8 +180,8 @@ struct RunRange {
   Window window;
 };
 
-RunRange run_range(const SceneDesc& scene, const RenderRequest& a, const PassPlan& plan) {
-  const RenderSettings& r = scene.render;
+RunRange run_range(const formats::SceneDesc& scene, const RenderRequest& a, const PassPlan& plan) {
+  const formats::RenderSettings& r = scene.render;
   RunRange run{0, plan.passes(), {0, 0, r.width, r.height}};
   if (!a.passes.empty()) {
     const std::vector<int> v =
@@ -229,9 +229,9 @@ RunRange run_range(const SceneDesc& scene, const RenderRequest& a, const PassPla
 }
 
 // InputError when an output would overwrite an input; then makes the outputs' missing folders.
-void check_outputs(const SceneDesc& scene) {
+void check_outputs(const formats::SceneDesc& scene) {
   const std::string& exr = scene.output.exr;
-  const std::vector<std::string> inputs = scene_inputs(scene);
+  const std::vector<std::string> inputs = formats::scene_inputs(scene);
   if (!exr.empty()) {
     refuse_overwriting("the EXR output", exr, inputs);
     refuse_overwriting("the EXR output's film state", state_path(exr), inputs, {exr});
@@ -242,9 +242,10 @@ void check_outputs(const SceneDesc& scene) {
   }
 }
 
-FilmHeader film_header(const SceneDesc& scene, const RenderInput& input, const RenderRequest& a,
-                       const ColorPipeline& color, const PassPlan& plan, const RunRange& run) {
-  const RenderSettings& r = scene.render;
+FilmHeader film_header(const formats::SceneDesc& scene, const scene::RenderInput& input,
+                       const RenderRequest& a, const imaging::ColorPipeline& color,
+                       const PassPlan& plan, const RunRange& run) {
+  const formats::RenderSettings& r = scene.render;
   FilmHeader header;
   header.fingerprint = render_fingerprint(scene, a, color.config_path(), header.settings);
   header.scene = scene.path;
@@ -262,7 +263,7 @@ FilmHeader film_header(const SceneDesc& scene, const RenderInput& input, const R
 
 // The film this run continues (--resume: the state beside the EXR, its totals copied into
 // `header`) or a new one; nullptr when a resume finds nothing left to do.
-std::unique_ptr<Film> open_film(const SceneDesc& scene, const RenderInput& input,
+std::unique_ptr<Film> open_film(const formats::SceneDesc& scene, const scene::RenderInput& input,
                                 const RenderRequest& a, const RunRange& run, FilmHeader& header) {
   if (!a.resume) {
     return std::make_unique<Film>(run.window, integrator_aov_names(input).size(), run.pass_begin,
@@ -306,7 +307,7 @@ std::unique_ptr<Film> open_film(const SceneDesc& scene, const RenderInput& input
 
 // What the render did, for the report.
 struct RunResult {
-  RenderStats stats;
+  imaging::RenderStats stats;
   RenderOutcome outcome;
   int first_pass = 0;
   std::size_t instances = 0, prototypes = 0;
@@ -315,18 +316,20 @@ struct RunResult {
 
 // Builds the scene and renders the film's remaining passes, writing checkpoints and, at the end,
 // the outputs (unless no pass finished).
-RunResult build_and_render(const SceneDesc& scene, const RenderInput& input, const RenderRequest& a,
-                           const ColorPipeline& color, const PassPlan& plan, const RunRange& run,
-                           FilmHeader& header, Film& film) {
-  const RenderSettings& r = scene.render;
-  const bool treemaker = input.render.integrator == Integrator::Treemaker;
+RunResult build_and_render(const formats::SceneDesc& scene, const scene::RenderInput& input,
+                           const RenderRequest& a, const imaging::ColorPipeline& color,
+                           const PassPlan& plan, const RunRange& run, FilmHeader& header,
+                           Film& film) {
+  const formats::RenderSettings& r = scene.render;
+  const bool treemaker = input.render.integrator == formats::Integrator::Treemaker;
   const std::uint64_t unit_passes =
       run.pass_begin > 0 ? static_cast<std::uint64_t>(run.pass_end - run.pass_begin) : 0;
   const EmbreeDevice device(r.threads > 0 ? "threads=" + std::to_string(r.threads) : "");
   Progress build_progress("build", 1);
-  const std::unique_ptr<const Scene> built = build_scene(
-      scene, color.config_path(), &build_progress,
-      geometry_budget(scene, Film::costs(), a.force, usable_memory_bytes(), unit_passes));
+  const std::unique_ptr<const scene::Scene> built =
+      scene::build_scene(scene, color.config_path(), &build_progress,
+                         scene::geometry_budget(scene, Film::costs(), a.force,
+                                                scene::usable_memory_bytes(), unit_passes));
   const World world(*built, device);
   build_progress.finish();
   if (treemaker) header.treemaker_weights = treemaker_weights_text(*built);
@@ -357,7 +360,7 @@ RunResult build_and_render(const SceneDesc& scene, const RenderInput& input, con
   result.first_pass = film.next_pass();
   Progress progress("render", 1);
   stop_gracefully_on_signal(true);
-  const ColorTransform to_output = color.to_output(scene.output.colorspace);
+  const imaging::ColorTransform to_output = color.to_output(scene.output.colorspace);
   result.outcome =
       treemaker ? render_treemaker(input, world, sky, to_output, job, film, &progress, result.stats)
                 : render_path(input, world, sky, to_output, job, film, &progress, result.stats);
@@ -376,9 +379,9 @@ RunResult build_and_render(const SceneDesc& scene, const RenderInput& input, con
   return result;
 }
 
-void report(const SceneDesc& scene, const PassPlan& plan, const RunRange& run, const Film& film,
-            const RunResult& result) {
-  const RenderStats& stats = result.stats;
+void report(const formats::SceneDesc& scene, const PassPlan& plan, const RunRange& run,
+            const Film& film, const RunResult& result) {
+  const imaging::RenderStats& stats = result.stats;
   const Window& window = run.window;
   const double seconds = std::max(stats.seconds, 1e-9);
   const int done = plan.samples(run.pass_begin, film.next_pass());
@@ -462,9 +465,10 @@ CLI::App* add_render_command(CLI::App& app, RenderRequest& render) {
 }
 
 int render_command(const RenderRequest& a) {
-  const SceneDesc scene = prepared_scene(a);
-  const RenderInput input = render_input(scene);
-  if (input.render.integrator != Integrator::Treemaker && input.output.aovs.has(Aov::Treemaker)) {
+  const formats::SceneDesc scene = prepared_scene(a);
+  const scene::RenderInput input = scene::render_input(scene);
+  if (input.render.integrator != formats::Integrator::Treemaker &&
+      input.output.aovs.has(imaging::Aov::Treemaker)) {
     throw InputError(scene.output.treemaker_aov_where,
                      "output.aovs lists \"treemaker\", which only the treemaker integrator writes "
                      "(render it with --integrator treemaker)");
@@ -472,15 +476,15 @@ int render_command(const RenderRequest& a) {
   const PassPlan plan = pass_plan_for(input.render);
   const RunRange run = run_range(scene, a, plan);
   check_outputs(scene);
-  const ColorPipeline color(a.ocio_config);
+  const imaging::ColorPipeline color(a.ocio_config);
   color.check(scene.output, scene.output.where);
   // Last of the checks (nothing is left behind when an earlier one fails): make missing folders.
   for (const std::string& out : {scene.output.exr, scene.output.png}) {
     if (!out.empty()) prepare_output_folder(out);
   }
   FilmHeader header = film_header(scene, input, a, color, plan, run);
-  check_render_memory(
-      scene, Film::costs(), a.force, usable_memory_bytes(),
+  scene::check_render_memory(
+      scene, Film::costs(), a.force, scene::usable_memory_bytes(),
       run.pass_begin > 0 ? static_cast<std::uint64_t>(run.pass_end - run.pass_begin) : 0);
   const std::unique_ptr<Film> film = open_film(scene, input, a, run, header);
   if (!film) return 0;

@@ -11,7 +11,7 @@
 #include "common/atomic_file.h"
 #include "common/strings.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
@@ -187,4 +187,4 @@ void write_ply(const TreeMesh& mesh, const std::string& path, const MeshLooks& l
   file.commit();
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -7,7 +7,7 @@
 #include "generator/geometry/tree_mesh.h"
 #include "generator/species.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // What the exported materials are: the species' name, bark and leaves.
 struct MeshLooks {
@@ -29,4 +29,4 @@ void write_obj(const TreeMesh& mesh, const std::string& path, const MeshLooks& l
 void write_ply(const TreeMesh& mesh, const std::string& path, const MeshLooks& looks,
                UpAxis up = UpAxis::Z);
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

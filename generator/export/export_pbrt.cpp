@@ -6,7 +6,7 @@
 #include "common/atomic_file.h"
 #include "generator/export/text_output.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
@@ -128,4 +128,4 @@ void write_pbrt(const TreeGeometry& g, const BarkLook& bark, const LeafLook& lea
   file.commit();
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -7,7 +7,7 @@
 #include "generator/species.h"
 #include "generator/geometry/tree_geometry.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // Writes a file to `Include` inside a pbrt-v4 world block: each curve segment as a cubic Bézier
 // "curve" of type "cylinder" (the exact Hermite segment converted to Bézier form, width = 2 ×
@@ -30,4 +30,4 @@ std::string pbrt_rgb(const char* name, const Rgb& c);
 // back reflectances; the cuticle's gloss has no place in it.
 std::string pbrt_leaf_material(const Rgb& front, const Rgb& back, const Rgb& transmittance);
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

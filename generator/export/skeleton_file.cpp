@@ -9,7 +9,7 @@
 #include "common/atomic_file.h"
 #include "generator/export/text_output.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 void put(std::string& out, float v) { put_number(out, v); }
@@ -128,4 +128,4 @@ void write_skeleton_file(const Skeleton& sk, const std::string& path) {
   file.commit();
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -5,9 +5,9 @@
 
 #include "generator/skeleton.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // Writes any Skeleton (atomically); formats/skeleton_file.h reads it back as the same skeleton.
 void write_skeleton_file(const Skeleton& skeleton, const std::string& path);
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -9,7 +9,7 @@
 
 #include "common/atomic_file.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // Appends v in the shortest form that reads back as the same float.
 inline void put_number(std::string& out, float v) {
@@ -54,4 +54,4 @@ inline void flush_if_large(std::string& buffer, AtomicFile& file) {
   }
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -8,7 +8,7 @@
 #include "common/json.h"
 #include "generator/geometry/leaf_shapes.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 long long TreeStats::stems() const {
   long long total = 0;
@@ -121,4 +121,4 @@ std::string stats_text(const TreeStats& st) {
   return out;
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -7,7 +7,7 @@
 #include "generator/skeleton.h"
 #include "generator/geometry/tree_geometry.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 struct TreeStats {
   std::vector<long long> stems_per_level;  // stems including clones, by level
@@ -37,4 +37,4 @@ std::string stats_json(const TreeStats& stats, const std::string& species, unsig
 // Human-readable lines for `--stats`.
 std::string stats_text(const TreeStats& stats);
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -10,7 +10,7 @@
 #include <glm/geometric.hpp>
 #include "common/math.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
@@ -159,4 +159,4 @@ const LeafOutline& leaf_outline(std::size_t shape) {
   return outlines[shape];
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

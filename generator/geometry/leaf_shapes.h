@@ -9,7 +9,7 @@
 
 #include <glm/vec2.hpp>
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // A leaf outline: x across the blade in [-0.5, 0.5], y along it in [0, 1] from the base (where
 // the leaf attaches) to the tip. uv = (x + 0.5, y).
@@ -43,4 +43,4 @@ struct LeafOutline {
 
 const LeafOutline& leaf_outline(std::size_t shape);
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -8,7 +8,7 @@
 
 #include "common/error.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
@@ -175,4 +175,4 @@ std::vector<FrameSample> rotation_minimizing_frames(const CubicSpline& spline,
   return frames;
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

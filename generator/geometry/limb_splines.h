@@ -6,7 +6,7 @@
 
 #include <glm/vec3.hpp>
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 using DVec3 = glm::dvec3;
 
@@ -52,4 +52,4 @@ std::vector<FrameSample> rotation_minimizing_frames(const CubicSpline& spline,
 // A unit vector ⟂ v (deterministic).
 DVec3 any_perpendicular(const DVec3& v);
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -9,7 +9,7 @@
 
 #include "common/error.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
@@ -291,4 +291,4 @@ std::vector<Limb> fit_limbs(const Skeleton& sk) {
   return limbs;
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

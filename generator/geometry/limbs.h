@@ -10,7 +10,7 @@
 #include "generator/geometry/limb_splines.h"
 #include "generator/skeleton.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // A knot of a limb: which skeleton point it is.
 struct KnotRef {
@@ -54,4 +54,4 @@ double start_bend_ratio(const Skeleton& skeleton, const Limb& limb);
 
 std::vector<Limb> fit_limbs(const Skeleton& skeleton);
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

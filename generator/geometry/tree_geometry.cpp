@@ -14,7 +14,7 @@
 #include "generator/models/weber_penn/weber_penn_formulas.h"
 #include "common/math.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
@@ -590,4 +590,4 @@ LeafMesh leaf_triangles(const TreeGeometry& geometry) {
   return m;
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -14,7 +14,7 @@
 
 #include "generator/skeleton.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 enum MaterialId : std::uint16_t {
   kMaterialBark = 0,
@@ -146,4 +146,4 @@ BarkCoordinates curve_bark(const CurveSet& curves, std::size_t segment, float u,
 BarkCoordinates grid_bark(const GridSet& grids, std::size_t grid, float u, float v);
 glm::vec3 grid_normal(const GridSet& grids, std::size_t grid, float u, float v);
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

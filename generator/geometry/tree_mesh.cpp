@@ -7,7 +7,7 @@
 #include <glm/geometric.hpp>
 #include "common/math.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
@@ -113,4 +113,4 @@ TreeMesh tessellate(const TreeGeometry& geometry, double tolerance) {
   return mesh;
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

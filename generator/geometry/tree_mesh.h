@@ -9,7 +9,7 @@
 
 #include "generator/geometry/tree_geometry.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 enum class MeshGroup : std::uint8_t { Bark = 0, Leaf = 1 };
 
@@ -33,4 +33,4 @@ TreeMesh tessellate(const TreeGeometry& geometry, double tolerance = 0.05);
 // (Σ over axes of max |x''(u)|, u in [0, 1]) deviate at most `error`: S / (8 n²) ≤ error.
 int lane_subdivisions(double second_derivative_sum, double error);
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -14,7 +14,7 @@
 #include "formats/species_file.h"
 #include "generator/export/export_mesh.h"
 
-namespace arbor::trace {
+namespace arbor::formats {
 namespace {
 
 void expect_error(const std::string& text, int line, int column, const std::string& fragment) {
@@ -97,11 +97,12 @@ TEST(ObjMesh, HugePolygonsAreFannedInLinearTime) {
 
 // What arbor exports, arbor reads back: the same vertices and triangles.
 TEST(ObjMesh, ReadsArborsOwnExport) {
-  const gen::Species s = gen::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/dogwood.tmpl");
-  const gen::TreeMesh tree = gen::tessellate(gen::build_tree_geometry(
-      gen::grow_tree(s, gen::GrowOptions{}), gen::geometry_options_for(s)));
+  const generator::Species s =
+      load_species(std::string(ARBOR_SOURCE_DIR) + "/species/dogwood.tmpl");
+  const generator::TreeMesh tree = generator::tessellate(generator::build_tree_geometry(
+      generator::grow_tree(s, generator::GrowOptions{}), generator::geometry_options_for(s)));
   const std::string path = ::testing::TempDir() + "export_roundtrip.obj";
-  gen::write_obj(tree, path, {s.name, s.bark, s.leaf});
+  generator::write_obj(tree, path, {s.name, s.bark, s.leaf});
   const ObjMesh m = load_obj(path);
   ASSERT_EQ(m.positions.size(), tree.positions.size());
   EXPECT_EQ(m.indices, tree.indices);
@@ -115,4 +116,4 @@ TEST(ObjMesh, ReadsArborsOwnExport) {
 }
 
 }  // namespace
-}  // namespace arbor::trace
+}  // namespace arbor::formats

@@ -8,7 +8,7 @@
 
 #include "formats/scene_desc.h"
 
-namespace arbor::trace {
+namespace arbor::formats {
 
 namespace {
 
@@ -139,7 +139,7 @@ aovs = ["treemaker", "albedo"]
   EXPECT_DOUBLE_EQ(*s.trees[0].treemaker.angle, 0.0);
   EXPECT_FALSE(s.trees[0].treemaker.lambert.has_value());  // unset weights keep the template's
   EXPECT_DOUBLE_EQ(*s.forests[0].treemaker.lambert, 1.5);
-  EXPECT_TRUE(s.output.aovs.has(Aov::Treemaker));
+  EXPECT_TRUE(s.output.aovs.has(imaging::Aov::Treemaker));
   expect_error("[[tree]]\nspecies = \"a.toml\"\n[tree.treemaker]\nshadow = 1\n", 4, 1,
                "unknown key 'shadow' in [tree.treemaker]");
   expect_error("[[tree]]\nspecies = \"a.toml\"\n[tree.treemaker]\nheight = -0.1\n", 4, 10,
@@ -193,9 +193,9 @@ TEST(SceneFile, StructuralRulesAreChecked) {
   expect_error("[render\n", 1, 8, "");
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::formats
 
-namespace arbor::trace {
+namespace arbor::formats {
 
 // Camera, output-extension and colour errors once named no file or position and surfaced only
 // when rendering started; the loader finds them, at the key.
@@ -212,4 +212,4 @@ TEST(SceneFile, CameraAndOutputErrorsAreFoundWithTheirKey) {
   expect_error("[output]\npng = \"out/a.exr\"\n", 2, 7, "output.png must name a .png file");
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::formats

@@ -2,4 +2,6 @@
 #include "fuzz_target.h"
 #include "formats/species_file.h"
 
-ARBOR_FUZZ_TARGET({ arbor::fuzz::grow_and_check(arbor::gen::parse_arbaro_xml(text, "fuzz.xml")); })
+ARBOR_FUZZ_TARGET({
+  arbor::fuzz::grow_and_check(arbor::formats::parse_arbaro_xml(text, "fuzz.xml"));
+})

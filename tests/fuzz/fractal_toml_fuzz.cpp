@@ -3,7 +3,7 @@
 #include "formats/species_file.h"
 
 ARBOR_FUZZ_TARGET({
-  const arbor::gen::Species s = arbor::gen::parse_species_toml(text, "fuzz.toml");
-  if (s.model() != arbor::gen::Model::Fractal) return 0;
+  const arbor::generator::Species s = arbor::formats::parse_species_toml(text, "fuzz.toml");
+  if (s.model() != arbor::generator::Model::Fractal) return 0;
   arbor::fuzz::grow_and_check(s);
 })

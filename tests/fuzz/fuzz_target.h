@@ -34,11 +34,12 @@ inline bool finite(const glm::vec3& v) {
 inline bool finite(const glm::vec4& v) { return finite(glm::vec3(v)) && std::isfinite(v.w); }
 
 // A grown or read tree must be valid, and small ones must turn into finite geometry.
-inline void check_tree(const gen::Skeleton& sk, const gen::GeometryOptions& options = {}) {
-  require(gen::validate(sk).empty(), "the skeleton is valid");
-  require(gen::scale_problem(sk).empty(), "the tree is within scale");
+inline void check_tree(const generator::Skeleton& sk,
+                       const generator::GeometryOptions& options = {}) {
+  require(generator::validate(sk).empty(), "the skeleton is valid");
+  require(generator::scale_problem(sk).empty(), "the tree is within scale");
   if (sk.points.size() > 3000 || sk.leaves.size() > 20000) return;
-  const gen::TreeGeometry g = gen::build_tree_geometry(sk, options);
+  const generator::TreeGeometry g = generator::build_tree_geometry(sk, options);
   for (const glm::vec4& p : g.curves.points) require(finite(p), "curve points are finite");
   for (const glm::vec4& t : g.curves.tangents) require(finite(t), "curve tangents are finite");
   for (const glm::vec3& v : g.grids.vertices) require(finite(v), "grid vertices are finite");
@@ -48,11 +49,11 @@ inline void check_tree(const gen::Skeleton& sk, const gen::GeometryOptions& opti
 }
 
 // Grows a species of any model when it is small (a few thousand stems) and checks the tree.
-inline void grow_and_check(const gen::Species& species) {
-  gen::GrowOptions o;
+inline void grow_and_check(const generator::Species& species) {
+  generator::GrowOptions o;
   o.max_stems = 2000;
   o.max_leaves = 20000;
-  check_tree(gen::grow_tree(species, o), gen::geometry_options_for(species));
+  check_tree(generator::grow_tree(species, o), generator::geometry_options_for(species));
 }
 
 }  // namespace arbor::fuzz

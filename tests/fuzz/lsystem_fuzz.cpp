@@ -4,8 +4,8 @@
 #include "formats/lsystem_file.h"
 
 ARBOR_FUZZ_TARGET({
-  arbor::gen::Species s;
+  arbor::generator::Species s;
   s.path = "fuzz.lsys";
-  s.params = arbor::gen::parse_lsystem(text, s.path);
+  s.params = arbor::formats::parse_lsystem(text, s.path);
   arbor::fuzz::grow_and_check(s);
 })

@@ -3,7 +3,7 @@
 #include "formats/obj_mesh.h"
 
 ARBOR_FUZZ_TARGET({
-  const arbor::trace::ObjMesh m = arbor::trace::parse_obj(text, "fuzz.obj");
+  const arbor::formats::ObjMesh m = arbor::formats::parse_obj(text, "fuzz.obj");
   for (const std::uint32_t i : m.indices)
     arbor::fuzz::require(i < m.positions.size(), "indices name vertices");
   for (const glm::vec3& p : m.positions)

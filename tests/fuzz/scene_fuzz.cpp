@@ -3,4 +3,4 @@
 #include "fuzz_target.h"
 #include "formats/scene_desc.h"
 
-ARBOR_FUZZ_TARGET({ arbor::trace::parse_scene(text, "fuzz/scene.toml"); })
+ARBOR_FUZZ_TARGET({ arbor::formats::parse_scene(text, "fuzz/scene.toml"); })

@@ -2,4 +2,6 @@
 #include "fuzz_target.h"
 #include "formats/skeleton_file.h"
 
-ARBOR_FUZZ_TARGET({ arbor::fuzz::check_tree(arbor::gen::parse_skeleton_file(text, "fuzz.skel")); })
+ARBOR_FUZZ_TARGET({
+  arbor::fuzz::check_tree(arbor::formats::parse_skeleton_file(text, "fuzz.skel"));
+})

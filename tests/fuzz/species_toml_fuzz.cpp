@@ -3,5 +3,5 @@
 #include "formats/species_file.h"
 
 ARBOR_FUZZ_TARGET({
-  arbor::fuzz::grow_and_check(arbor::gen::parse_species_toml(text, "fuzz.toml"));
+  arbor::fuzz::grow_and_check(arbor::formats::parse_species_toml(text, "fuzz.toml"));
 })

@@ -4,8 +4,8 @@
 #include "formats/treemaker_template.h"
 
 ARBOR_FUZZ_TARGET({
-  arbor::gen::Species s;
+  arbor::generator::Species s;
   s.path = "fuzz.tmpl";
-  s.params = arbor::gen::parse_treemaker_template(text, s.path);
+  s.params = arbor::formats::parse_treemaker_template(text, s.path);
   arbor::fuzz::grow_and_check(s);
 })

@@ -12,7 +12,7 @@
 #include "generator/models/weber_penn/weber_penn.h"
 #include "formats/species_file.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 std::string slurp(const std::string& path) {
@@ -29,7 +29,8 @@ std::size_t count(const std::string& text, const std::string& what) {
 }  // namespace
 
 TEST(ExportPbrt, WritesEveryCurveAsABezierCylinderAndTheMeshes) {
-  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
+  const Species s =
+      formats::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
   GrowOptions o;
   o.quality = 0.1;
   const TreeGeometry g = build_tree_geometry(grow_weber_penn(s.weber_penn(), o));
@@ -57,4 +58,4 @@ TEST(ExportPbrt, WritesEveryCurveAsABezierCylinderAndTheMeshes) {
   std::remove(path.c_str());
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

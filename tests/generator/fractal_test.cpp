@@ -13,7 +13,7 @@
 #include "generator/export/tree_stats.h"
 #include "formats/species_file.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
@@ -160,24 +160,25 @@ TEST(Fractal, ConeWidensAsChildrenGrow) {
 }
 
 TEST(Fractal, SpeciesFilesLoadAndBadKeysAreErrors) {
-  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/fractal_broadleaf.toml");
+  const Species s =
+      formats::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/fractal_broadleaf.toml");
   EXPECT_EQ(s.model(), Model::Fractal);
   EXPECT_EQ(s.fractal().depth, 6);
   try {
-    parse_species_toml("model = \"fractal\"\nbranches = 2.5\n", "f.toml");
+    formats::parse_species_toml("model = \"fractal\"\nbranches = 2.5\n", "f.toml");
     FAIL();
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().line, 2);
     EXPECT_NE(e.message().find("whole number"), std::string::npos);
   }
   try {
-    parse_species_toml("model = \"fractal\"\nShape = 3\n", "f.toml");
+    formats::parse_species_toml("model = \"fractal\"\nShape = 3\n", "f.toml");
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(e.message().find("unknown key 'Shape' for model = \"fractal\""), std::string::npos);
   }
   try {
-    parse_species_toml("model = \"fractal\"\ncone_angle = 200\n", "f.toml");
+    formats::parse_species_toml("model = \"fractal\"\ncone_angle = 200\n", "f.toml");
     FAIL();
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().column, 14);
@@ -196,16 +197,16 @@ TEST(Fractal, AbsurdSizesAreRefusedWithTheEstimate) {
   }
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // Found by fuzzing (tests/fuzz/regressions/): size ratio 0.05 over seven levels makes twigs of
 // 39 nm, whose splines are NaN in float; such a tree is refused, naming its file.
 TEST(Fractal, TwigsShorterThanAMicrometreAreRefused) {
   const std::string path =
       std::string(ARBOR_SOURCE_DIR) + "/tests/fuzz/regressions/fractal_tiny_twigs.toml";
-  const Species s = load_species(path);
+  const Species s = formats::load_species(path);
   try {
     grow_tree(s, GrowOptions{});
     FAIL() << "accepted";
@@ -215,4 +216,4 @@ TEST(Fractal, TwigsShorterThanAMicrometreAreRefused) {
   }
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -11,7 +11,7 @@
 #include "generator/models/weber_penn/weber_penn.h"
 #include "formats/species_file.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
@@ -21,7 +21,8 @@ std::vector<DVec3> wiggly_points() {
 }
 
 Skeleton grow_species(const char* name, std::uint64_t seed = 1) {
-  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + name + ".toml");
+  const Species s =
+      formats::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + name + ".toml");
   GrowOptions o;
   o.seed = seed;
   o.quality = 0.2;
@@ -175,4 +176,4 @@ TEST(Limbs, BarkArcLengthIsContinuousAndIncreasing) {
   }
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

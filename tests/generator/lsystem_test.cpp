@@ -15,25 +15,25 @@
 #include "formats/lsystem_file.h"
 #include "formats/species_file.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
 void expect_error(const std::string& text, int line, int column, const std::string& fragment) {
-  testing::expect_input_error([&] { parse_lsystem(text, "t.lsys"); }, "t.lsys", line, column,
-                              fragment);
+  testing::expect_input_error([&] { formats::parse_lsystem(text, "t.lsys"); }, "t.lsys", line,
+                              column, fragment);
 }
 
 Skeleton grow(const std::string& text, std::uint64_t seed = 1) {
   LSystemOptions o;
   o.seed = seed;
-  return grow_lsystem(parse_lsystem(text, "t.lsys"), o);
+  return grow_lsystem(formats::parse_lsystem(text, "t.lsys"), o);
 }
 
 }  // namespace
 
 TEST(LSystem, ParsesTheGrammar) {
-  const LSystem s = parse_lsystem(
+  const LSystem s = formats::parse_lsystem(
       "# comment\niterations = 3;\nangle = 30;\nA: f [-s(0.6)C] f(2) +(10) <>v^ h(2)u(0.5)l(1) "
       "r(0.5) B;\n"
       "B(2): f;\nB(1): f f;\nC: f;\n",
@@ -82,7 +82,8 @@ TEST(LSystem, IterationsBoundTheRecursion) {
     EXPECT_EQ(segments, (1LL << (n + 1)) - 1) << n;
     EXPECT_EQ(validate(sk), "");
   }
-  EXPECT_DOUBLE_EQ(estimate_segments(parse_lsystem("iterations = 5;\nA: f[+A][-A];\n", "t")), 63.0);
+  EXPECT_DOUBLE_EQ(
+      estimate_segments(formats::parse_lsystem("iterations = 5;\nA: f[+A][-A];\n", "t")), 63.0);
 }
 
 TEST(LSystem, TurtleStepsTurnsAndMultipliers) {
@@ -132,8 +133,8 @@ TEST(LSystem, SameSeedSameTreeAndRandomnessVaries) {
 
 TEST(LSystem, RuleWeightsChooseAlternativesInProportion) {
   // B(3): f and B(1): f f — the first is chosen about 3 times in 4.
-  const LSystem s =
-      parse_lsystem("iterations = 1;\nA: f[B][B][B][B][B][B][B][B];\nB(3): f;\nB(1): f f;\n", "t");
+  const LSystem s = formats::parse_lsystem(
+      "iterations = 1;\nA: f[B][B][B][B][B][B][B][B];\nB(3): f;\nB(1): f f;\n", "t");
   long long one = 0, two = 0;
   for (std::uint64_t seed = 0; seed < 200; ++seed) {
     LSystemOptions o;
@@ -146,7 +147,7 @@ TEST(LSystem, RuleWeightsChooseAlternativesInProportion) {
 }
 
 TEST(LSystem, AbsurdSizesAreRefusedWithTheEstimate) {
-  const LSystem s = parse_lsystem("iterations = 30;\nA: f[+A][-A][^A];\n", "t");
+  const LSystem s = formats::parse_lsystem("iterations = 30;\nA: f[+A][-A][^A];\n", "t");
   try {
     grow_lsystem(s, LSystemOptions{});
     FAIL() << "an absurd L-system was grown";
@@ -157,7 +158,7 @@ TEST(LSystem, AbsurdSizesAreRefusedWithTheEstimate) {
 
 TEST(LSystem, RecursionThatDrawsNothingIsRefusedNotHung) {
   // Draws no segment but would expand 2^64 rules: refused at once with the estimate.
-  const LSystem s = parse_lsystem("iterations = 64;\nA: A A;\n", "t");
+  const LSystem s = formats::parse_lsystem("iterations = 64;\nA: A A;\n", "t");
   try {
     grow_lsystem(s, LSystemOptions{});
     FAIL() << "an unbounded recursion was accepted";
@@ -179,7 +180,8 @@ TEST(LSystem, SeveralTrunksAreRefused) {
 TEST(LSystem, ShippedExamplesGrowValidTrees) {
   for (const char* name : {"lsystem_2d_branching", "lsystem_weed", "lsystem_bush",
                            "lsystem_realistic_tree", "lsystem_almost_real"}) {
-    const Species sp = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + name + ".lsys");
+    const Species sp =
+        formats::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + name + ".lsys");
     GrowOptions o;
     const Skeleton sk = grow_tree(sp, o);
     EXPECT_EQ(validate(sk), "") << name;
@@ -188,9 +190,9 @@ TEST(LSystem, ShippedExamplesGrowValidTrees) {
   }
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // 50,000 nested brackets once overflowed the stack: the nesting is bounded with a positioned
 // error, and the deepest nesting allowed still grows at the most iterations allowed.
@@ -210,13 +212,14 @@ TEST(LSystem, NumbersTooLargeForADoubleAreInputErrors) {
   expect_error("step = " + std::string(400, '9') + ";\nA: f;\n", 1, 8, "too large");
   expect_error("A: f(" + std::string(400, '1') + ");\n", 1, 6, "too large");
   // Long but representable numbers are read exactly as short ones.
-  const LSystem s = parse_lsystem("angle = 30." + std::string(300, '0') + ";\nA: f;\n", "t.lsys");
+  const LSystem s =
+      formats::parse_lsystem("angle = 30." + std::string(300, '0') + ";\nA: f;\n", "t.lsys");
   EXPECT_EQ(s.angle, 30.0);
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // Found by fuzzing: s(1e23) sent the turtle past float range (NaN and inf geometry), and a
 // move of length 0 made a limb segment with no direction.
@@ -232,4 +235,4 @@ TEST(LSystem, MovesOutOfRangeOrOfNoLengthAreRefusedAtTheAction) {
   expect_grow_error("iterations = 40;\nA: f s(0.5) A;\n", 2, 4, "at least 1 micrometre");
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -16,13 +16,13 @@
 #include "formats/species_file.h"
 #include "generator/export/skeleton_file.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
 void expect_error(const std::string& text, int line, int column, const std::string& fragment) {
-  testing::expect_input_error([&] { parse_skeleton_file(text, "t.skel"); }, "t.skel", line, column,
-                              fragment);
+  testing::expect_input_error([&] { formats::parse_skeleton_file(text, "t.skel"); }, "t.skel", line,
+                              column, fragment);
 }
 
 // Bytewise equality of two arrays (memcmp on empty vectors would pass null pointers).
@@ -43,7 +43,7 @@ std::string slurp(const std::string& path) {
 
 TEST(SkeletonFile, ReadsPointsAndConnections) {
   // A Y: a trunk 0→1→2 with a branch 1→3; radius given per point or by default.
-  const Skeleton sk = parse_skeleton_file(
+  const Skeleton sk = formats::parse_skeleton_file(
       "# a small tree\nradius 0.05\npoint 0 0 0 0 0.2\npoint 1 0 0 2 0.15\npoint 2 0 0 4 0.1\n"
       "point 3 1 0 3\nconnect 0 1\nconnect 1 2\nconnect 1 3\n",
       "t.skel");
@@ -91,14 +91,14 @@ TEST(SkeletonFile, UnconnectedPointsAreErrors) {
 TEST(SkeletonFile, RoundTripsAnyModelExactly) {
   for (const char* name : {"ca_black_oak.toml", "quaking_aspen.toml", "lsystem_almost_real.lsys",
                            "fractal_broadleaf.toml", "dogwood.tmpl"}) {
-    const Species sp = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + name);
+    const Species sp = formats::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + name);
     GrowOptions o;
     o.seed = 2;
     o.quality = 0.3;
     const Skeleton original = grow_tree(sp, o);
     const std::string path = ::testing::TempDir() + "round.skel";
     write_skeleton_file(original, path);
-    const Skeleton back = parse_skeleton_file(slurp(path), path);
+    const Skeleton back = formats::parse_skeleton_file(slurp(path), path);
     ASSERT_EQ(back.stems.size(), original.stems.size()) << name;
     ASSERT_EQ(back.leaves.size(), original.leaves.size()) << name;
     for (std::size_t i = 0; i < original.stems.size(); ++i) {
@@ -116,9 +116,9 @@ TEST(SkeletonFile, RoundTripsAnyModelExactly) {
   }
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // A chain of limbs nested 20,000 deep once overflowed the stack (a recursion per stem).
 TEST(SkeletonFile, DeeplyNestedBranchesAreReadWithoutRecursion) {
@@ -132,7 +132,7 @@ TEST(SkeletonFile, DeeplyNestedBranchesAreReadWithoutRecursion) {
     text += "connect " + std::to_string(at) + " " + std::to_string(2 * k + 1) + "\n";
     text += "connect " + std::to_string(at) + " " + std::to_string(2 * k + 2) + "\n";
   }
-  const Skeleton sk = parse_skeleton_file(text, "t.skel");
+  const Skeleton sk = formats::parse_skeleton_file(text, "t.skel");
   EXPECT_EQ(validate(sk), "");
   EXPECT_EQ(sk.stems.size(), static_cast<std::size_t>(depth) + 1);
 }
@@ -154,7 +154,7 @@ TEST(SkeletonFile, ManyChildrenOfOnePointAreRead) {
     text += "point " + c + " 0 0 5 0.001\npoint " + d + " 2 2 " + std::to_string(k) + " 0.001\n";
     text += "branch " + c + " on 0 1 0.5\nconnect " + c + " " + d + "\n";
   }
-  const Skeleton sk = parse_skeleton_file(text, "t.skel");
+  const Skeleton sk = formats::parse_skeleton_file(text, "t.skel");
   EXPECT_EQ(validate(sk), "");
   // The trunk continues into point 1's first limb; every other limb and branch is a stem.
   EXPECT_EQ(sk.stems.size(), static_cast<std::size_t>(children) + 1000);
@@ -167,9 +167,9 @@ TEST(SkeletonFile, CoincidentPointsOnALimbAreRefused) {
   expect_error("point 0 0 0 0\npoint 1 0 0 0\nconnect 0 1\n", 3, 1, "same position");
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // Found by fuzzing: a coordinate of 1e23 overflowed the splines' float arithmetic (NaN curves).
 TEST(SkeletonFile, CoordinatesBeyondAThousandKilometresAreRefused) {
@@ -180,4 +180,4 @@ TEST(SkeletonFile, CoordinatesBeyondAThousandKilometresAreRefused) {
                "closer than 1 micrometre");
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -12,7 +12,7 @@
 #include "formats/species_file.h"
 #include "generator/grow.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
@@ -22,13 +22,13 @@ const char* const kMinimal = "model = \"weber-penn\"\n";
 
 // Expects parsing `text` to fail at line:column with a message containing `fragment`.
 void expect_toml_error(const std::string& text, int line, int column, const std::string& fragment) {
-  testing::expect_input_error([&] { parse_species_toml(text, "t.toml"); }, "t.toml", line, column,
-                              fragment);
+  testing::expect_input_error([&] { formats::parse_species_toml(text, "t.toml"); }, "t.toml", line,
+                              column, fragment);
 }
 
 void expect_xml_error(const std::string& text, int line, const std::string& fragment) {
   try {
-    parse_arbaro_xml(text, "t.xml");
+    formats::parse_arbaro_xml(text, "t.xml");
     ADD_FAILURE() << "accepted:\n" << text;
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().path, "t.xml");
@@ -40,7 +40,7 @@ void expect_xml_error(const std::string& text, int line, const std::string& frag
 }  // namespace
 
 TEST(SpeciesToml, ShippedSpeciesLoad) {
-  const Species aspen = load_species(species_dir() + "quaking_aspen.toml");
+  const Species aspen = formats::load_species(species_dir() + "quaking_aspen.toml");
   EXPECT_EQ(aspen.name, "Quaking Aspen");
   const WeberPennParams& p = aspen.weber_penn();
   EXPECT_EQ(p.shape, 7);
@@ -50,7 +50,7 @@ TEST(SpeciesToml, ShippedSpeciesLoad) {
   EXPECT_EQ(p.level[2].curve_res, 3);
   EXPECT_DOUBLE_EQ(p.leaf_scale, 0.17);
   EXPECT_DOUBLE_EQ(aspen.bark.albedo[0], 0.58);
-  const Species willow = load_species(species_dir() + "weeping_willow.toml");
+  const Species willow = formats::load_species(species_dir() + "weeping_willow.toml");
   EXPECT_EQ(willow.weber_penn().level[0].base_splits, 2);
   EXPECT_DOUBLE_EQ(willow.weber_penn().level[1].rotate, -120.0);
   EXPECT_DOUBLE_EQ(willow.weber_penn().prune_power_low, 0.001);
@@ -63,7 +63,7 @@ TEST(SpeciesToml, ShippedWeberPennSpeciesSwayInTheirBreezeExceptTheCactus) {
   for (const char* name :
        {"quaking_aspen", "black_tupelo", "weeping_willow", "ca_black_oak", "sassafras",
         "lombardy_poplar", "black_spruce", "balsam_fir", "queen_palm", "saguaro_cactus"}) {
-    const Species sp = load_species(species_dir() + name + ".toml");
+    const Species sp = formats::load_species(species_dir() + name + ".toml");
     GrowOptions now, later;
     later.time = 0.5;
     const Skeleton a = grow_tree(sp, now), b = grow_tree(sp, later);
@@ -82,7 +82,7 @@ TEST(SpeciesToml, ShippedWeberPennSpeciesSwayInTheirBreezeExceptTheCactus) {
 }
 
 TEST(SpeciesToml, MinimalFileGetsDefaults) {
-  const Species s = parse_species_toml(kMinimal, "m.toml");
+  const Species s = formats::parse_species_toml(kMinimal, "m.toml");
   EXPECT_EQ(s.weber_penn().levels, 1);
   EXPECT_EQ(s.name, "m.toml");
 }
@@ -133,37 +133,39 @@ TEST(SpeciesToml, LevelRulesAreChecked) {
 TEST(SpeciesToml, InconsistentParametersPointAtTheKey) {
   expect_toml_error(std::string(kMinimal) + "Scale = 5\nScaleV = 6\n", 3, 10, "ScaleV");
   // CA Black Oak has ScaleV = Scale: allowed.
-  EXPECT_NO_THROW(parse_species_toml(std::string(kMinimal) + "Scale = 10\nScaleV = 10\n", "o"));
+  EXPECT_NO_THROW(
+      formats::parse_species_toml(std::string(kMinimal) + "Scale = 10\nScaleV = 10\n", "o"));
 }
 
 TEST(SpeciesToml, LeafHingeAngleIsReadAndBounded) {
-  const Species s = parse_species_toml(std::string(kMinimal) + "[leaf]\nhinge_angle = 25\n", "h");
+  const Species s =
+      formats::parse_species_toml(std::string(kMinimal) + "[leaf]\nhinge_angle = 25\n", "h");
   EXPECT_DOUBLE_EQ(s.leaf.hinge_angle, 25.0);
   expect_toml_error(std::string(kMinimal) + "[leaf]\nhinge_angle = 120\n", 3, 15, "[0, 90]");
 }
 
 TEST(SpeciesToml, LeafCuticleIsReadAndBoundedWithAGlossyDefault) {
-  const Species s = parse_species_toml(
+  const Species s = formats::parse_species_toml(
       std::string(kMinimal) + "[leaf]\ncuticle_ior = 1.5\ncuticle_roughness = 0.25\n", "c");
   EXPECT_DOUBLE_EQ(s.leaf.cuticle_ior, 1.5);
   EXPECT_DOUBLE_EQ(s.leaf.cuticle_roughness, 0.25);
-  const Species d = parse_species_toml(kMinimal, "c");
+  const Species d = formats::parse_species_toml(kMinimal, "c");
   EXPECT_DOUBLE_EQ(d.leaf.cuticle_ior, 1.45);  // wax, docs/species-format.md
   EXPECT_DOUBLE_EQ(d.leaf.cuticle_roughness, 0.5);
-  EXPECT_NO_THROW(
-      parse_species_toml(std::string(kMinimal) + "[leaf]\ncuticle_ior = 1.0\n", "c"));  // matte
+  EXPECT_NO_THROW(formats::parse_species_toml(std::string(kMinimal) + "[leaf]\ncuticle_ior = 1.0\n",
+                                              "c"));  // matte
   expect_toml_error(std::string(kMinimal) + "[leaf]\ncuticle_ior = 0.9\n", 3, 15, "[1, 3]");
   expect_toml_error(std::string(kMinimal) + "[leaf]\ncuticle_roughness = 1.2\n", 3, 21, "[0, 1]");
   expect_toml_error(std::string(kMinimal) + "[leaf]\ncuticle_roughness = nan\n", 3, 21, "finite");
 }
 
 TEST(SpeciesToml, RootButtressesAreReadAndBounded) {
-  const Species s = parse_species_toml(
+  const Species s = formats::parse_species_toml(
       std::string(kMinimal) + "[roots]\nbuttresses = 5\nheight = 4\nspread = 1.5\n", "r");
   EXPECT_EQ(s.roots.buttresses, 5);
   EXPECT_DOUBLE_EQ(s.roots.height, 4.0);
   EXPECT_DOUBLE_EQ(s.roots.spread, 1.5);
-  EXPECT_EQ(parse_species_toml(kMinimal, "r").roots.buttresses, 0);  // off by default
+  EXPECT_EQ(formats::parse_species_toml(kMinimal, "r").roots.buttresses, 0);  // off by default
   expect_toml_error(std::string(kMinimal) + "[roots]\nbuttresses = 2.5\n", 3, 14,
                     "whole number in [0, 16]");
   expect_toml_error(std::string(kMinimal) + "[roots]\nbuttresses = 17\n", 3, 14, "[0, 16]");
@@ -180,17 +182,17 @@ TEST(SpeciesToml, LeafMustNotCreateEnergy) {
 
 TEST(SpeciesFile, UnreadableAndUnknownFormatsAreErrors) {
   try {
-    load_species("/nonexistent/tree.toml");
+    formats::load_species("/nonexistent/tree.toml");
     FAIL();
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().path, "/nonexistent/tree.toml");
     EXPECT_NE(e.message().find("species does not exist"), std::string::npos) << e.message();
   }
-  EXPECT_THROW(load_species("tree.obj"), InputError);
+  EXPECT_THROW(formats::load_species("tree.obj"), InputError);
 }
 
 TEST(ArbaroXml, ReadsParametersWithLevelPrefixes) {
-  const Species s = parse_arbaro_xml(
+  const Species s = formats::parse_arbaro_xml(
       "<?xml version='1.0'?>\n<arbaro>\n<species name='test'>\n"
       "<param name='Shape' value='4'/>\n<param name='Levels' value='3'/>\n"
       "<param name='1DownAngle' value='60'/>\n<param name='0BaseSplits' value='2'/>\n"
@@ -207,7 +209,7 @@ TEST(ArbaroXml, ReadsParametersWithLevelPrefixes) {
 }
 
 TEST(ArbaroXml, ArbaroExtensionsAreWarnedAboutAndIgnored) {
-  const Species s = parse_arbaro_xml(
+  const Species s = formats::parse_arbaro_xml(
       "<arbaro><species name='x'>\n<param name='Smooth' value='0.5'/>\n"
       "<param name='1BranchDist' value='1'/>\n<param name='0DownAngle' value='0'/>\n"
       "</species></arbaro>",
@@ -238,9 +240,9 @@ TEST(ArbaroXml, ErrorsCarryTheirLine) {
                    "finite");
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // Text before the root element was once accepted; text is not part of the format anywhere.
 TEST(ArbaroXml, TextOutsideTheElementsIsRefused) {
@@ -255,13 +257,13 @@ TEST(ArbaroXml, TextOutsideTheElementsIsRefused) {
       3, "unexpected text in <species>");
   expect_xml_error(body + "<arbaro/>\n", 4, "a second root element");
   // Declarations, comments and white space stay allowed.
-  EXPECT_NO_THROW(
-      parse_arbaro_xml("<?xml version='1.0'?>\n<!-- a tree -->\n" + body + "  \n", "t.xml"));
+  EXPECT_NO_THROW(formats::parse_arbaro_xml(
+      "<?xml version='1.0'?>\n<!-- a tree -->\n" + body + "  \n", "t.xml"));
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // Every shipped species, whatever its model, grows a skeleton that satisfies the invariants the
 // geometry relies on (one root, parents before children, finite points, children no thicker
@@ -270,7 +272,7 @@ TEST(Species, EveryShippedSpeciesGrowsAValidSkeleton) {
   const std::string folder = std::string(ARBOR_SOURCE_DIR) + "/species";
   int grown = 0;
   for (const auto& entry : std::filesystem::directory_iterator(folder)) {
-    const Species species = load_species(entry.path().string());
+    const Species species = formats::load_species(entry.path().string());
     for (std::uint64_t seed : {1u, 8u}) {
       GrowOptions options;
       options.seed = seed;
@@ -286,4 +288,4 @@ TEST(Species, EveryShippedSpeciesGrowsAValidSkeleton) {
   EXPECT_GE(grown, 20);  // the shipped species of every model
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

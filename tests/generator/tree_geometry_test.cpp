@@ -15,12 +15,13 @@
 #include "generator/models/weber_penn/weber_penn_formulas.h"
 #include "formats/species_file.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
 Skeleton grow_species(const char* name, std::uint64_t seed = 1, double quality = 0.2) {
-  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + name + ".toml");
+  const Species s =
+      formats::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + name + ".toml");
   GrowOptions o;
   o.seed = seed;
   o.quality = quality;
@@ -265,9 +266,9 @@ TEST(TreeGeometry, StatsCountWhatIsThere) {
   EXPECT_GT(g.bounds_max.z, 3.0f);
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 TEST(TreeGeometry, PeriodicTaperKeepsTheCurvesWithinTheLimbsRadius) {
   // Weber & Penn's nTaper in (2, 3] (the Saguaro's 2.2) swells a limb periodically; its radius
@@ -283,9 +284,9 @@ TEST(TreeGeometry, PeriodicTaperKeepsTheCurvesWithinTheLimbsRadius) {
   EXPECT_LT(widest, 1.05f * thickest) << "thickest skeleton radius " << thickest;
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 TEST(TreeGeometry, RootButtressesWidenTheTrunksBaseAndMergeIntoIt) {
   Skeleton sk = grow_species("quaking_aspen");
@@ -370,4 +371,4 @@ TEST(TreeGeometry, RootButtressesWidenTheTrunksBaseAndMergeIntoIt) {
   }
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -20,11 +20,12 @@
 #include "formats/species_file.h"
 #include "generator/export/export_mesh.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 Skeleton small_tree() {
-  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
+  const Species s =
+      formats::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
   GrowOptions o;
   o.quality = 0.2;
   return grow_weber_penn(s.weber_penn(), o);
@@ -100,7 +101,8 @@ TEST(TreeMesh, TrunkShowsFlareAndLobes) {
 
 namespace {
 MeshLooks aspen_looks() {
-  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
+  const Species s =
+      formats::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
   return {s.name, s.bark, s.leaf};
 }
 }  // namespace
@@ -228,9 +230,9 @@ TEST(TreeMesh, FailedWriteLeavesNothingBehind) {
   EXPECT_ANY_THROW(write_obj(mesh, "/nonexistent-dir/tree.obj", aspen_looks()));
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // Exports once carried NaN normals (the quaking aspen 81, the willow 725: the trunk grid's last
 // ring, tapered to a point): every shipped species of every format tessellates to finite
@@ -258,7 +260,7 @@ TEST(TreeMesh, EveryShippedSpeciesTessellatesToFiniteUnitNormals) {
                            "weeping_cherry.tmpl",
                            "young_pine.tmpl",
                            "young_tree.skel"}) {
-    const Species s = load_species(dir + name);
+    const Species s = formats::load_species(dir + name);
     GrowOptions o;
     o.seed = 1;
     // The willow's 490,000 leaves take long to tessellate: a tenth of them shows the same limbs.
@@ -276,4 +278,4 @@ TEST(TreeMesh, EveryShippedSpeciesTessellatesToFiniteUnitNormals) {
   }
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -23,13 +23,13 @@
 #include "formats/treemaker_template.h"
 #include "generator/export/skeleton_file.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
 void expect_error(const std::string& text, int line, int column, const std::string& fragment) {
-  testing::expect_input_error([&] { parse_treemaker_template(text, "t.tmpl"); }, "t.tmpl", line,
-                              column, fragment);
+  testing::expect_input_error([&] { formats::parse_treemaker_template(text, "t.tmpl"); }, "t.tmpl",
+                              line, column, fragment);
 }
 
 // The smallest complete template: one rule, one particle, one leaf.
@@ -47,7 +47,8 @@ const std::string kLeaf =
 
 TEST(TreeMakerTemplate, TheDogwoodParses) {
   const std::string path = std::string(ARBOR_SOURCE_DIR) + "/species/dogwood.tmpl";
-  const TreeMakerTemplate t = parse_treemaker_template(read_text_file(path), path);
+  const TreeMakerTemplate t =
+      formats::parse_treemaker_template(formats::read_text_file(path), path);
   EXPECT_EQ(t.iterations, 13);
   EXPECT_DOUBLE_EQ(t.gravity, 0.08);
   EXPECT_DOUBLE_EQ(*t.light.height, 0.4);
@@ -73,7 +74,7 @@ TEST(TreeMakerTemplate, TheDogwoodParses) {
 }
 
 TEST(TreeMakerTemplate, AnySpacingIsAllowed) {
-  const TreeMakerTemplate t = parse_treemaker_template(
+  const TreeMakerTemplate t = formats::parse_treemaker_template(
       "iterations{i=3}color{green=0,1,0}branch{level=1 number=1 to 2(p=1 angle=30 to 40 dir=0 to "
       "360 factor=0.5 to 0.6)}particle{pos=0,0,0 mag=10 to 12 dir=0,0,1:5 color=green}"
       "leaf{p=1 coord=leaf out=1 up=1 color=green ln=0,0,0 0,0,1}",
@@ -84,7 +85,7 @@ TEST(TreeMakerTemplate, AnySpacingIsAllowed) {
 
 TEST(TreeMakerTemplate, MalformedTemplatesAreRefusedWithTheirPosition) {
   const std::string ok = kColor + kRule + kParticle + kLeaf;
-  EXPECT_NO_THROW(parse_treemaker_template(ok, "t.tmpl"));
+  EXPECT_NO_THROW(formats::parse_treemaker_template(ok, "t.tmpl"));
   expect_error(kColor + kParticle + kRule + kLeaf, 3, 1,
                "branching rules must come before the particles");
   expect_error(
@@ -124,11 +125,11 @@ namespace {
 Skeleton grow_template(const std::string& text, std::uint64_t seed = 1) {
   TreeMakerOptions o;
   o.seed = seed;
-  return grow_treemaker(parse_treemaker_template(text, "t.tmpl"), o);
+  return grow_treemaker(formats::parse_treemaker_template(text, "t.tmpl"), o);
 }
 
 Skeleton dogwood(std::uint64_t seed) {
-  const Species s = load_species(std::string(ARBOR_SOURCE_DIR) + "/species/dogwood.tmpl");
+  const Species s = formats::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/dogwood.tmpl");
   GrowOptions o;
   o.seed = seed;
   return grow_tree(s, o);
@@ -238,7 +239,7 @@ TEST(TreeMakerGrowth, SameSeedSameTreeAndRoundTripsThroughSkeletonFiles) {
             true);
   const std::string path = ::testing::TempDir() + "dogwood.skel";
   write_skeleton_file(a, path);
-  const Skeleton back = parse_skeleton_file(read_text_file(path), path);
+  const Skeleton back = formats::parse_skeleton_file(formats::read_text_file(path), path);
   ASSERT_EQ(back.stems.size(), a.stems.size());
   ASSERT_EQ(back.leaf_triangles.size(), a.leaf_triangles.size());
   for (std::size_t i = 0; i < a.stems.size(); ++i) {
@@ -289,9 +290,9 @@ TEST(TreeMakerGrowth, AbsurdTemplatesAreRefusedWithTheEstimate) {
   }
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // The estimate is the most branches the rules allow: with up to 3 new branches per branch and
 // iteration, f(n) = 1 + 3 Σ_{r<n} f(r) = 4^(n-1) for n iterations left, times the particles.
@@ -301,7 +302,7 @@ TEST(TreeMakerGrowth, TheSizeEstimateCountsTheMostBranchesTheRulesAllow) {
                              "branch { level= 1 number= 2 to 3.5 (p=1 angle= 30 to 40 dir= 0 to "
                              "360 factor= 1 to 1) }\n" +
                              kParticle + kParticle + kLeaf;
-    EXPECT_DOUBLE_EQ(treemaker_estimate(parse_treemaker_template(text, "t.tmpl")),
+    EXPECT_DOUBLE_EQ(treemaker_estimate(formats::parse_treemaker_template(text, "t.tmpl")),
                      2.0 * std::pow(4.0, i))
         << i;
   }
@@ -314,7 +315,7 @@ TEST(TreeMakerGrowth, TheSizeEstimateCountsTheMostBranchesTheRulesAllow) {
   // Level 0 (the particle) with 4 iterations left: 1 + 3 [f1(1) + f1(2) + f1(3)], where level-1
   // branches spawn level-2 ones by the first rule (3 each) and level-2 branches spawn level-3
   // ones by the second (0 each): f2 = 1, f1(n) = 1 + 3 (n - 1), so 1 + 3 (1 + 4 + 7) = 37.
-  EXPECT_DOUBLE_EQ(treemaker_estimate(parse_treemaker_template(two, "t.tmpl")), 37.0);
+  EXPECT_DOUBLE_EQ(treemaker_estimate(formats::parse_treemaker_template(two, "t.tmpl")), 37.0);
 }
 
 // i= 1000 (the largest allowed) with deep rules once spent a minute estimating before refusing.
@@ -328,23 +329,24 @@ TEST(TreeMakerGrowth, TheLargestTemplateIsRefusedAtOnce) {
   EXPECT_THROW(grow_template(text), RuntimeFailure);
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // Found by fuzzing (tests/fuzz/regressions/): a branch born where its parent began is moved to
 // the grandparent, and once started thicker than the grandparent there (an invalid skeleton).
 TEST(TreeMakerGrowth, ABranchMovedToItsGrandparentStartsNoThickerThanIt) {
   const std::string path =
       std::string(ARBOR_SOURCE_DIR) + "/tests/fuzz/regressions/treemaker_thick_child.tmpl";
-  const TreeMakerTemplate t = parse_treemaker_template(read_text_file(path), path);
+  const TreeMakerTemplate t =
+      formats::parse_treemaker_template(formats::read_text_file(path), path);
   const Skeleton sk = grow_treemaker(t, TreeMakerOptions{});
   EXPECT_EQ(validate(sk), "");
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // Found by fuzzing (tests/fuzz/regressions/): a leaf line reaching 1e67 cm became a limb with
 // infinite float coordinates. Template numbers are bounded, and any tree grown past 1000 km is
@@ -352,8 +354,9 @@ namespace arbor::gen {
 TEST(TreeMakerGrowth, NumbersPastAMillionAreRefused) {
   const std::string path =
       std::string(ARBOR_SOURCE_DIR) + "/tests/fuzz/regressions/treemaker_huge_leaf_line.tmpl";
-  testing::expect_input_error([&] { parse_treemaker_template(read_text_file(path), path); }, path,
-                              30, 30, "out of range [-1e6, 1e6]");
+  testing::expect_input_error(
+      [&] { formats::parse_treemaker_template(formats::read_text_file(path), path); }, path, 30, 30,
+      "out of range [-1e6, 1e6]");
   expect_error("iterations { i= 3 }\ngravity { g= 2000000 }\n", 2, 14, "out of range");
   Skeleton sk;
   sk.points = {{glm::vec3(0.0f), 0.1f}, {glm::vec3(0.0f, 0.0f, 2e6f), 0.1f}};
@@ -365,19 +368,19 @@ TEST(TreeMakerGrowth, NumbersPastAMillionAreRefused) {
   EXPECT_NE(scale_problem(sk), "");
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // Found by fuzzing (tests/fuzz/regressions/): age= -1 drove the width growth below zero, so
 // limbs got negative radii; the growth stops at zero.
 TEST(TreeMakerGrowth, ANegativeAgeNeverMakesANegativeWidth) {
   const std::string path =
       std::string(ARBOR_SOURCE_DIR) + "/tests/fuzz/regressions/treemaker_negative_age.tmpl";
-  const Skeleton sk =
-      grow_treemaker(parse_treemaker_template(read_text_file(path), path), TreeMakerOptions{});
+  const Skeleton sk = grow_treemaker(
+      formats::parse_treemaker_template(formats::read_text_file(path), path), TreeMakerOptions{});
   EXPECT_EQ(validate(sk), "");
   for (const SkeletonPoint& p : sk.points) ASSERT_GE(p.radius, 0.0f);
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

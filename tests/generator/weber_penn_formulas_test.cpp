@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 #include "common/math.h"
 
-namespace arbor::gen::wp {
+namespace arbor::generator::wp {
 
 TEST(ShapeRatio, MatchesThePaperTable) {
   EXPECT_DOUBLE_EQ(shape_ratio(0, 0.5), 0.6);                      // conical: 0.2 + 0.8 r
@@ -195,4 +195,4 @@ TEST(AttractionUp, IsLargestForHorizontalStemsFacingUp) {
   EXPECT_NEAR(attraction_up(-3.0, 0.0, 1.0, 1), -3.0 * kPi / 2, 1e-12);
 }
 
-}  // namespace arbor::gen::wp
+}  // namespace arbor::generator::wp

@@ -18,7 +18,7 @@
 #include "formats/species_file.h"
 #include "common/math.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
@@ -27,7 +27,7 @@ std::string species_path(const std::string& name) {
 }
 
 WeberPennParams paper_species(const std::string& name) {
-  return load_species(species_path(name)).weber_penn();
+  return formats::load_species(species_path(name)).weber_penn();
 }
 
 // A straight trunk of 10 m with `branches` children at 90°, no variation anywhere.
@@ -465,4 +465,4 @@ TEST(WeberPenn, RefusesAbsurdSizesUnlessForced) {
   EXPECT_LT(estimate_size(aspen, 1.0).stems, 5.0 * grown);
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -14,7 +14,7 @@
 #include "formats/scene_desc.h"
 #include "imaging/image_output.h"
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 namespace {
 
@@ -30,7 +30,7 @@ void expect_rgb(const float got[3], double r, double g, double b, double toleran
 // Errors the OCIO config finds in a scene that parsed: still at the scene key.
 void expect_colour_error(const std::string& text, int line, int column,
                          const std::string& fragment) {
-  const SceneDesc s = parse_scene(text, "dir/s.toml");
+  const formats::SceneDesc s = formats::parse_scene(text, "dir/s.toml");
   const ColorPipeline color(kConfig);
   testing::expect_input_error([&] { color.check(s.output, s.output.where); }, "dir/s.toml", line,
                               column, fragment);
@@ -115,9 +115,9 @@ TEST(Color, AConfigThatCannotBeReadIsAnInputErrorNamingIt) {
                               "/nonexistent/config.ocio", 0, 0, "cannot use this OCIO config");
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 namespace {
 
@@ -234,4 +234,4 @@ TEST(Color, ChromaticitiesAreMeasuredThroughTheConfig) {
   EXPECT_EQ(color.names_of("lin_rec709").front(), "Linear Rec.709 (sRGB)");
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

@@ -13,7 +13,7 @@
 #include "imaging/compare.h"
 #include "imaging/statistics.h"
 
-namespace arbor::trace {
+namespace arbor::imaging {
 namespace {
 
 CompareImage flat(int w, int h, float value, float variance = -1.0f) {
@@ -173,9 +173,9 @@ TEST(Compare, ReadingFindsVarianceChannels) {
 }
 
 }  // namespace
-}  // namespace arbor::trace
+}  // namespace arbor::imaging
 
-namespace arbor::trace {
+namespace arbor::imaging {
 namespace {
 
 TEST(Statistics, StudentTAndChiSquareMatchTables) {
@@ -223,4 +223,4 @@ TEST(Compare, FalseAlarmRateOnNoiseOfTheStatedVariance) {
 }
 
 }  // namespace
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

@@ -8,7 +8,7 @@
 
 #include "imaging/cryptomatte.h"
 
-namespace arbor::trace {
+namespace arbor::imaging {
 
 TEST(Cryptomatte, MurmurHashMatchesTheReferenceVectors) {
   // Vectors of Appleby's reference implementation (SMHasher), seed 0 unless given.
@@ -54,4 +54,4 @@ TEST(Cryptomatte, KeyAndManifest) {
                 hex8(cryptomatte_hash("quaking_aspen.0")) + "\"}");
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

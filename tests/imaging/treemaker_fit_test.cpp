@@ -10,7 +10,7 @@
 #include "expect_input_error.h"
 #include "imaging/treemaker_fit.h"
 
-namespace arbor::trace {
+namespace arbor::imaging {
 namespace {
 
 constexpr int kW = 12, kH = 9;
@@ -130,4 +130,4 @@ TEST(TreemakerFit, RefusesMismatchedInputs) {
                               "shows no tree");
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::imaging

@@ -11,7 +11,7 @@
 #include "materials/bsdf.h"
 #include "common/math.h"
 
-namespace arbor::mat::testing {
+namespace arbor::materials::testing {
 
 struct ChiSquareResult {
   double chi2 = 0.0;
@@ -82,4 +82,4 @@ inline double chi_square_critical(int k) {
   return k * std::pow(1.0 - h + z * std::sqrt(h), 3.0);
 }
 
-}  // namespace arbor::mat::testing
+}  // namespace arbor::materials::testing

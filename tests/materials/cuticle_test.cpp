@@ -13,7 +13,7 @@
 #include "common/rng.h"
 #include "materials/leaf_bsdf.h"
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 namespace {
 Dir at_angle(double mu, double phi = 0.0) {
@@ -188,4 +188,4 @@ TEST(CoatedLeafBsdf, TheCoatReflectsWhiteAndIsStrongestAtTheMirrorDirection) {
   EXPECT_GT(green.eval(wo, mirror).x, green.eval(wo, off).x);
 }
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials

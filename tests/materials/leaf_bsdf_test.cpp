@@ -12,7 +12,7 @@
 #include "common/rng.h"
 #include "common/math.h"
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 TEST(LeafBsdf, SamplingMatchesPdfChiSquare) {
   const LeafBsdf bsdf{Rgb(0.3, 0.5, 0.1), Rgb(0.6, 0.3, 0.2)};
@@ -87,4 +87,4 @@ TEST(LeafBsdf, IsReciprocalOnBothSides) {
   EXPECT_EQ(bsdf.eval(a, Dir(b.x, b.y, -b.z)), Rgb(0.3 / kPi));
 }
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials

@@ -11,7 +11,7 @@
 
 #include "common/math.h"
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 namespace {
 
@@ -123,9 +123,9 @@ TEST(Material, TheBsdfAndTheAlbedoAovComeFromOneDispatch) {
   }
 }
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 TEST(GroundMaterial, PatchesCoverTheAskedFractionWithSoftEdges) {
   GroundMaterial g;
@@ -172,4 +172,4 @@ TEST(GroundMaterial, TheAlbedoMixesTheTwoColoursByThePatch) {
   EXPECT_TRUE(saw_grass);
 }
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials

@@ -13,7 +13,7 @@
 #include "chi_square.h"
 #include "materials/textures.h"
 
-namespace arbor::mat {
+namespace arbor::materials {
 
 TEST(OrenNayar, SamplingMatchesPdfChiSquare) {
   for (double sigma : {0.0, 0.3, 0.8}) {
@@ -131,4 +131,4 @@ TEST(ColorMap, DecodesSrgbImagesAndRejectsAlbedosAboveOne) {
   }
 }
 
-}  // namespace arbor::mat
+}  // namespace arbor::materials

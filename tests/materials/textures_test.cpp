@@ -9,7 +9,7 @@
 #include "expect_input_error.h"
 #include "materials/textures.h"
 
-namespace arbor::mat {
+namespace arbor::materials {
 namespace {
 
 // A 2x2 linear EXR whose pixel (1, 0) is `odd` and the others `base`.
@@ -57,4 +57,4 @@ TEST(Textures, BadTexelsAreRefusedWithTheirPosition) {
 }
 
 }  // namespace
-}  // namespace arbor::mat
+}  // namespace arbor::materials

@@ -9,7 +9,7 @@
 
 #include "common/error.h"
 
-namespace arbor::trace {
+namespace arbor::scene {
 namespace {
 
 // A film's costs as tracer/film.h states them (Film::costs(); tests/tracer/film_test.cpp checks
@@ -17,7 +17,7 @@ namespace {
 constexpr FilmCosts kFilm{88, 8, 8, 16, 7, 23};
 
 TEST(RenderBudget, EstimateGrowsWithPixelsChannelsAndTrees) {
-  SceneDesc s;
+  formats::SceneDesc s;
   s.render.width = 1000;
   s.render.height = 1000;
   const MemoryEstimate plain = estimate_render_memory(s, kFilm);
@@ -27,14 +27,16 @@ TEST(RenderBudget, EstimateGrowsWithPixelsChannelsAndTrees) {
   EXPECT_GE(plain.image_bytes, 225u * 1000000u);
   EXPECT_LE(plain.image_bytes, 270u * 1000000u);
   s.output.aovs = {};
-  for (Aov a : {Aov::Albedo, Aov::Normal, Aov::Depth, Aov::Variance}) s.output.aovs.add(a);
+  for (imaging::Aov a :
+       {imaging::Aov::Albedo, imaging::Aov::Normal, imaging::Aov::Depth, imaging::Aov::Variance})
+    s.output.aovs.add(a);
   const MemoryEstimate aovs = estimate_render_memory(s, kFilm);
   EXPECT_GE(aovs.image_bytes, 106u * 1000000u);
   EXPECT_GT(aovs.image_bytes, plain.image_bytes);
   s.output.aovs = {};
-  s.output.aovs.add(Aov::Treemaker);
+  s.output.aovs.add(imaging::Aov::Treemaker);
   EXPECT_GE(estimate_render_memory(s, kFilm).image_bytes, 257u * 1000000u);
-  ForestDesc f;
+  formats::ForestDesc f;
   f.count = 100000;
   s.forests = {f, f};
   s.trees.resize(3);
@@ -44,11 +46,13 @@ TEST(RenderBudget, EstimateGrowsWithPixelsChannelsAndTrees) {
 }
 
 TEST(RenderBudget, TheLargestImageIsRefusedUnlessForced) {
-  SceneDesc s;
+  formats::SceneDesc s;
   s.path = "big.toml";
   s.render.width = s.render.height = 16384;
   s.output.aovs = {};
-  for (Aov a : {Aov::Albedo, Aov::Normal, Aov::Depth, Aov::Variance}) s.output.aovs.add(a);
+  for (imaging::Aov a :
+       {imaging::Aov::Albedo, imaging::Aov::Normal, imaging::Aov::Depth, imaging::Aov::Variance})
+    s.output.aovs.add(a);
   // 268 million pixels at over 100 bytes each: more than any machine of CI's kind has.
   ASSERT_GT(estimate_render_memory(s, kFilm).total(), usable_memory_bytes());
   try {
@@ -67,10 +71,10 @@ TEST(RenderBudget, TheLargestImageIsRefusedUnlessForced) {
 // The largest forest count the scene allows needs about 10 GB: refused on a machine (or under a
 // ulimit) of 8 GB, at the forest's table.
 TEST(RenderBudget, TheLargestForestIsRefusedWhereItDoesNotFit) {
-  SceneDesc s;
+  formats::SceneDesc s;
   s.path = "forest.toml";
   s.render.width = s.render.height = 8;
-  ForestDesc f;
+  formats::ForestDesc f;
   f.count = 10000000;
   f.where = {"forest.toml", 5, 1};
   s.forests = {f};
@@ -103,4 +107,4 @@ TEST(RenderBudget, TheProcessLimitsLowerTheUsableMemory) {
 }
 
 }  // namespace
-}  // namespace arbor::trace
+}  // namespace arbor::scene

@@ -7,7 +7,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-namespace arbor::trace {
+namespace arbor::scene {
 namespace {
 
 const std::string kOcio = std::string(ARBOR_SOURCE_DIR) + "/imaging/ocio/config.ocio";
@@ -19,10 +19,10 @@ std::string tree(const char* species, int seed, double x) {
 }
 
 TEST(BuildScene, TreesOfOneSpeciesAndSeedShareOnePrototype) {
-  const SceneDesc desc =
-      parse_scene(tree("young_tree.skel", 1, 0.0) + tree("young_tree.skel", 1, 4.0) +
-                      tree("young_tree.skel", 2, 8.0) + tree("dogwood.tmpl", 1, 12.0),
-                  "/tmp/scene.toml");
+  const formats::SceneDesc desc =
+      formats::parse_scene(tree("young_tree.skel", 1, 0.0) + tree("young_tree.skel", 1, 4.0) +
+                               tree("young_tree.skel", 2, 8.0) + tree("dogwood.tmpl", 1, 12.0),
+                           "/tmp/scene.toml");
   const std::unique_ptr<const Scene> scene = build_scene(desc, kOcio);
   ASSERT_EQ(scene->instances.size(), 4u);
   // One prototype per (species, seed, time): the two trees of seed 1 share theirs; seed 2 and the
@@ -51,7 +51,7 @@ TEST(BuildScene, TreesOfOneSpeciesAndSeedShareOnePrototype) {
 }
 
 TEST(BuildScene, AGroundlessSceneHasNoGround) {
-  const SceneDesc desc = parse_scene(
+  const formats::SceneDesc desc = formats::parse_scene(
       "[ground]\nenabled = false\n" + tree("young_tree.skel", 1, 0.0), "/tmp/scene.toml");
   const std::unique_ptr<const Scene> scene = build_scene(desc, kOcio);
   EXPECT_FALSE(scene->has_ground);
@@ -59,4 +59,4 @@ TEST(BuildScene, AGroundlessSceneHasNoGround) {
 }
 
 }  // namespace
-}  // namespace arbor::trace
+}  // namespace arbor::scene

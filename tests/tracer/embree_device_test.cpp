@@ -8,7 +8,7 @@
 
 #include "common/error.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 TEST(EmbreeDevice, CreatesADeviceOfVersion3_13) {
   EmbreeDevice device("threads=1");
@@ -31,4 +31,4 @@ TEST(EmbreeDevice, ErrorsBecomeExceptionsWithEmbreesMessage) {
   EXPECT_NO_THROW(device.check("nothing"));  // the error was consumed
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

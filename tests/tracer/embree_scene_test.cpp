@@ -21,15 +21,15 @@
 #include "formats/species_file.h"
 #include "common/math.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 namespace {
 
 // One tree geometry as a scene of one prototype and one instance at `placement`, in Embree.
 class GeometryWorld {
  public:
-  GeometryWorld(const gen::TreeGeometry& g, const EmbreeDevice& device,
-                const Placement& placement = {})
+  GeometryWorld(const generator::TreeGeometry& g, const EmbreeDevice& device,
+                const formats::Placement& placement = {})
       : scene_(make_scene(g, placement)), world_(*scene_, device) {}
   // The closest hit in world space; false when the ray escapes.
   bool intersect(const Ray& ray, SurfaceHit& hit) const {
@@ -43,25 +43,26 @@ class GeometryWorld {
   const World& world() const { return world_; }
 
  private:
-  static std::unique_ptr<Scene> make_scene(const gen::TreeGeometry& g, const Placement& placement) {
-    auto scene = std::make_unique<Scene>();
-    TreePrototypeData p;
-    p.geometry = std::make_unique<gen::TreeGeometry>(g);
+  static std::unique_ptr<scene::Scene> make_scene(const generator::TreeGeometry& g,
+                                                  const formats::Placement& placement) {
+    auto scene = std::make_unique<scene::Scene>();
+    scene::TreePrototypeData p;
+    p.geometry = std::make_unique<generator::TreeGeometry>(g);
     scene->prototypes.push_back(std::move(p));
-    TreeInstance inst;
-    inst.to_world = placement_matrix(placement);
+    scene::TreeInstance inst;
+    inst.to_world = scene::placement_matrix(placement);
     inst.to_object = glm::inverse(inst.to_world);
     inst.normal_to_world = glm::inverseTranspose(glm::mat3(inst.to_world));
     scene->instances.push_back(inst);
     return scene;
   }
-  std::unique_ptr<Scene> scene_;
+  std::unique_ptr<scene::Scene> scene_;
   World world_;
 };
 
 // Centre of the trunk grid's ring nearest height z (lobes cancel in the mean of a full ring).
-glm::vec2 ring_centre(const gen::TreeGeometry& g, float z) {
-  const gen::DisplacedGrid& d = g.grids.grids[0];
+glm::vec2 ring_centre(const generator::TreeGeometry& g, float z) {
+  const generator::DisplacedGrid& d = g.grids.grids[0];
   std::size_t best = 0;
   for (std::size_t j = 0; j < d.height; ++j) {
     if (std::fabs(g.grids.vertices[d.first_vertex + j * d.width].z - z) <
@@ -105,10 +106,10 @@ int count_peaks(const std::vector<double>& r) {
 }
 
 // One straight stem along z: 3 m long, radius 0.1 (cylinder), no flare or lobes.
-gen::Skeleton straight_stem() {
-  gen::Skeleton sk;
+generator::Skeleton straight_stem() {
+  generator::Skeleton sk;
   for (int i = 0; i <= 3; ++i) sk.points.push_back({glm::vec3(0.0f, 0.0f, float(i)), 0.1f});
-  gen::Stem s;
+  generator::Stem s;
   s.point_count = 4;
   s.length = 3.0f;
   s.base_radius = 0.1f;
@@ -120,14 +121,14 @@ gen::Skeleton straight_stem() {
 }  // namespace
 
 TEST(TreePrototype, RaysFindTheTrunkLobesAndFlare) {
-  const gen::Species aspen =
-      gen::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
-  gen::GrowOptions o;
+  const generator::Species aspen =
+      formats::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
+  generator::GrowOptions o;
   o.quality = 0.1;
-  gen::WeberPennParams calm = aspen.weber_penn();
+  generator::WeberPennParams calm = aspen.weber_penn();
   calm.wind_speed = calm.wind_gust = 0.0;  // a straight trunk: its rings are horizontal
-  const gen::Skeleton sk = gen::grow_weber_penn(calm, o);
-  const gen::TreeGeometry g = gen::build_tree_geometry(sk);
+  const generator::Skeleton sk = generator::grow_weber_penn(calm, o);
+  const generator::TreeGeometry g = generator::build_tree_geometry(sk);
   EmbreeDevice device("threads=1");
   const GeometryWorld tree(g, device);
   const float r0 = sk.stems[0].base_radius;
@@ -149,8 +150,8 @@ TEST(TreePrototype, RaysFindTheTrunkLobesAndFlare) {
 }
 
 TEST(TreePrototype, CurvesAreHitAtTheirRadiusWithBarkCoordinates) {
-  const gen::Skeleton sk = straight_stem();
-  const gen::TreeGeometry g = gen::build_tree_geometry(sk);
+  const generator::Skeleton sk = straight_stem();
+  const generator::TreeGeometry g = generator::build_tree_geometry(sk);
   ASSERT_TRUE(g.grids.grids.empty());
   EmbreeDevice device("threads=1");
   const GeometryWorld tree(g, device);
@@ -170,14 +171,14 @@ TEST(TreePrototype, CurvesAreHitAtTheirRadiusWithBarkCoordinates) {
       EXPECT_NEAR(hit.bark.along, z, 1e-3f);                   // arc length from the base
       EXPECT_NEAR(hit.bark.azimuth, angle, 1e-2f);
       EXPECT_NEAR(hit.bark.around, 0.1f * angle, 1e-3f);  // radius × azimuth
-      EXPECT_EQ(hit.material, gen::kMaterialBark);
+      EXPECT_EQ(hit.material, generator::kMaterialBark);
     }
   }
 }
 
 TEST(TreePrototype, LeavesReportTheSideTheRayCameFrom) {
-  gen::Skeleton sk = straight_stem();
-  gen::Leaf leaf;
+  generator::Skeleton sk = straight_stem();
+  generator::Leaf leaf;
   leaf.position = glm::vec3(1.0f, 0.0f, 1.0f);
   leaf.axis = glm::vec3(1.0f, 0.0f, 0.0f);
   leaf.normal = glm::vec3(0.0f, 0.0f, 1.0f);
@@ -185,7 +186,7 @@ TEST(TreePrototype, LeavesReportTheSideTheRayCameFrom) {
   leaf.width = 0.1f;
   leaf.stem = 0;
   sk.leaves.push_back(leaf);
-  const gen::TreeGeometry g = gen::build_tree_geometry(sk);
+  const generator::TreeGeometry g = generator::build_tree_geometry(sk);
   EmbreeDevice device("threads=1");
   const GeometryWorld tree(g, device);
   SurfaceHit hit;
@@ -194,14 +195,14 @@ TEST(TreePrototype, LeavesReportTheSideTheRayCameFrom) {
   down.direction = glm::vec3(0, 0, -1);
   ASSERT_TRUE(tree.intersect(down, hit));
   EXPECT_EQ(hit.kind, SurfaceKind::Leaf);
-  EXPECT_EQ(hit.material, gen::kMaterialLeafFront);
+  EXPECT_EQ(hit.material, generator::kMaterialLeafFront);
   EXPECT_NEAR(hit.geometric_normal.z, 1.0f, 1e-5f);
   EXPECT_NEAR(hit.t, 1.0f, 1e-5f);
   Ray up = down;
   up.origin.z = 0.0f;
   up.direction = glm::vec3(0, 0, 1);
   ASSERT_TRUE(tree.intersect(up, hit));
-  EXPECT_EQ(hit.material, gen::kMaterialLeafBack);
+  EXPECT_EQ(hit.material, generator::kMaterialLeafBack);
   EXPECT_NEAR(hit.geometric_normal.z, -1.0f, 1e-5f);
   Ray miss = down;
   miss.origin.x = 1.5f;  // past the leaf's tip
@@ -228,20 +229,20 @@ TEST(TreePrototype, RaysLeavingLimbsAndLeavesDoNotHitThemAgain) {
   // leaves, behind them) with the integrator's offset rule. None may hit the same primitive at
   // once. Once with the tree where it grew, once placed as a forest places trees (moved far from
   // the origin, turned, scaled), where the hit is carried back from the instance's space.
-  const gen::Species tupelo =
-      gen::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/black_tupelo.toml");
-  gen::GrowOptions o;
+  const generator::Species tupelo =
+      formats::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/black_tupelo.toml");
+  generator::GrowOptions o;
   o.quality = 0.3;
-  const gen::TreeGeometry g =
-      gen::build_tree_geometry(gen::grow_weber_penn(tupelo.weber_penn(), o));
+  const generator::TreeGeometry g =
+      generator::build_tree_geometry(generator::grow_weber_penn(tupelo.weber_penn(), o));
   EmbreeDevice device("threads=1");
-  Placement placed;
+  formats::Placement placed;
   placed.position = {180.0, -140.0, 0.5};
   placed.rotation = 37.0;
   placed.scale = 1.3;
-  for (const Placement& placement : {Placement{}, placed}) {
+  for (const formats::Placement& placement : {formats::Placement{}, placed}) {
     const GeometryWorld tree(g, device, placement);
-    const glm::mat4 m = placement_matrix(placement);
+    const glm::mat4 m = scene::placement_matrix(placement);
     auto world = [&](const glm::vec3& p) { return glm::vec3(m * glm::vec4(p, 1.0f)); };
     Rng rng(5);
     int hits = 0, curve_hits = 0, acne = 0;
@@ -273,4 +274,4 @@ TEST(TreePrototype, RaysLeavingLimbsAndLeavesDoNotHitThemAgain) {
   }
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

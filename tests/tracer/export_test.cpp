@@ -23,16 +23,16 @@
 #include "tracer/lights/sky.h"
 #include "tracer/test_world.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
 // `arbor export`'s library part: the scene built, then written as pbrt-v4 sees it.
 void export_scene(const std::string& scene_path, const std::string& out, int sky_resolution) {
-  const SceneDesc desc = load_scene(scene_path);
-  write_pbrt_scene(*build_scene(desc, kOcioConfig), render_input(desc), ColorPipeline(kOcioConfig),
-                   out, sky_resolution);
+  const formats::SceneDesc desc = formats::load_scene(scene_path);
+  write_pbrt_scene(*scene::build_scene(desc, kOcioConfig), scene::render_input(desc),
+                   imaging::ColorPipeline(kOcioConfig), out, sky_resolution);
 }
 
 std::string slurp(const std::string& path) {
@@ -215,7 +215,7 @@ TEST(PbrtExport, ColourSpacesPbrtKnowsAreKeptAndAcesCgBecomesAp0) {
   const PbrtColorSpace aces = pbrt_color_space_for(ap1);
   EXPECT_STREQ(aces.name, "aces2065-1");
   // AP1 → AP0 (same white): the ACES AP1-to-AP0 matrix's first column for AP1 red, white kept.
-  const ColorTransform t = rgb_to_rgb(ap1, aces.chromaticities);
+  const imaging::ColorTransform t = imaging::rgb_to_rgb(ap1, aces.chromaticities);
   float red[3] = {1.0f, 0.0f, 0.0f}, white[3] = {1.0f, 1.0f, 1.0f};
   t(red);
   t(white);
@@ -281,9 +281,9 @@ TEST(PbrtExport, WritesTheWholeSceneAndASkyWithItsIrradiance) {
   EXPECT_TRUE(dark_bark);
 
   // The sun: towards it, its irradiance, the exposure's 2× as the scale.
-  const ColorPipeline color(kOcioConfig);
-  SceneDesc desc = load_scene(scene_path);
-  const Sky sky(sky_spec(desc.sky), sun_spec(desc.sun), color.xyz_to_scene_linear());
+  const imaging::ColorPipeline color(kOcioConfig);
+  formats::SceneDesc desc = formats::load_scene(scene_path);
+  const Sky sky(scene::sky_spec(desc.sky), scene::sun_spec(desc.sun), color.xyz_to_scene_linear());
   const Statement* sun = find(pbrt, "LightSource", "distant");
   ASSERT_NE(sun, nullptr);
   const std::vector<double> from = numbers(*sun, "point3 from"), l = numbers(*sun, "rgb L");
@@ -342,9 +342,9 @@ TEST(PbrtExport, WritesTheWholeSceneAndASkyWithItsIrradiance) {
             std::cos(15.0 * kPi / 180.0));
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 // The ground's patches near the camera are an image pbrt reads as a texture: each texel is
 // arbor's ground albedo at its place (row 0 at the square's +y edge, as pbrt's flipped v reads
@@ -375,9 +375,9 @@ TEST(PbrtExport, GroundPatchesNearTheCameraAreAnImage) {
   std::vector<float> px(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
   ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
 
-  const SceneDesc desc = load_scene(scene_path);
-  const std::unique_ptr<const Scene> built = build_scene(desc, kOcioConfig);
-  const mat::Material& ground = built->ground;
+  const formats::SceneDesc desc = formats::load_scene(scene_path);
+  const std::unique_ptr<const scene::Scene> built = scene::build_scene(desc, kOcioConfig);
+  const materials::Material& ground = built->ground;
   // The camera at (12.4, -18.6) puts the square's centre on (12, -19); 0.25 m texels.
   double mean = 0.0;
   int patched = 0, bare = 0;
@@ -411,4 +411,4 @@ TEST(PbrtExport, GroundPatchesNearTheCameraAreAnImage) {
   EXPECT_LT(g, 0.15);
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -10,7 +10,7 @@
 #include "common/error.h"
 #include "tracer/film_file.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 namespace {
 
@@ -74,4 +74,4 @@ TEST(FilmFile, NonFiniteSumsAreRefusedEvenWithAGoodChecksum) {
   }
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

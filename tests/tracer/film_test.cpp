@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-namespace arbor::trace {
+namespace arbor::tracer {
 namespace {
 
 // sample_tent maps stratified u onto the tent 1 - |x| on (-1, 1): every one of 8 bins holds the
@@ -30,15 +30,15 @@ TEST(Film, TentFilterSamplesTheTent) {
 }
 
 }  // namespace
-}  // namespace arbor::trace
+}  // namespace arbor::tracer
 
-namespace arbor::trace {
+namespace arbor::tracer {
 namespace {
 
 // The memory estimate asks the film for its sizes (Film::costs()): they are what a film of any
 // kind keeps a pixel — its states and sums, and a pass record of record_size() values.
 TEST(Film, CostsAreWhatAFilmKeeps) {
-  const FilmCosts c = Film::costs();
+  const scene::FilmCosts c = Film::costs();
   for (const bool ids : {false, true}) {
     for (const std::size_t extras : {std::size_t{0}, std::size_t{5}}) {
       Film film({0, 0, 16, 8}, extras, 2, true, ids);
@@ -53,4 +53,4 @@ TEST(Film, CostsAreWhatAFilmKeeps) {
 }
 
 }  // namespace
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -11,41 +11,42 @@
 #include "scene/frame.h"
 #include "tracer/test_world.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 namespace {
 
-SceneDesc animated(const std::string& species, const std::string& animation) {
-  return parse_scene(
+formats::SceneDesc animated(const std::string& species, const std::string& animation) {
+  return formats::parse_scene(
       "[render]\nseed = 9\n[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) + "/species/" +
           species + "\"\n[output]\nexr = \"out/f.####.exr\"\npng = \"out/f.##.png\"\n" + animation,
       "/tmp/scene.toml");
 }
 
-std::size_t segments(const SceneDesc& s) {
-  return build_scene(s, kOcioConfig)->stats.curve_segments;
+std::size_t segments(const formats::SceneDesc& s) {
+  return scene::build_scene(s, kOcioConfig)->stats.curve_segments;
 }
 
 }  // namespace
 
 TEST(Frames, FrameSetsClockSeedAndOutputNames) {
-  SceneDesc s = animated("quaking_aspen.toml", "[animation]\nframes = 10\nfps = 4.0\n");
-  apply_frame(s, 6);
+  formats::SceneDesc s = animated("quaking_aspen.toml", "[animation]\nframes = 10\nfps = 4.0\n");
+  scene::apply_frame(s, 6);
   EXPECT_DOUBLE_EQ(s.clock, 1.5);
   EXPECT_EQ(s.render.seed, derive_key(9, 6));
   EXPECT_EQ(s.output.exr, "/tmp/out/f.0006.exr");
   EXPECT_EQ(s.output.png, "/tmp/out/f.06.png");
-  EXPECT_EQ(frame_path("a.#.exr", 123), "a.123.exr");
-  EXPECT_EQ(frame_path("plain.exr", 3), "plain.exr");
+  EXPECT_EQ(formats::frame_path("a.#.exr", 123), "a.123.exr");
+  EXPECT_EQ(formats::frame_path("plain.exr", 3), "plain.exr");
 
-  SceneDesc pinned = animated("quaking_aspen.toml", "[animation]\nframes = 10\npin_seed = true\n");
-  apply_frame(pinned, 6);
+  formats::SceneDesc pinned =
+      animated("quaking_aspen.toml", "[animation]\nframes = 10\npin_seed = true\n");
+  scene::apply_frame(pinned, 6);
   EXPECT_EQ(pinned.render.seed, 9u);
   EXPECT_DOUBLE_EQ(pinned.clock, 0.25);  // fps 24 by default
 
-  SceneDesc no_frame = animated("quaking_aspen.toml", "[animation]\nframes = 10\n");
-  EXPECT_THROW(apply_frame(no_frame, std::nullopt), InputError);  // #### but no --frame
-  SceneDesc outside = animated("quaking_aspen.toml", "[animation]\nframes = 10\n");
-  EXPECT_THROW(apply_frame(outside, 10), InputError);
+  formats::SceneDesc no_frame = animated("quaking_aspen.toml", "[animation]\nframes = 10\n");
+  EXPECT_THROW(scene::apply_frame(no_frame, std::nullopt), InputError);  // #### but no --frame
+  formats::SceneDesc outside = animated("quaking_aspen.toml", "[animation]\nframes = 10\n");
+  EXPECT_THROW(scene::apply_frame(outside, 10), InputError);
 }
 
 TEST(Frames, AnimationTableIsChecked) {
@@ -60,27 +61,27 @@ TEST(Frames, AnimationTableIsChecked) {
 
 TEST(Frames, WindSwaysWithTheClockAndGrowthOnlyWhenAsked) {
   // Weber & Penn: the sway moves the limbs, the tree keeps its structure.
-  SceneDesc still = animated("quaking_aspen.toml", "[animation]\nframes = 48\n");
-  SceneDesc later = still;
+  formats::SceneDesc still = animated("quaking_aspen.toml", "[animation]\nframes = 48\n");
+  formats::SceneDesc later = still;
   later.clock = 1.0;
-  const auto a = build_scene(still, kOcioConfig), b = build_scene(later, kOcioConfig);
-  const gen::CurveSet &ca = a->prototypes.at(0).geometry->curves,
-                      &cb = b->prototypes.at(0).geometry->curves;
+  const auto a = scene::build_scene(still, kOcioConfig), b = scene::build_scene(later, kOcioConfig);
+  const generator::CurveSet &ca = a->prototypes.at(0).geometry->curves,
+                            &cb = b->prototypes.at(0).geometry->curves;
   ASSERT_EQ(ca.size(), cb.size());
   bool moved = false;
   for (std::size_t i = 0; i < ca.points.size() && !moved; ++i) moved = ca.points[i] != cb.points[i];
   EXPECT_TRUE(moved);
 
   // The fractal model: its time is an age; without years_per_second it stands still.
-  SceneDesc young = animated("fractal_broadleaf.toml", "[animation]\nframes = 48\n");
+  formats::SceneDesc young = animated("fractal_broadleaf.toml", "[animation]\nframes = 48\n");
   young.trees.at(0).time = 3.0;
-  SceneDesc same = young;
+  formats::SceneDesc same = young;
   same.clock = 2.0;
   EXPECT_EQ(segments(young), segments(same));
-  SceneDesc growing = young;
+  formats::SceneDesc growing = young;
   growing.animation.years_per_second = 2.0;
   growing.clock = 2.0;  // 3 + 4 years old
   EXPECT_GT(segments(growing), segments(young));
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -13,7 +13,7 @@
 #include "tracer/lights/sky.h"
 #include "tracer/test_world.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 namespace {
 
@@ -28,13 +28,13 @@ glm::dvec3 rec709(const glm::dvec3& xyz) {
   return {c[0], c[1], c[2]};
 }
 
-Sky nishita_sky(double elevation, const SkyDesc& base = {}, int width = 256) {
-  SkyDesc sky = base;
-  sky.model = SkyModel::Nishita;
-  SunDesc sun;
+Sky nishita_sky(double elevation, const formats::SkyDesc& base = {}, int width = 256) {
+  formats::SkyDesc sky = base;
+  sky.model = formats::SkyModel::Nishita;
+  formats::SunDesc sun;
   sun.elevation = elevation;
   sun.azimuth = 0.0;
-  return Sky(sky_spec(sky), sun_spec(sun), xyz_to_scene_linear(), width);
+  return Sky(scene::sky_spec(sky), scene::sun_spec(sun), xyz_to_scene_linear(), width);
 }
 
 }  // namespace
@@ -60,7 +60,7 @@ TEST(Nishita, RayleighAndOzoneConstantsAreThePublishedOnes) {
 }
 
 TEST(Nishita, AnEmptyAtmosphereLetsTheSunThroughWhiteAndHasNoSky) {
-  SkyDesc empty;
+  formats::SkyDesc empty;
   empty.air_density = empty.dust_density = empty.ozone_density = 0.0;
   const Sky sky = nishita_sky(30.0, empty, 64);
   ASSERT_TRUE(sky.has_sun());
@@ -191,4 +191,4 @@ TEST(Nishita, DensitiesAndAltitudeChangeTheSkyTheWayTheyShould) {
             standard.sun_irradiance_xyz().y);
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

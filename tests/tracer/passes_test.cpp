@@ -16,15 +16,15 @@
 #include "tracer/sampler.h"
 #include "tracer/test_world.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 namespace {
 
-const ColorTransform kIdentity = [](float*) {};
+const imaging::ColorTransform kIdentity = [](float*) {};
 
 // An aspen against the sky and the ground, 48x36.
-SceneDesc tree_scene(int spp, int pass_spp, std::uint64_t seed, bool independent = false) {
-  SceneDesc s;
+formats::SceneDesc tree_scene(int spp, int pass_spp, std::uint64_t seed, bool independent = false) {
+  formats::SceneDesc s;
   s.render.independent_passes = independent;
   s.render.width = 48;
   s.render.height = 36;
@@ -35,7 +35,7 @@ SceneDesc tree_scene(int spp, int pass_spp, std::uint64_t seed, bool independent
   s.render.threads = 2;
   s.camera.position = {9.0, -12.0, 4.0};
   s.camera.look_at = {0.0, 0.0, 6.0};
-  TreeDesc t;
+  formats::TreeDesc t;
   t.species = std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml";
   t.seed = 3;
   // Matte leaves: the tests below are of the passes' variance bookkeeping, whatever the BSDF, and
@@ -46,12 +46,12 @@ SceneDesc tree_scene(int spp, int pass_spp, std::uint64_t seed, bool independent
   return s;
 }
 
-Image render(const SceneDesc& s) {
+imaging::Image render(const formats::SceneDesc& s) {
   const EmbreeDevice device("threads=" + std::to_string(s.render.threads));
   const TestWorld test_world(s, device);
-  const Sky sky(sky_spec(s.sky), sun_spec(s.sun), xyz_to_scene_linear(), 128);
-  RenderStats stats;
-  return render_image(render_input(s), test_world.world, sky, kIdentity, stats);
+  const Sky sky(scene::sky_spec(s.sky), scene::sun_spec(s.sun), xyz_to_scene_linear(), 128);
+  imaging::RenderStats stats;
+  return render_image(scene::render_input(s), test_world.world, sky, kIdentity, stats);
 }
 
 // Σ (a - b)² and Σ (var_a + var_b) over every pixel and channel of renders with seeds k and k + 1,
@@ -67,8 +67,8 @@ Spread stated_to_seen(int spp, int pass_spp, bool independent) {
   double& seen = r.seen;
   double& stated = r.stated;
   for (std::uint64_t k = 1; k < 9; k += 2) {
-    const Image a = render(tree_scene(spp, pass_spp, k, independent));
-    const Image b = render(tree_scene(spp, pass_spp, k + 1, independent));
+    const imaging::Image a = render(tree_scene(spp, pass_spp, k, independent));
+    const imaging::Image b = render(tree_scene(spp, pass_spp, k + 1, independent));
     for (std::size_t p = 0; p < a.beauty.size(); ++p) {
       for (int c = 0; c < 3; ++c) {
         const double d = double(a.beauty[p][c]) - b.beauty[p][c];
@@ -125,9 +125,9 @@ TEST(Passes, PassesOfOneSequenceAreTheSinglePassSamples) {
   EXPECT_EQ(independent.first_sample(3), 0u);
   // 16 samples in one pass and in four passes of one sequence are the same samples: the means
   // agree to float rounding (they are summed in another order); independent passes do not.
-  const Image single = render(tree_scene(16, 16, 4));
-  const Image split = render(tree_scene(16, 4, 4));
-  const Image apart = render(tree_scene(16, 4, 4, true));
+  const imaging::Image single = render(tree_scene(16, 16, 4));
+  const imaging::Image split = render(tree_scene(16, 4, 4));
+  const imaging::Image apart = render(tree_scene(16, 4, 4, true));
   double worst_split = 0, worst_apart = 0;
   for (std::size_t p = 0; p < single.beauty.size(); ++p) {
     for (int c = 0; c < 3; ++c) {
@@ -143,12 +143,12 @@ TEST(Passes, PassesOfOneSequenceAreTheSinglePassSamples) {
 }
 
 TEST(Passes, AdaptiveSamplingStopsConvergedPixelsDeterministically) {
-  SceneDesc s = tree_scene(256, 16, 3);
+  formats::SceneDesc s = tree_scene(256, 16, 3);
   s.render.noise_threshold = 0.05;
   s.render.min_spp = 32;
-  const Image a = render(s);
+  const imaging::Image a = render(s);
   s.render.threads = 1;
-  const Image b = render(s);
+  const imaging::Image b = render(s);
   ASSERT_EQ(a.beauty.size(), b.beauty.size());
   EXPECT_EQ(std::memcmp(a.beauty.data(), b.beauty.data(), a.beauty.size() * sizeof(glm::vec3)), 0);
   EXPECT_EQ(std::memcmp(a.samples.data(), b.samples.data(), a.samples.size() * sizeof(float)), 0);
@@ -173,14 +173,14 @@ TEST(Passes, AdaptiveSamplingStopsConvergedPixelsDeterministically) {
   EXPECT_LT(total / a.samples.size(), 200.0);
   // Without a threshold every pixel takes every sample.
   s.render.noise_threshold = 0;
-  const Image uniform = render(s);
+  const imaging::Image uniform = render(s);
   EXPECT_TRUE(std::all_of(uniform.samples.begin(), uniform.samples.end(),
                           [](float n) { return n == 256.0f; }));
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 TEST(Sampler, TheSecondSobolDimensionsTablesAreItsBitLoop) {
   std::uint32_t x = 12345u;
@@ -193,4 +193,4 @@ TEST(Sampler, TheSecondSobolDimensionsTablesAreItsBitLoop) {
   }
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -8,7 +8,7 @@
 #include "common/math.h"
 #include "tracer/lights/sky.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 namespace {
 
@@ -88,4 +88,4 @@ TEST(Preetham, LuminanceFollowsThePerezDistributionFromTheZenith) {
   EXPECT_GT(preetham_xyz(T, ts, 0.05, ts, kSunE).y, preetham_xyz(T, ts, kPi / 2.0, ts, kSunE).y);
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

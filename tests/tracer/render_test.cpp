@@ -23,14 +23,14 @@
 #include "generator/geometry/tree_mesh.h"
 #include "generator/grow.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 namespace {
 
-const ColorTransform kIdentity = [](float*) {};
+const imaging::ColorTransform kIdentity = [](float*) {};
 
-SceneDesc small_scene(int width, int height, int spp) {
-  SceneDesc s;
+formats::SceneDesc small_scene(int width, int height, int spp) {
+  formats::SceneDesc s;
   s.render.width = width;
   s.render.height = height;
   s.render.spp = spp;
@@ -41,28 +41,28 @@ SceneDesc small_scene(int width, int height, int spp) {
 }
 
 // Straight down onto the ground from 5 m, a 20° view, no sky: what the ground's radiance tests see.
-SceneDesc ground_view(int width, int height, int spp) {
-  SceneDesc s = small_scene(width, height, spp);
+formats::SceneDesc ground_view(int width, int height, int spp) {
+  formats::SceneDesc s = small_scene(width, height, spp);
   s.camera.position = {0.0, 0.0, 5.0};
   s.camera.look_at = {0.0, 0.0, 0.0};
   s.camera.up = {0.0, 1.0, 0.0};
   s.camera.fov = 20.0;
-  s.sky.model = SkyModel::None;
+  s.sky.model = formats::SkyModel::None;
   return s;
 }
 
 // The white furnace: a constant sky of radiance 1, no sun, no ground, paths long enough that
 // nothing is cut off.
-void white_furnace(SceneDesc& s) {
+void white_furnace(formats::SceneDesc& s) {
   s.render.max_depth = 512;
   s.sun.enabled = false;
-  s.sky.model = SkyModel::Constant;
+  s.sky.model = formats::SkyModel::Constant;
   s.sky.color = {1.0, 1.0, 1.0};
   s.ground.enabled = false;
 }
 
-TreeDesc aspen() {
-  TreeDesc t;
+formats::TreeDesc aspen() {
+  formats::TreeDesc t;
   t.species = std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml";
   t.seed = 3;
   return t;
@@ -70,8 +70,8 @@ TreeDesc aspen() {
 
 // An aspen whose surfaces scatter everything: bark albedo 1 without relief (shading normals off
 // the geometry lose energy by design), leaves with R + T = 1.
-TreeDesc white_aspen() {
-  TreeDesc t = aspen();
+formats::TreeDesc white_aspen() {
+  formats::TreeDesc t = aspen();
   t.bark.albedo = Rgb{1.0, 1.0, 1.0};
   t.bark.bump_height = 0.0;
   t.leaf.reflectance = t.leaf.back_reflectance = Rgb{0.5, 0.6, 0.7};
@@ -79,13 +79,13 @@ TreeDesc white_aspen() {
   return t;
 }
 
-Image render(const SceneDesc& scene, RenderStats& stats) {
+imaging::Image render(const formats::SceneDesc& scene, imaging::RenderStats& stats) {
   const EmbreeDevice device(
       scene.render.threads > 0 ? "threads=" + std::to_string(scene.render.threads) : "");
   const TestWorld test_world(scene, device);
   const World& world = test_world.world;
-  const Sky sky(sky_spec(scene.sky), sun_spec(scene.sun), xyz_to_scene_linear(), 128);
-  return render_image(render_input(scene), world, sky, kIdentity, stats);
+  const Sky sky(scene::sky_spec(scene.sky), scene::sun_spec(scene.sun), xyz_to_scene_linear(), 128);
+  return render_image(scene::render_input(scene), world, sky, kIdentity, stats);
 }
 
 }  // namespace
@@ -93,14 +93,14 @@ Image render(const SceneDesc& scene, RenderStats& stats) {
 TEST(Render, WhiteFurnaceOnARealTreeIsOneEverywhere) {
   // Bark albedo 1, leaves with R + T = 1, a constant sky of radiance 1, no ground, no sun: every
   // path carries exactly 1, so every pixel is 1 within noise.
-  SceneDesc s = small_scene(32, 24, 64);
+  formats::SceneDesc s = small_scene(32, 24, 64);
   s.render.pass_spp = 4;  // 16 passes: each pixel's variance estimate has 15 degrees of freedom
   white_furnace(s);
-  TreeDesc t = white_aspen();
+  formats::TreeDesc t = white_aspen();
   t.leaf.cuticle_ior = 1.0;  // the bare diffuse leaf (the next test adds the cuticle)
   s.trees.push_back(t);
-  RenderStats stats;
-  const Image img = render(s, stats);
+  imaging::RenderStats stats;
+  const imaging::Image img = render(s, stats);
   double sum = 0.0;
   int tree_pixels = 0;
   for (std::size_t p = 0; p < img.beauty.size(); ++p) {
@@ -123,15 +123,15 @@ TEST(Render, WhiteFurnaceWithGlossyLeavesStaysOne) {
   // bound: the mean within [0.97, 1.005]; the layering conserves energy up to the coat's albedo
   // table, so the test asks for the mean within 4 standard errors of 1 as well: measured 0.9955,
   // standard error 0.0018).
-  SceneDesc s = small_scene(32, 24, 256);
+  formats::SceneDesc s = small_scene(32, 24, 256);
   s.render.pass_spp = 16;  // 16 passes
   white_furnace(s);
-  TreeDesc t = white_aspen();
+  formats::TreeDesc t = white_aspen();
   t.leaf.cuticle_ior = 1.45;
   t.leaf.cuticle_roughness = 0.3;
   s.trees.push_back(t);
-  RenderStats stats;
-  const Image img = render(s, stats);
+  imaging::RenderStats stats;
+  const imaging::Image img = render(s, stats);
   double sum = 0.0, variance = 0.0;
   int tree_pixels = 0;
   for (std::size_t p = 0; p < img.beauty.size(); ++p) {
@@ -156,21 +156,21 @@ TEST(Render, WhiteFurnaceWithBumpMappedBarkLosesEnergyButNeverGainsIt) {
   // The white furnace on the trunk, close up, with the bark's relief on: a bumped shading normal
   // redistributes light and the integrator refuses directions below the geometry, so a little
   // energy is lost (never gained). Bark pixels stay at most 1 and within 1 % of it.
-  SceneDesc s = small_scene(24, 32, 64);
+  formats::SceneDesc s = small_scene(24, 32, 64);
   s.render.pass_spp = 4;  // 16 passes: 15 degrees of freedom a pixel
   s.camera.position = {0.0, -3.0, 2.0};
   s.camera.look_at = {0.0, 0.0, 2.0};
   s.camera.fov = 12.0;
   white_furnace(s);
-  TreeDesc t = aspen();
+  formats::TreeDesc t = aspen();
   t.bark.albedo = Rgb{1.0, 1.0, 1.0};
   t.bark.bump_height = 0.004;  // the species' default relief
   t.bark.roughness = 0.0;      // Lambertian (Oren–Nayar's qualitative model loses energy itself)
   t.leaf.reflectance = t.leaf.back_reflectance = Rgb{0.5, 0.5, 0.5};
   t.leaf.transmittance = Rgb{0.5, 0.5, 0.5};
   s.trees.push_back(t);
-  RenderStats stats;
-  const Image img = render(s, stats);
+  imaging::RenderStats stats;
+  const imaging::Image img = render(s, stats);
   double sum = 0.0, variance = 0.0;
   int tree_pixels = 0;
   for (std::size_t p = 0; p < img.beauty.size(); ++p) {
@@ -191,12 +191,12 @@ TEST(Render, WhiteFurnaceWithBumpMappedBarkLosesEnergyButNeverGainsIt) {
 
 TEST(Render, LambertianGroundUnderTheSunIsRhoEOverPi) {
   for (double elevation : {90.0, 30.0}) {
-    SceneDesc s = ground_view(8, 8, 16);
+    formats::SceneDesc s = ground_view(8, 8, 16);
     s.sun.elevation = elevation;
     s.sun.irradiance = 2.0;
     s.ground.albedo = {0.5, 0.25, 0.1};
-    RenderStats stats;
-    const Image img = render(s, stats);
+    imaging::RenderStats stats;
+    const imaging::Image img = render(s, stats);
     const double e = 2.0 * std::sin(elevation * kPi / 180.0);  // on the horizontal ground
     // Each pixel within 0.2 % (a low sun's cos θ varies by ±0.4 % over its disk), the image
     // within 0.02 %: the sun's cone kept as a float cos α once made the ground 0.25 % too dark
@@ -215,13 +215,13 @@ TEST(Render, LambertianGroundUnderTheSunIsRhoEOverPi) {
 TEST(Render, ASmallSunLightsTheGroundExactly) {
   // The bias was largest for small suns: at 0.5° the float 1 - cos α is 0.18 % off.
   for (double diameter : {0.5, 0.53, 0.1}) {
-    SceneDesc s = ground_view(4, 4, 16);
+    formats::SceneDesc s = ground_view(4, 4, 16);
     s.sun.elevation = 90.0;
     s.sun.angular_diameter = diameter;
     s.sun.irradiance = 3.0;
     s.ground.albedo = {0.5, 0.5, 0.5};
-    RenderStats stats;
-    const Image img = render(s, stats);
+    imaging::RenderStats stats;
+    const imaging::Image img = render(s, stats);
     for (const glm::vec3& v : img.beauty)
       EXPECT_NEAR(v.x, 0.5 * 3.0 / kPi, 2e-4 * 0.5 * 3.0 / kPi) << diameter;
   }
@@ -232,14 +232,14 @@ TEST(Render, BsdfSampledHitsOnALargeSunAreWeightedByMis) {
   // twenty, so the BSDF branch of the sun's MIS carries real weight. A disk of uniform radiance
   // lies wholly above the horizon, so the ground's irradiance is still E cos(theta_s) exactly and
   // its radiance rho E cos(theta_s) / pi: right only when the two branches' weights sum to one.
-  SceneDesc s = ground_view(8, 8, 256);
+  formats::SceneDesc s = ground_view(8, 8, 256);
   s.sun.elevation = 60.0;
   s.sun.angular_diameter = 40.0;
   s.sun.irradiance = 2.0;
   s.ground.albedo = {0.8, 0.8, 0.8};
   s.render.max_depth = 1;  // the ground sees nothing but the sun
-  RenderStats stats;
-  const Image img = render(s, stats);
+  imaging::RenderStats stats;
+  const imaging::Image img = render(s, stats);
   const double expected = 0.8 * 2.0 * std::cos(30.0 * kPi / 180.0) / kPi;
   double mean = 0.0, variance = 0.0;
   for (std::size_t p = 0; p < img.beauty.size(); ++p) {
@@ -252,13 +252,13 @@ TEST(Render, BsdfSampledHitsOnALargeSunAreWeightedByMis) {
 }
 
 TEST(Render, ConstantSkySeenDirectlyIsItsRadiance) {
-  SceneDesc s = small_scene(8, 8, 4);
+  formats::SceneDesc s = small_scene(8, 8, 4);
   s.camera.look_at = {0.0, 0.0, 50.0};
   s.sun.enabled = false;
   s.ground.enabled = false;
-  s.sky.model = SkyModel::Constant;
+  s.sky.model = formats::SkyModel::Constant;
   s.sky.color = {0.25, 0.5, 2.0};
-  RenderStats stats;
+  imaging::RenderStats stats;
   for (const glm::vec3& v : render(s, stats).beauty) {
     EXPECT_FLOAT_EQ(v.x, 0.25f);
     EXPECT_FLOAT_EQ(v.y, 0.5f);
@@ -267,13 +267,13 @@ TEST(Render, ConstantSkySeenDirectlyIsItsRadiance) {
 }
 
 TEST(Render, ImagesAreBitIdenticalAtAnyThreadCount) {
-  SceneDesc s = small_scene(40, 30, 4);
+  formats::SceneDesc s = small_scene(40, 30, 4);
   s.trees.push_back(aspen());
-  RenderStats a_stats, b_stats;
+  imaging::RenderStats a_stats, b_stats;
   s.render.threads = 1;
-  const Image a = render(s, a_stats);
+  const imaging::Image a = render(s, a_stats);
   s.render.threads = 2;
-  const Image b = render(s, b_stats);
+  const imaging::Image b = render(s, b_stats);
   ASSERT_EQ(a.beauty.size(), b.beauty.size());
   EXPECT_EQ(std::memcmp(a.beauty.data(), b.beauty.data(), a.beauty.size() * sizeof(glm::vec3)), 0);
   EXPECT_EQ(
@@ -286,18 +286,19 @@ namespace {
 
 // Under the sun at the zenith (irradiance 2), no ground: the OBJ `text`, placed 1 m up, its
 // group "floor" diffuse of albedo 0.5.
-SceneDesc floor_scene(const std::string& name, const std::string& text, const std::string& up) {
+formats::SceneDesc floor_scene(const std::string& name, const std::string& text,
+                               const std::string& up) {
   const std::string obj = ::testing::TempDir() + name;
   std::ofstream(obj) << text;
-  SceneDesc s = ground_view(8, 8, 8);
+  formats::SceneDesc s = ground_view(8, 8, 8);
   s.sun.elevation = 90.0;
   s.sun.irradiance = 2.0;
   s.ground.enabled = false;
-  MeshDesc m;
+  formats::MeshDesc m;
   m.path = obj;
   m.up = up;
   m.placement.position = {0.0, 0.0, 1.0};
-  MeshMaterialDesc floor;
+  formats::MeshMaterialDesc floor;
   floor.kind = "diffuse";
   floor.albedo = {0.5, 0.5, 0.5};
   m.materials["floor"] = floor;
@@ -309,16 +310,16 @@ SceneDesc floor_scene(const std::string& name, const std::string& text, const st
 
 TEST(Render, ObjMeshesAreConvertedToZUpAndUseTheirMaterials) {
   // A floor quad in a y-up OBJ (group "floor") must lie flat in arbor's z-up world.
-  SceneDesc s =
+  formats::SceneDesc s =
       floor_scene("floor.obj", "v -5 0 -5\nv 5 0 -5\nv 5 0 5\nv -5 0 5\ng floor\nf 1 4 3 2\n", "y");
-  const MeshMaterialDesc floor = s.meshes[0].materials["floor"];
-  RenderStats stats;
+  const formats::MeshMaterialDesc floor = s.meshes[0].materials["floor"];
+  imaging::RenderStats stats;
   for (const glm::vec3& v : render(s, stats).beauty) EXPECT_NEAR(v.x, 0.5 * 2.0 / kPi, 4e-3);
   // A group without a material entry is an error naming it.
   s.meshes[0].materials.clear();
   s.meshes[0].materials["bark"] = floor;
   try {
-    build_scene(s, kOcioConfig);  // a scene's errors come before Embree
+    scene::build_scene(s, kOcioConfig);  // a scene's errors come before Embree
     FAIL() << "an unmapped group was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(e.message().find("group 'floor'"), std::string::npos) << e.what();
@@ -330,8 +331,8 @@ TEST(Render, ObjVertexNormalsShadeTheMesh) {
   // surface facing 60° from the sun, ρE cos 60° / π, half the flat quad's ρE / π. Without
   // normals on its corners the same quad is flat again.
   const std::string quad = "v -5 -5 0\nv 5 -5 0\nv 5 5 0\nv -5 5 0\nvn 0.8660254 0 0.5\ng floor\n";
-  SceneDesc s = floor_scene("leaning.obj", quad + "f 1//1 2//1 3//1 4//1\n", "z");
-  RenderStats stats;
+  formats::SceneDesc s = floor_scene("leaning.obj", quad + "f 1//1 2//1 3//1 4//1\n", "z");
+  imaging::RenderStats stats;
   for (const glm::vec3& v : render(s, stats).beauty) EXPECT_NEAR(v.x, 0.5 * 0.5 * 2.0 / kPi, 2e-3);
   s = floor_scene("leaning.obj", quad + "f 1 2 3 4\n", "z");
   for (const glm::vec3& v : render(s, stats).beauty) EXPECT_NEAR(v.x, 0.5 * 2.0 / kPi, 2e-3);
@@ -341,7 +342,7 @@ TEST(Render, ATreesCurvesAndItsOwnMeshExportCoverTheSamePixels) {
   // The Saguaro (periodic taper, whose radius law has unbounded slope where swellings meet)
   // rendered as curves and as its own OBJ export: the same camera rays (same sampler), so the
   // pixels that see the tree differ only along silhouettes, by the mesh's chord error.
-  SceneDesc s;
+  formats::SceneDesc s;
   s.render.width = 96;
   s.render.height = 128;
   s.render.spp = 1;
@@ -351,25 +352,25 @@ TEST(Render, ATreesCurvesAndItsOwnMeshExportCoverTheSamePixels) {
   s.ground.enabled = false;
   s.camera.position = {0.0, -9.0, 3.0};
   s.camera.look_at = {0.0, 0.0, 3.0};
-  TreeDesc t;
+  formats::TreeDesc t;
   t.species = std::string(ARBOR_SOURCE_DIR) + "/species/saguaro_cactus.toml";
   t.seed = 1;
   s.trees.push_back(t);
-  RenderStats stats;
-  const Image curves = render(s, stats);
+  imaging::RenderStats stats;
+  const imaging::Image curves = render(s, stats);
 
-  const gen::Species species = gen::load_species(t.species);
-  gen::GrowOptions grow;
+  const generator::Species species = formats::load_species(t.species);
+  generator::GrowOptions grow;
   grow.seed = t.seed;
-  const gen::TreeGeometry g =
-      gen::build_tree_geometry(gen::grow_tree(species, grow), gen::geometry_options_for(species));
+  const generator::TreeGeometry g = generator::build_tree_geometry(
+      generator::grow_tree(species, grow), generator::geometry_options_for(species));
   const std::string obj = ::testing::TempDir() + "saguaro.obj";
-  gen::write_obj(gen::tessellate(g), obj, {species.name, species.bark, species.leaf});
+  generator::write_obj(generator::tessellate(g), obj, {species.name, species.bark, species.leaf});
   s.trees.clear();
-  MeshDesc m;
+  formats::MeshDesc m;
   m.path = obj;
   s.meshes.push_back(m);
-  const Image mesh = render(s, stats);
+  const imaging::Image mesh = render(s, stats);
 
   int seen = 0, differ = 0;
   for (std::size_t p = 0; p < curves.depth.size(); ++p) {
@@ -394,25 +395,25 @@ TEST(Render, BarkBumpMapImagesShadeTheBarkAndMissingOnesAreErrors) {
     }
   }
   ASSERT_TRUE(stripes.write(path));
-  SceneDesc s = small_scene(24, 32, 4);
+  formats::SceneDesc s = small_scene(24, 32, 4);
   s.camera.position = {0.0, -3.0, 2.0};
   s.camera.look_at = {0.0, 0.0, 2.0};
   s.camera.fov = 12.0;
-  s.sky.model = SkyModel::None;
+  s.sky.model = formats::SkyModel::None;
   s.sun.elevation = 10.0;
   s.sun.azimuth = -90.0;
-  TreeDesc t = aspen();
+  formats::TreeDesc t = aspen();
   t.bark.bump_map = path;
   t.bark.bump_tile = 0.1;
   t.bark.bump_height = 0.004;
   s.trees.push_back(t);
   s.render.spp = 16;
-  RenderStats stats;
-  const Image bumpy = render(s, stats);
+  imaging::RenderStats stats;
+  const imaging::Image bumpy = render(s, stats);
   s.trees[0].bark.bump_height = 0.0;
-  const Image smooth = render(s, stats);
+  const imaging::Image smooth = render(s, stats);
   s.render.seed = 2;
-  const Image smooth_again = render(s, stats);
+  const imaging::Image smooth_again = render(s, stats);
   // The relief's effect against the noise floor: the bumpy and the smooth bark differ far more
   // than two renders of the smooth bark with different seeds. (The tilt itself is worked out
   // in materials/material_test.cpp.)
@@ -429,7 +430,7 @@ TEST(Render, BarkBumpMapImagesShadeTheBarkAndMissingOnesAreErrors) {
                                  << " a pixel";
   s.trees[0].bark.bump_map = ::testing::TempDir() + "missing.png";
   try {
-    build_scene(s, kOcioConfig);
+    scene::build_scene(s, kOcioConfig);
     FAIL() << "a missing bump map was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("missing.png"), std::string::npos) << e.what();
@@ -437,12 +438,12 @@ TEST(Render, BarkBumpMapImagesShadeTheBarkAndMissingOnesAreErrors) {
 }
 
 TEST(Camera, ThinLensKeepsTheFocusPlaneSharp) {
-  CameraDesc d;
+  formats::CameraDesc d;
   d.position = {0.0, 0.0, 0.0};
   d.look_at = {0.0, 10.0, 0.0};
   d.aperture_radius = 0.05;
   d.focus_distance = 7.0;
-  const Camera cam(camera_spec(d), 64, 48);
+  const Camera cam(scene::camera_spec(d), 64, 48);
   for (glm::vec2 film : {glm::vec2(32, 24), glm::vec2(5, 40), glm::vec2(60, 3)}) {
     const Ray centre = cam.generate(film, {0.5f, 0.5f});
     // Where rays through different lens points meet the plane y = 7 (the focus plane).
@@ -469,13 +470,13 @@ TEST(Sky, SamplingIsConsistentWithItsPdfAndRadiance) {
     }
   }
   ASSERT_TRUE(env.write(path));
-  for (const SkyModel model : {SkyModel::Envmap, SkyModel::Preetham}) {
-    SkyDesc desc;
+  for (const formats::SkyModel model : {formats::SkyModel::Envmap, formats::SkyModel::Preetham}) {
+    formats::SkyDesc desc;
     desc.model = model;
     desc.path = path;
     desc.rotation = 30.0;
-    SunDesc sun;
-    const Sky sky(sky_spec(desc), sun_spec(sun), xyz_to_scene_linear(), 128);
+    formats::SunDesc sun;
+    const Sky sky(scene::sky_spec(desc), scene::sun_spec(sun), xyz_to_scene_linear(), 128);
     // (1) pdf() agrees with sample(); (2) E[L / pdf] equals the integral of L over the sphere.
     glm::dvec3 estimate(0.0);
     const int n = 200000;
@@ -503,4 +504,4 @@ TEST(Sky, SamplingIsConsistentWithItsPdfAndRadiance) {
   }
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

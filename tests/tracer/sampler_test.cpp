@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-namespace arbor::trace {
+namespace arbor::tracer {
 namespace {
 
 // Every point of the first 16 samples lies in [0, 1)² (checked before it is used as an index:
@@ -41,4 +41,4 @@ TEST(Sampler, KeysDecorrelateAndRepeat) {
 }
 
 }  // namespace
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

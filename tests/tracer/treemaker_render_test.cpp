@@ -17,11 +17,11 @@
 #include "tracer/test_world.h"
 #include "common/math.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 namespace {
 
-const ColorTransform kIdentity = [](float*) {};
+const imaging::ColorTransform kIdentity = [](float*) {};
 
 std::string write_file(const char* name, const std::string& text) {
   const std::string path = ::testing::TempDir() + name;
@@ -38,8 +38,8 @@ std::string known_skeleton() {
                     "connect 1 2\nconnect 2 3\nconnect 2 4\nconnect 4 5\nconnect 3 6\n");
 }
 
-TreeDesc tree_of(const std::string& species) {
-  TreeDesc t;
+formats::TreeDesc tree_of(const std::string& species) {
+  formats::TreeDesc t;
   t.species = species;
   return t;
 }
@@ -47,7 +47,7 @@ TreeDesc tree_of(const std::string& species) {
 }  // namespace
 
 TEST(Treemaker, FactorsMatchHandWorkedValues) {
-  TreeExtent tree;
+  scene::TreeExtent tree;
   tree.base = {1.0f, 1.0f, 0.5f};
   tree.height = 10.0f;
   tree.radius = 5.0f;
@@ -78,25 +78,25 @@ TEST(Treemaker, FactorsMatchHandWorkedValues) {
   EXPECT_NEAR(treemaker_terms(tree, {1.0f, 1.0f, 3.0f}, up, false, L)[4], std::sqrt(0.5f), 1e-6f);
   EXPECT_NEAR(treemaker_terms(tree, {4.0f, 1.0f, 3.0f}, up, false, up)[4], std::sqrt(0.5f), 1e-6f);
 
-  const mat::TreemakerWeights w{0.1, 0.4, 0.4, 0.3, 0.2};  // the dogwood's light {}
+  const materials::TreemakerWeights w{0.1, 0.4, 0.4, 0.3, 0.2};  // the dogwood's light {}
   EXPECT_NEAR(treemaker_shade(w, t), 0.1 + 0.4 * 0.5 + 0.4 * 0.4 + 0.3 * 0.6 + 0.2 * 1.0, 1e-6);
 }
 
 TEST(Treemaker, SkyIrradianceOfAConstantSkyIsPiL) {
-  SkyDesc sky;
-  sky.model = SkyModel::Constant;
+  formats::SkyDesc sky;
+  sky.model = formats::SkyModel::Constant;
   sky.color = {0.5, 1.0, 2.0};
-  SunDesc sun;
+  formats::SunDesc sun;
   sun.enabled = false;
-  const Sky s(sky_spec(sky), sun_spec(sun), xyz_to_scene_linear(), 256);
+  const Sky s(scene::sky_spec(sky), scene::sun_spec(sun), xyz_to_scene_linear(), 256);
   EXPECT_NEAR(s.irradiance_up().x, kPi * 0.5, 2e-3 * kPi);
   EXPECT_NEAR(s.irradiance_up().y, kPi * 1.0, 2e-3 * kPi);
   EXPECT_NEAR(s.irradiance_up().z, kPi * 2.0, 2e-3 * kPi);
 }
 
 TEST(Treemaker, TreeExtentIsMeasuredFromTheFirstPoint) {
-  SceneDesc scene;
-  TreeDesc t = tree_of(known_skeleton());
+  formats::SceneDesc scene;
+  formats::TreeDesc t = tree_of(known_skeleton());
   t.placement.position = {10.0, 0.0, 0.0};
   t.placement.scale = 2.0;
   t.placement.rotation = 90.0;
@@ -105,7 +105,7 @@ TEST(Treemaker, TreeExtentIsMeasuredFromTheFirstPoint) {
   const EmbreeDevice device("");
   const TestWorld test_world(scene, device);
   const World& world = test_world.world;
-  const TreeExtent& e = world.extent(0);
+  const scene::TreeExtent& e = world.extent(0);
   // Base (1, 2, 0) rotated 90° about z → (−2, 1, 0), × 2, + (10, 0, 0).
   EXPECT_NEAR(e.base.x, 6.0f, 1e-5f);
   EXPECT_NEAR(e.base.y, 2.0f, 1e-5f);
@@ -115,16 +115,16 @@ TEST(Treemaker, TreeExtentIsMeasuredFromTheFirstPoint) {
 }
 
 TEST(Treemaker, WeightsComeFromTheTemplateThenTheScene) {
-  SceneDesc scene;
+  formats::SceneDesc scene;
   scene.trees.push_back(tree_of(std::string(ARBOR_SOURCE_DIR) + "/species/dogwood.tmpl"));
-  TreeDesc overridden = scene.trees.back();
+  formats::TreeDesc overridden = scene.trees.back();
   overridden.treemaker.angle = 0.7;
   scene.trees.push_back(overridden);
   scene.trees.push_back(tree_of(known_skeleton()));
   const EmbreeDevice device("");
   const TestWorld test_world(scene, device);
   const World& world = test_world.world;
-  const mat::TreemakerWeights& dogwood =
+  const materials::TreemakerWeights& dogwood =
       world.instance(0).treemaker;  // light { 0.1 0.4 0.4 0.3 0.2 }
   EXPECT_DOUBLE_EQ(dogwood.ambient, 0.1);
   EXPECT_DOUBLE_EQ(dogwood.lambert, 0.4);
@@ -134,7 +134,7 @@ TEST(Treemaker, WeightsComeFromTheTemplateThenTheScene) {
   EXPECT_DOUBLE_EQ(world.instance(1).treemaker.angle, 0.7);
   EXPECT_DOUBLE_EQ(world.instance(1).treemaker.height, 0.4);
   // A tree of another model gets arbor's documented defaults (docs/treemaker-format.md).
-  const mat::TreemakerWeights& other = world.instance(2).treemaker;
+  const materials::TreemakerWeights& other = world.instance(2).treemaker;
   EXPECT_DOUBLE_EQ(other.ambient, 0.1);
   EXPECT_DOUBLE_EQ(other.lambert, 0.4);
   EXPECT_DOUBLE_EQ(other.height, 0.2);
@@ -146,20 +146,20 @@ TEST(Treemaker, WeightsComeFromTheTemplateThenTheScene) {
 // (T = z) under a sun 30° up has N·L = sqrt(1 − (T·L)²) = cos 30° everywhere, and h/h0 is the
 // hit's height over the trunk's 10 m, which a horizontal camera sees row by row.
 TEST(Treemaker, ShadeOfAVerticalTrunkIsWorkedOutFromTheView) {
-  SceneDesc s;
+  formats::SceneDesc s;
   s.render.width = 16;
   s.render.height = 64;
   s.render.treemaker_spp = 1;
-  s.render.integrator = Integrator::Treemaker;
+  s.render.integrator = formats::Integrator::Treemaker;
   s.camera.position = {0.0, -20.0, 5.0};
   s.camera.look_at = {0.0, 0.0, 5.0};
   s.camera.fov = 40.0;
   s.sun.elevation = 30.0;
   s.sun.azimuth = 0.0;
   s.sun.irradiance = 2.0;
-  s.sky.model = SkyModel::None;
+  s.sky.model = formats::SkyModel::None;
   s.ground.enabled = false;
-  TreeDesc t =
+  formats::TreeDesc t =
       tree_of(write_file("tm_pole.skel", "point 1 0 0 0 0.3\npoint 2 0 0 10 0.3\nconnect 1 2\n"));
   t.bark.albedo = Rgb{0.5, 0.5, 0.5};
   t.treemaker = {0.0, 1.0, 0.0, 0.0, 0.0};  // N·L alone
@@ -170,9 +170,10 @@ TEST(Treemaker, ShadeOfAVerticalTrunkIsWorkedOutFromTheView) {
   for (int part = 0; part < 2; ++part) {
     if (part == 1) s.trees[0].treemaker = {0.0, 0.0, 1.0, 0.0, 0.0};  // h/h0 alone
     const TestWorld test_world(s, device);
-    const Sky sky(sky_spec(s.sky), sun_spec(s.sun), xyz_to_scene_linear(), 64);
-    RenderStats stats;
-    const Image img = render_image(render_input(s), test_world.world, sky, kIdentity, stats);
+    const Sky sky(scene::sky_spec(s.sky), scene::sun_spec(s.sun), xyz_to_scene_linear(), 64);
+    imaging::RenderStats stats;
+    const imaging::Image img =
+        render_image(scene::render_input(s), test_world.world, sky, kIdentity, stats);
     int trunk = 0;
     for (int y = 0; y < s.render.height; ++y) {
       // The height the row's centre sees on the trunk's front (19.7 m away), and what one pixel
@@ -203,13 +204,13 @@ TEST(Treemaker, ShadeOfAVerticalTrunkIsWorkedOutFromTheView) {
 // are ρ(E_sun cos θ + E_sky)/π in sunlight and ρ E_sky/π in the tree's shadow, which lies on the
 // side away from the sun.
 TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
-  SceneDesc s;
+  formats::SceneDesc s;
   s.render.width = 64;
   s.render.height = 64;
   s.render.treemaker_spp = 1;
-  s.render.integrator = Integrator::Treemaker;
+  s.render.integrator = formats::Integrator::Treemaker;
   s.output.aovs = {};
-  s.output.aovs.add(Aov::Treemaker);
+  s.output.aovs.add(imaging::Aov::Treemaker);
   s.camera.position = {0.0, 0.0, 60.0};  // straight down onto the tree and its shadow
   s.camera.look_at = {0.0, 0.0, 0.0};
   s.camera.up = {0.0, 1.0, 0.0};
@@ -217,10 +218,10 @@ TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
   s.sun.elevation = 45.0;
   s.sun.azimuth = 0.0;  // from +x: shadows fall towards −x
   s.sun.irradiance = 2.0;
-  s.sky.model = SkyModel::Constant;
+  s.sky.model = formats::SkyModel::Constant;
   s.sky.color = {0.25, 0.25, 0.25};
   s.ground.albedo = {0.5, 0.5, 0.5};
-  TreeDesc t = tree_of(known_skeleton());
+  formats::TreeDesc t = tree_of(known_skeleton());
   t.placement.position = {-1.0, -2.0, 0.0};  // base at the origin
   t.placement.scale = 1.5;
   t.treemaker.ambient = 0.3;
@@ -228,19 +229,19 @@ TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
   const EmbreeDevice device("");
   const TestWorld test_world(s, device);
   const World& world = test_world.world;
-  const Sky sky(sky_spec(s.sky), sun_spec(s.sun), xyz_to_scene_linear(), 256);
+  const Sky sky(scene::sky_spec(s.sky), scene::sun_spec(s.sun), xyz_to_scene_linear(), 256);
   const TreemakerIntegrator integrator(world, sky);
   const float e_sky = sky.irradiance_up().x;
   EXPECT_NEAR(integrator.max_intensity().x, (2.0f + e_sky) / kPi, 1e-5);
 
-  RenderStats stats;
-  const Image img = render_image(render_input(s), world, sky, kIdentity, stats);
+  imaging::RenderStats stats;
+  const imaging::Image img = render_image(scene::render_input(s), world, sky, kIdentity, stats);
   const float lit = static_cast<float>(0.5 * (2.0 * std::sin(kPi / 4) + e_sky) / kPi);
   const float shadow = static_cast<float>(0.5 * e_sky / kPi);
   const std::size_t channels = img.extra_names.size();
   int tree = 0, lit_pixels = 0, shadow_pixels = 0;
   double shadow_x = 0.0;
-  const mat::TreemakerWeights& w = world.instance(0).treemaker;
+  const materials::TreemakerWeights& w = world.instance(0).treemaker;
   for (int y = 0; y < s.render.height; ++y) {
     for (int x = 0; x < s.render.width; ++x) {
       const std::size_t p = static_cast<std::size_t>(y) * s.render.width + x;
@@ -273,26 +274,26 @@ TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
 }
 
 TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
-  SceneDesc s;
+  formats::SceneDesc s;
   s.render.width = 48;
   s.render.height = 32;
   s.render.treemaker_spp = 3;
-  s.render.integrator = Integrator::Treemaker;
+  s.render.integrator = formats::Integrator::Treemaker;
   s.output.aovs = {};
-  s.output.aovs.add(Aov::Treemaker);
+  s.output.aovs.add(imaging::Aov::Treemaker);
   s.camera.position = {9.0, -12.0, 4.0};
   s.camera.look_at = {0.0, 0.0, 6.0};
-  TreeDesc t = tree_of(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
+  formats::TreeDesc t = tree_of(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
   s.trees.push_back(t);
-  Image images[2];
+  imaging::Image images[2];
   for (int threads : {1, 2}) {
     s.render.threads = threads;
     const EmbreeDevice device("threads=" + std::to_string(threads));
     const TestWorld test_world(s, device);
     const World& world = test_world.world;
-    const Sky sky(sky_spec(s.sky), sun_spec(s.sun), xyz_to_scene_linear(), 128);
-    RenderStats stats;
-    images[threads - 1] = render_image(render_input(s), world, sky, kIdentity, stats);
+    const Sky sky(scene::sky_spec(s.sky), scene::sun_spec(s.sun), xyz_to_scene_linear(), 128);
+    imaging::RenderStats stats;
+    images[threads - 1] = render_image(scene::render_input(s), world, sky, kIdentity, stats);
   }
   ASSERT_EQ(images[0].extra.size(), images[1].extra.size());
   ASSERT_EQ(images[0].extra.size(), 48u * 32u * 23u);
@@ -307,9 +308,9 @@ TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
   const EmbreeDevice device("threads=2");
   const TestWorld test_world(s, device);
   const World& world = test_world.world;
-  const Sky sky(sky_spec(s.sky), sun_spec(s.sun), xyz_to_scene_linear(), 128);
-  RenderStats stats;
-  const Image plain = render_image(render_input(s), world, sky, kIdentity, stats);
+  const Sky sky(scene::sky_spec(s.sky), scene::sun_spec(s.sun), xyz_to_scene_linear(), 128);
+  imaging::RenderStats stats;
+  const imaging::Image plain = render_image(scene::render_input(s), world, sky, kIdentity, stats);
   EXPECT_TRUE(plain.extra.empty());
   EXPECT_TRUE(plain.extra_names.empty());
   EXPECT_EQ(std::memcmp(plain.beauty.data(), images[1].beauty.data(),
@@ -317,4 +318,4 @@ TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
             0);
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -5,7 +5,7 @@
 
 #include "common/error.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 EmbreeDevice::EmbreeDevice(const std::string& config) {
   device_ = rtcNewDevice(config.empty() ? nullptr : config.c_str());
@@ -64,4 +64,4 @@ std::string EmbreeDevice::version() {
          std::to_string(v % 100);
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -9,7 +9,7 @@
 struct RTCDeviceTy;
 struct RTCSceneTy;
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 class EmbreeDevice {
  public:
@@ -43,4 +43,4 @@ using SceneHandle = std::unique_ptr<RTCSceneTy, SceneRelease>;
 // A new, empty scene on the device (checked).
 SceneHandle new_scene(const EmbreeDevice& device);
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -9,7 +9,7 @@
 
 #include "tracer/ray.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 inline RTCRay embree_ray(const Ray& ray) {
   RTCRay r{};
@@ -62,4 +62,4 @@ inline unsigned attach(RTCScene scene, RTCGeometry g) {
   return id;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

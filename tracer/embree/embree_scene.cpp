@@ -11,29 +11,29 @@
 
 #include <glm/geometric.hpp>
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 namespace {
 
 // Embree's filter for leaf cards (closest-hit and occlusion queries alike): a hit on a card
 // counts only inside its leaf's outline, so the ray goes on past the card's corners.
 void cut_out_leaf(const RTCFilterFunctionNArguments* args) {
-  const auto* cards = static_cast<const gen::LeafCards*>(args->geometryUserPtr);
+  const auto* cards = static_cast<const generator::LeafCards*>(args->geometryUserPtr);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
-    const gen::LeafCard& c = cards->cards[RTCHitN_primID(args->hit, args->N, i)];
+    const generator::LeafCard& c = cards->cards[RTCHitN_primID(args->hit, args->N, i)];
     const glm::vec2 p =
         c.leaf_point(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
-    if (!gen::leaf_outline(c.shape).contains(p)) args->valid[i] = 0;
+    if (!generator::leaf_outline(c.shape).contains(p)) args->valid[i] = 0;
   }
 }
 
 }  // namespace
 
-TreePrototype::TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry& geometry)
+TreePrototype::TreePrototype(const EmbreeDevice& device, const generator::TreeGeometry& geometry)
     : geometry_(geometry) {
   scene_ = new_scene(device);
-  const gen::CurveSet& c = geometry.curves;
+  const generator::CurveSet& c = geometry.curves;
   if (c.size() > 0) {
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_ROUND_HERMITE_CURVE);
     std::vector<std::uint32_t> index(c.size());
@@ -46,7 +46,7 @@ TreePrototype::TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry
          c.tangents.size());
     curve_id_ = attach(scene_.get(), g);
   }
-  const gen::GridSet& gs = geometry.grids;
+  const generator::GridSet& gs = geometry.grids;
   if (!gs.grids.empty()) {
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_GRID);
     std::vector<RTCGrid> grids(gs.grids.size());
@@ -59,7 +59,7 @@ TreePrototype::TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry
          gs.vertices.size());
     grid_id_ = attach(scene_.get(), g);
   }
-  const gen::LeafMesh& lm = geometry.leaves;
+  const generator::LeafMesh& lm = geometry.leaves;
   if (lm.triangle_count() > 0) {
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
     fill(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, lm.indices.data(), 3 * sizeof(std::uint32_t),
@@ -68,7 +68,7 @@ TreePrototype::TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry
          lm.positions.size());
     leaf_id_ = attach(scene_.get(), g);
   }
-  const gen::LeafCards& lc = geometry.cards;
+  const generator::LeafCards& lc = geometry.cards;
   if (lc.size() > 0) {
     // The corners are shared with the geometry, not copied; the quads' indices are 4i .. 4i+3.
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_QUAD);
@@ -79,7 +79,7 @@ TreePrototype::TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry
     }
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, lc.corners.data(),
                                0, sizeof(glm::vec3), lc.corners.size());
-    rtcSetGeometryUserData(g, const_cast<gen::LeafCards*>(&lc));
+    rtcSetGeometryUserData(g, const_cast<generator::LeafCards*>(&lc));
     rtcSetGeometryIntersectFilterFunction(g, cut_out_leaf);
     rtcSetGeometryOccludedFilterFunction(g, cut_out_leaf);
     card_id_ = attach(scene_.get(), g);
@@ -101,24 +101,24 @@ void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned prim
   hit.leaf = -1;
   const glm::vec3 ng = glm::normalize(embree_ng);
   if (geom_id == curve_id_) {
-    const gen::CurveSet& c = geometry_.curves;
+    const generator::CurveSet& c = geometry_.curves;
     hit.kind = SurfaceKind::Curve;
     hit.material = c.segments[primitive].material;
     hit.geometric_normal = glm::dot(ng, ray.direction) < 0.0f ? ng : -ng;
     hit.shading_normal = hit.geometric_normal;
-    hit.bark = gen::curve_bark(c, primitive, u, hit.position);
+    hit.bark = generator::curve_bark(c, primitive, u, hit.position);
     hit.tangent = glm::normalize(glm::vec3(c.derivative(primitive, u)));
     hit.color = c.segments[primitive].color;
   } else if (geom_id == grid_id_) {
-    const gen::GridSet& g = geometry_.grids;
-    const gen::DisplacedGrid& d = g.grids[primitive];
+    const generator::GridSet& g = geometry_.grids;
+    const generator::DisplacedGrid& d = g.grids[primitive];
     hit.kind = SurfaceKind::Grid;
     hit.material = d.material;
     hit.geometric_normal = glm::dot(ng, ray.direction) < 0.0f ? ng : -ng;
-    hit.shading_normal = gen::grid_normal(g, primitive, u, v);
+    hit.shading_normal = generator::grid_normal(g, primitive, u, v);
     if (glm::dot(hit.shading_normal, hit.geometric_normal) < 0.0f)
       hit.shading_normal = -hit.shading_normal;
-    hit.bark = gen::grid_bark(g, primitive, u, v);
+    hit.bark = generator::grid_bark(g, primitive, u, v);
     // Along the trunk: between the rings around this hit.
     const auto row = std::min(static_cast<std::uint32_t>(v * (d.height - 1)), d.height - 2u);
     const auto col = std::min(static_cast<std::uint32_t>(u * (d.width - 1)), d.width - 2u);
@@ -128,11 +128,11 @@ void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned prim
     hit.color = glm::vec3(1.0f);
   } else if (geom_id == card_id_) {
     hit.kind = SurfaceKind::Leaf;
-    const gen::LeafCards& lc = geometry_.cards;
-    const gen::LeafCard& card = lc.cards[primitive];
+    const generator::LeafCards& lc = geometry_.cards;
+    const generator::LeafCard& card = lc.cards[primitive];
     const glm::vec3* q = &lc.corners[4 * static_cast<std::size_t>(primitive)];
     const TriangleSide side = side_seen(q[0], q[1], q[3], ray.direction);
-    hit.material = side.front ? gen::kMaterialLeafFront : gen::kMaterialLeafBack;
+    hit.material = side.front ? generator::kMaterialLeafFront : generator::kMaterialLeafBack;
     hit.geometric_normal = side.normal;
     hit.shading_normal = hit.geometric_normal;
     hit.leaf = card.leaf;
@@ -142,7 +142,7 @@ void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned prim
     hit.tangent = glm::normalize(q[1] - q[0]);
   } else {
     hit.kind = SurfaceKind::Leaf;
-    const gen::LeafMesh& lm = geometry_.leaves;
+    const generator::LeafMesh& lm = geometry_.leaves;
     const std::uint32_t* tri = &lm.indices[3 * static_cast<std::size_t>(primitive)];
     const glm::vec3 a = lm.positions[tri[0]], b = lm.positions[tri[1]], c = lm.positions[tri[2]];
     const TriangleSide side = side_seen(a, b, c, ray.direction);
@@ -156,4 +156,4 @@ void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned prim
   }
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

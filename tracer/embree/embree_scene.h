@@ -10,13 +10,13 @@
 
 struct RTCSceneTy;
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 class TreePrototype {
  public:
   // Copies the geometry's arrays into Embree buffers and commits the scene (BVH build).
   // `geometry` must outlive the prototype (hits read its metadata).
-  TreePrototype(const EmbreeDevice& device, const gen::TreeGeometry& geometry);
+  TreePrototype(const EmbreeDevice& device, const generator::TreeGeometry& geometry);
   ~TreePrototype();
   TreePrototype(const TreePrototype&) = delete;
   TreePrototype& operator=(const TreePrototype&) = delete;
@@ -29,9 +29,9 @@ class TreePrototype {
                     const glm::vec3& embree_ng, SurfaceHit& hit) const;
 
  private:
-  const gen::TreeGeometry& geometry_;
+  const generator::TreeGeometry& geometry_;
   SceneHandle scene_;
   unsigned curve_id_ = ~0u, grid_id_ = ~0u, leaf_id_ = ~0u, card_id_ = ~0u;
 };
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

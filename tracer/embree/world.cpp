@@ -11,7 +11,7 @@
 #include "tracer/embree/embree_internal.h"
 #include "tracer/embree/embree_scene.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 namespace {
 constexpr float kGroundHalfSize = 1.0e4f;  // metres: the ground quad reaches past any horizon
@@ -23,21 +23,22 @@ void map_id(std::vector<int>& map, unsigned id, std::size_t index) {
 }
 }  // namespace
 
-World::World(const Scene& scene, const EmbreeDevice& device) : scene_(scene), device_(device) {
+World::World(const scene::Scene& scene, const EmbreeDevice& device)
+    : scene_(scene), device_(device) {
   const auto start = std::chrono::steady_clock::now();
   top_ = new_scene(device);
-  for (const TreePrototypeData& p : scene.prototypes) {
+  for (const scene::TreePrototypeData& p : scene.prototypes) {
     prototypes_.push_back(std::make_unique<TreePrototype>(device, *p.geometry));
   }
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
-    const TreeInstance& inst = scene.instances[i];
+    const scene::TreeInstance& inst = scene.instances[i];
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(g, prototypes_[static_cast<std::size_t>(inst.prototype)]->scene());
     rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.to_world[0][0]);
     map_id(instance_of_geometry_, attach(top_.get(), g), i);
   }
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
-    const MeshObject& mesh = scene.meshes[i];
+    const scene::MeshObject& mesh = scene.meshes[i];
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
     fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, mesh.positions.data(), sizeof(glm::vec3),
          mesh.positions.size());
@@ -70,7 +71,7 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
   SurfaceHit& s = hit.surface;
   if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && rh.hit.geomID < mesh_of_geometry_.size() &&
       mesh_of_geometry_[rh.hit.geomID] >= 0) {
-    const MeshObject& mesh =
+    const scene::MeshObject& mesh =
         scene_.meshes[static_cast<std::size_t>(mesh_of_geometry_[rh.hit.geomID])];
     const std::uint32_t* tri = &mesh.indices[3 * static_cast<std::size_t>(rh.hit.primID)];
     const glm::vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]],
@@ -88,8 +89,8 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
     // the side the ray sees.
     if (!mesh.normal_indices.empty()) {
       const std::uint32_t* ni = &mesh.normal_indices[3 * static_cast<std::size_t>(rh.hit.primID)];
-      if (ni[0] != MeshObject::kNoNormal && ni[1] != MeshObject::kNoNormal &&
-          ni[2] != MeshObject::kNoNormal) {
+      if (ni[0] != scene::MeshObject::kNoNormal && ni[1] != scene::MeshObject::kNoNormal &&
+          ni[2] != scene::MeshObject::kNoNormal) {
         const float u = rh.hit.u, v = rh.hit.v;
         glm::vec3 n = (1.0f - u - v) * mesh.normals[ni[0]] + u * mesh.normals[ni[1]] +
                       v * mesh.normals[ni[2]];
@@ -129,7 +130,7 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
     return true;
   }
   const int instance = instance_of_geometry_[rh.hit.instID[0]];
-  const TreeInstance& inst = scene_.instances[static_cast<std::size_t>(instance)];
+  const scene::TreeInstance& inst = scene_.instances[static_cast<std::size_t>(instance)];
   // The same ray in the prototype's space (t is unchanged by an affine map of the direction).
   Ray local;
   local.origin = glm::vec3(inst.to_object * glm::vec4(ray.origin, 1.0f));
@@ -146,9 +147,9 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
   hit.instance = instance;
   hit.material = s.kind == SurfaceKind::Leaf ? &inst.leaf : &inst.bark;
   hit.object_id = inst.object_id;
-  hit.material_id = s.kind != SurfaceKind::Leaf            ? inst.bark_id
-                    : s.material == gen::kMaterialLeafBack ? inst.leaf_back_id
-                                                           : inst.leaf_front_id;
+  hit.material_id = s.kind != SurfaceKind::Leaf                  ? inst.bark_id
+                    : s.material == generator::kMaterialLeafBack ? inst.leaf_back_id
+                                                                 : inst.leaf_front_id;
   return true;
 }
 
@@ -160,4 +161,4 @@ bool World::occluded(const Ray& ray) const {
   return r.tfar < 0.0f;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -11,14 +11,14 @@
 #include "tracer/embree/embree_device.h"
 #include "tracer/ray.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 class TreePrototype;
 
 class World {
  public:
   // `scene` must outlive the world.
-  World(const Scene& scene, const EmbreeDevice& device);
+  World(const scene::Scene& scene, const EmbreeDevice& device);
   ~World();
   World(const World&) = delete;
   World& operator=(const World&) = delete;
@@ -28,18 +28,18 @@ class World {
   // True when anything lies on the ray between t_min and t_max.
   bool occluded(const Ray& ray) const;
 
-  const Scene& scene() const { return scene_; }
-  const TreeInstance& instance(int i) const {
+  const scene::Scene& scene() const { return scene_; }
+  const scene::TreeInstance& instance(int i) const {
     return scene_.instances[static_cast<std::size_t>(i)];
   }
-  const TreeExtent& extent(int i) const { return instance(i).extent; }
+  const scene::TreeExtent& extent(int i) const { return instance(i).extent; }
   double build_seconds() const { return build_seconds_; }  // the BVHs, after the scene
   RTCSceneTy* embree_scene() const {
     return top_.get();
   }  // for benchmarks of raw Embree throughput
 
  private:
-  const Scene& scene_;
+  const scene::Scene& scene_;
   const EmbreeDevice& device_;
   SceneHandle top_;
   std::vector<std::unique_ptr<TreePrototype>> prototypes_;
@@ -48,4 +48,4 @@ class World {
   double build_seconds_ = 0.0;
 };
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

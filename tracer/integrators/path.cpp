@@ -9,7 +9,7 @@
 
 #include "common/frame.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 namespace {
 
@@ -60,7 +60,7 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
       break;
     }
     const SurfaceHit& s = hit.surface;
-    const mat::SurfaceBsdf sh = hit.material->bsdf(hit.point());
+    const materials::SurfaceBsdf sh = hit.material->bsdf(hit.point());
     if (depth == 0) {
       out.albedo = sh.albedo;
       out.normal = sh.normal;
@@ -97,7 +97,7 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
     // Continue the path by sampling the BSDF.
     const glm::vec2 u = sampler.get2d(index, dim + 2);
     const glm::vec2 u2 = sampler.get2d(index, dim + 3);
-    const mat::BsdfSample bs = sh.sample(wo, u, u2.x);
+    const materials::BsdfSample bs = sh.sample(wo, u, u2.x);
     if (bs.pdf <= 0.0) break;
     const glm::vec3 dir = glm::normalize(frame.world(bs.wi));
     const float cos_g = glm::dot(dir, s.geometric_normal);
@@ -116,4 +116,4 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
   return out;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -12,7 +12,7 @@
 #include "tracer/lights/sky.h"
 #include "tracer/embree/world.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 // What one camera sample brings back: radiance and the first hit's AOVs.
 struct PathSample {
@@ -62,4 +62,4 @@ float ray_offset(const glm::vec3& p);
 // side dir goes to (so transmission through a leaf starts behind it).
 Ray spawn_ray(const glm::vec3& p, const glm::vec3& geometric_normal, const glm::vec3& dir);
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

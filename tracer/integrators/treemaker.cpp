@@ -11,10 +11,10 @@
 #include "common/frame.h"
 #include "tracer/integrators/path.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
-TreemakerTerms treemaker_terms(const TreeExtent& tree, const glm::vec3& p, const glm::vec3& n,
-                               bool line, const glm::vec3& to_light) {
+TreemakerTerms treemaker_terms(const scene::TreeExtent& tree, const glm::vec3& p,
+                               const glm::vec3& n, bool line, const glm::vec3& to_light) {
   TreemakerTerms t{};
   t[0] = 1.0f;
   const float nl = glm::dot(n, to_light);
@@ -35,12 +35,12 @@ TreemakerTerms treemaker_terms(const TreeExtent& tree, const glm::vec3& p, const
   return t;
 }
 
-float treemaker_shade(const mat::TreemakerWeights& w, const TreemakerTerms& t) {
+float treemaker_shade(const materials::TreemakerWeights& w, const TreemakerTerms& t) {
   return static_cast<float>(w.ambient * t[0] + w.lambert * t[1] + w.height * t[2] +
                             w.radius * t[3] + w.angle * t[4]);
 }
 
-void TreemakerSample::write_aovs(float exposure, const ColorTransform& to_output,
+void TreemakerSample::write_aovs(float exposure, const imaging::ColorTransform& to_output,
                                  float* out) const {
   std::size_t k = 0;
   for (float term : terms) out[k++] = term;
@@ -104,7 +104,7 @@ TreemakerSample TreemakerIntegrator::trace(const Ray& ray) const {
   const bool line = s.kind != SurfaceKind::Leaf;  // limbs, trunk grids and line elements
   out.terms = treemaker_terms(world_.extent(hit.instance), s.position,
                               line ? s.tangent : s.geometric_normal, line, to_light_);
-  const mat::TreemakerWeights& w = world_.instance(hit.instance).treemaker;
+  const materials::TreemakerWeights& w = world_.instance(hit.instance).treemaker;
   const double weights[5] = {w.ambient, w.lambert, w.height, w.radius, w.angle};
   const glm::vec3 unit = shade.albedo * max_intensity_;
   for (int i = 0; i < 5; ++i) {
@@ -114,4 +114,4 @@ TreemakerSample TreemakerIntegrator::trace(const Ray& ray) const {
   return out;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

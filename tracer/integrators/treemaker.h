@@ -18,7 +18,7 @@
 #include "tracer/lights/sky.h"
 #include "tracer/embree/world.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 // The five factors of Figure 3's shade, in its order: 1, N·L, h/h0, r/r0, sin(q/2).
 using TreemakerTerms = std::array<float, 5>;
@@ -37,11 +37,11 @@ using TreemakerTerms = std::array<float, 5>;
 //   relative to the sun" as the paper says. On the trunk axis itself, or with the light at the
 //   zenith, q is undefined and taken as π/2.
 // Heights and distances are not clamped: leaves above the highest skeleton point give h/h0 > 1.
-TreemakerTerms treemaker_terms(const TreeExtent& tree, const glm::vec3& p, const glm::vec3& n,
-                               bool line, const glm::vec3& to_light);
+TreemakerTerms treemaker_terms(const scene::TreeExtent& tree, const glm::vec3& p,
+                               const glm::vec3& n, bool line, const glm::vec3& to_light);
 
 // Σ weight × factor, the bracket of Figure 3.
-float treemaker_shade(const mat::TreemakerWeights& weights, const TreemakerTerms& terms);
+float treemaker_shade(const materials::TreemakerWeights& weights, const TreemakerTerms& terms);
 
 // One camera sample of the treemaker integrator. Radiance and colours are scene-linear.
 struct TreemakerSample {
@@ -56,7 +56,7 @@ struct TreemakerSample {
   // Writes the "treemaker" AOV channels (treemaker_channel_names() order) to `out`: the factors
   // as they are, the colours exposed and converted like the beauty, so that beauty = tm_rest +
   // Σ weight_i × tm_i holds for the written pixels too.
-  void write_aovs(float exposure, const ColorTransform& to_output, float* out) const;
+  void write_aovs(float exposure, const imaging::ColorTransform& to_output, float* out) const;
 };
 
 class TreemakerIntegrator {
@@ -84,4 +84,4 @@ class TreemakerIntegrator {
   glm::vec3 max_intensity_{0.0f};
 };
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -1,7 +1,7 @@
 // A sky of one radiance in every direction (below the horizon too).
 #include "tracer/lights/sky_model.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 SkyMap constant_sky_map(const SkyContext& c) {
   SkyMap map;
@@ -12,4 +12,4 @@ SkyMap constant_sky_map(const SkyContext& c) {
   return map;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 Distribution2D::Distribution2D(const std::vector<float>& w, int width, int height)
     : width_(width), height_(height), weights_(w) {
@@ -47,4 +47,4 @@ float Distribution2D::pdf(glm::vec2 p) const {
                             height_);
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -5,7 +5,7 @@
 
 #include <glm/vec2.hpp>
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 // Piecewise-constant 2D distribution over [0,1)² (rows × columns of weights).
 class Distribution2D {
@@ -25,4 +25,4 @@ class Distribution2D {
   double total_ = 0.0;
 };
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -10,10 +10,10 @@
 #include "common/input_file.h"
 #include "tracer/lights/sky_model.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 SkyMap envmap_sky_map(const SkyContext& c) {
-  const SkySpec& sky = c.sky;
+  const scene::SkySpec& sky = c.sky;
   check_input_file(sky.path, "environment map");
   OIIO::ImageBuf image(sky.path);
   if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
@@ -40,4 +40,4 @@ SkyMap envmap_sky_map(const SkyContext& c) {
   return map;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

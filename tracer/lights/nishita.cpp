@@ -14,7 +14,7 @@
 
 #include "common/math.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 namespace {
 
@@ -236,4 +236,4 @@ glm::dvec3 NishitaSky::radiance_xyz(const glm::dvec3& view, int steps) const {
   return xyz;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -10,7 +10,7 @@
 
 #include <glm/vec3.hpp>
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 struct Atmosphere {
   double air_density = 1.0;    // × the standard Rayleigh profile
@@ -69,4 +69,4 @@ class NishitaSky {
   glm::dvec3 sun_xyz_{0.0}, space_xyz_{0.0};
 };
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

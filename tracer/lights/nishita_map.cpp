@@ -9,7 +9,7 @@
 #include "tracer/lights/nishita.h"
 #include "tracer/lights/sky_model.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 SkyMap nishita_sky_map(const SkyContext& c) {
   SkyMap map;
@@ -57,4 +57,4 @@ SkyMap nishita_sky_map(const SkyContext& c) {
   return map;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

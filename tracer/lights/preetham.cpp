@@ -9,7 +9,7 @@
 #include "common/math.h"
 #include "tracer/lights/sky_model.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 namespace {
 
@@ -77,4 +77,4 @@ SkyMap preetham_sky_map(const SkyContext& c) {
   return map;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

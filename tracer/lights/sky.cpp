@@ -10,13 +10,14 @@
 #include "imaging/color.h"
 #include "common/math.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 namespace {
 constexpr float kPif = static_cast<float>(kPi);
 }  // namespace
 
-Sky::Sky(const SkySpec& sky, const SunSpec& sun, const ColorTransform& xyz_to_linear, int width) {
+Sky::Sky(const scene::SkySpec& sky, const scene::SunSpec& sun,
+         const imaging::ColorTransform& xyz_to_linear, int width) {
   const double elevation = sun.elevation * kPi / 180.0, azimuth = sun.azimuth * kPi / 180.0;
   sun_direction_d_ = glm::dvec3(std::cos(elevation) * std::cos(azimuth),
                                 std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
@@ -33,7 +34,7 @@ Sky::Sky(const SkySpec& sky, const SunSpec& sun, const ColorTransform& xyz_to_li
     sun_irradiance_color_ = glm::vec3(sun_irradiance_);
     sun_present_ = true;
   }
-  if (sky.model == SkyModel::None) return;
+  if (sky.model == formats::SkyModel::None) return;
   rotation_ = static_cast<float>(sky.rotation * kPi / 180.0);
   SkyMap map = make_sky_map({sky, sun, sun_direction_d_, xyz_to_linear, width, rotation_});
   width_ = map.width;
@@ -150,4 +151,4 @@ LightSample Sky::sample_sun(glm::vec2 u) const {
   return s;
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

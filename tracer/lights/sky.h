@@ -15,7 +15,7 @@
 #include "imaging/color.h"
 #include "scene/render_input.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 struct LightSample {
   glm::vec3 direction{0.0f};  // towards the light
@@ -27,8 +27,8 @@ class Sky {
  public:
   // Builds the map at `width` × width/2; throws InputError for an unreadable environment map.
   // `xyz_to_scene_linear` converts the Preetham model's XYZ (ColorPipeline::xyz_to_scene_linear).
-  Sky(const SkySpec& sky, const SunSpec& sun, const ColorTransform& xyz_to_scene_linear,
-      int width = 512);
+  Sky(const scene::SkySpec& sky, const scene::SunSpec& sun,
+      const imaging::ColorTransform& xyz_to_scene_linear, int width = 512);
 
   glm::vec3 radiance(const glm::vec3& direction) const;  // sky only, not the sun
   LightSample sample(glm::vec2 u) const;
@@ -72,4 +72,4 @@ class Sky {
   glm::dvec3 sun_direction_d_{0.0, 0.0, 1.0};
 };
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

@@ -6,7 +6,7 @@
 
 #include "common/math.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 // One per model, each in its own file.
 SkyMap preetham_sky_map(const SkyContext& context);
@@ -16,11 +16,11 @@ SkyMap nishita_sky_map(const SkyContext& context);
 
 SkyMap make_sky_map(const SkyContext& context) {
   switch (context.sky.model) {
-    case SkyModel::Preetham: return preetham_sky_map(context);
-    case SkyModel::Constant: return constant_sky_map(context);
-    case SkyModel::Envmap: return envmap_sky_map(context);
-    case SkyModel::Nishita: return nishita_sky_map(context);
-    case SkyModel::None: break;
+    case formats::SkyModel::Preetham: return preetham_sky_map(context);
+    case formats::SkyModel::Constant: return constant_sky_map(context);
+    case formats::SkyModel::Envmap: return envmap_sky_map(context);
+    case formats::SkyModel::Nishita: return nishita_sky_map(context);
+    case formats::SkyModel::None: break;
   }
   throw std::logic_error("make_sky_map: no map for this sky model");
 }
@@ -31,4 +31,4 @@ glm::vec3 lat_long_direction(glm::vec2 p, float rotation) {
   return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
 }
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

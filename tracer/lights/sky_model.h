@@ -14,16 +14,16 @@
 #include "imaging/color.h"
 #include "scene/render_input.h"
 
-namespace arbor::trace {
+namespace arbor::tracer {
 
 // What a model is made from.
 struct SkyContext {
-  const SkySpec& sky;
-  const SunSpec& sun;
-  glm::dvec3 sun_direction;             // unit, z up
-  const ColorTransform& xyz_to_linear;  // CIE XYZ → scene-linear
-  int width = 512;                      // of the map, for the models that compute theirs
-  float rotation = 0.0f;                // radians about z of the map's columns
+  const scene::SkySpec& sky;
+  const scene::SunSpec& sun;
+  glm::dvec3 sun_direction;                      // unit, z up
+  const imaging::ColorTransform& xyz_to_linear;  // CIE XYZ → scene-linear
+  int width = 512;                               // of the map, for the models that compute theirs
+  float rotation = 0.0f;                         // radians about z of the map's columns
 };
 
 // A lat-long map: `width` columns over the azimuth, `height` rows from the zenith (row 0) to the
@@ -47,4 +47,4 @@ glm::vec3 lat_long_direction(glm::vec2 p, float rotation);
 glm::dvec3 preetham_xyz(double turbidity, double theta, double gamma, double theta_sun,
                         double sun_irradiance);
 
-}  // namespace arbor::trace
+}  // namespace arbor::tracer

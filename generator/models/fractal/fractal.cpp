@@ -12,7 +12,7 @@
 #include "common/rng.h"
 #include "generator/grow_options.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
@@ -210,4 +210,4 @@ Skeleton grow_fractal(const FractalParams& p, const FractalOptions& o) {
   return Grower(p, o, age).run();
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

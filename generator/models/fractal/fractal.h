@@ -8,7 +8,7 @@
 #include "generator/grow_options.h"
 #include "generator/skeleton.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 struct FractalParams {
   // Basic model (thesis Table 3.1).
@@ -53,4 +53,4 @@ using FractalOptions = GrowOptions;
 
 Skeleton grow_fractal(const FractalParams& params, const FractalOptions& options);
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -15,7 +15,7 @@
 #include "common/text_cursor.h"
 #include "generator/grow_options.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
@@ -298,4 +298,4 @@ Skeleton grow_lsystem(const LSystem& sys, const LSystemOptions& o) {
   return Interpreter(sys, o).run();
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

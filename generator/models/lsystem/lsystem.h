@@ -10,7 +10,7 @@
 #include "generator/grow_options.h"
 #include "generator/skeleton.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // One action of a rule body.
 struct LAction {
@@ -67,4 +67,4 @@ using LSystemOptions = GrowOptions;
 // Interprets the system with a 3D turtle (heading +z, up +y at the start). Deterministic.
 Skeleton grow_lsystem(const LSystem& system, const LSystemOptions& options);
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -14,7 +14,7 @@
 #include "common/rng.h"
 #include "generator/grow_options.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
@@ -390,4 +390,4 @@ Skeleton grow_treemaker(const TreeMakerTemplate& t, const TreeMakerOptions& o) {
   return Grower(t, o).run();
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

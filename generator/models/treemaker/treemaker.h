@@ -8,7 +8,7 @@
 #include "generator/skeleton.h"
 #include "generator/models/treemaker/treemaker_template.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // Template units are centimetres (the paper's dogwood then grows to about 3 m with 9 cm leaves).
 constexpr double kTreeMakerUnit = 0.01;
@@ -21,4 +21,4 @@ double treemaker_estimate(const TreeMakerTemplate& t);
 
 Skeleton grow_treemaker(const TreeMakerTemplate& t, const TreeMakerOptions& options);
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -1,7 +1,7 @@
 // Look-ups on a TREE-MAKER template: colours by name, the branching rule of a level (§IV).
 #include "generator/models/treemaker/treemaker_template.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 const TmColor* TreeMakerTemplate::color(const std::string& name) const {
   for (const TmColor& c : colors) {
@@ -18,4 +18,4 @@ const TmBranchRule* TreeMakerTemplate::rule_for(int level) const {
   return best;
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -10,7 +10,7 @@
 
 #include "common/error.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 struct TmRange {
   double lo = 0.0, hi = 0.0;
@@ -85,4 +85,4 @@ struct TreeMakerTemplate {
   const TmBranchRule* rule_for(int level) const;
 };
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -15,7 +15,7 @@
 #include "common/rng.h"
 #include "generator/models/weber_penn/weber_penn_formulas.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
@@ -567,4 +567,4 @@ Skeleton grow_weber_penn(const WeberPennParams& params, const GrowOptions& optio
   return skeleton;
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -7,7 +7,7 @@
 #include "generator/skeleton.h"
 #include "generator/models/weber_penn/weber_penn_params.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // An upper estimate of a tree's size, made before growing it (children shared among clones as
 // the generator does, clone growth compounded per segment).
@@ -21,4 +21,4 @@ SizeEstimate estimate_size(const WeberPennParams& params, double quality);
 // Same params, seed, time and quality ⇒ bit-identical skeleton.
 Skeleton grow_weber_penn(const WeberPennParams& params, const GrowOptions& options);
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -6,7 +6,7 @@
 #include <cmath>
 #include "common/math.h"
 
-namespace arbor::gen::wp {
+namespace arbor::generator::wp {
 
 double envelope_ratio(double ratio, const Envelope& e) {
   // §4.6: ShapeRatio(8, ratio) is 0 outside [0, 1].
@@ -170,4 +170,4 @@ double attraction_up(double attraction, double z_of_z, double z_of_y, int curve_
   return attraction * declination * cos_orientation / curve_res;
 }
 
-}  // namespace arbor::gen::wp
+}  // namespace arbor::generator::wp

@@ -1,7 +1,7 @@
 // The equations of Weber & Penn 1995 §4 as free functions, one per formula family.
 #pragma once
 
-namespace arbor::gen::wp {
+namespace arbor::generator::wp {
 
 // The pruning envelope of §4.6 (Figure 2): width peak position and the two curvature powers.
 struct Envelope {
@@ -79,4 +79,4 @@ Sway sway_angles(double wind_speed, double wind_gust, double stem_length, double
 // z-components of the segment frame's z and y axes.
 double attraction_up(double attraction, double z_of_z, double z_of_y, int curve_res);
 
-}  // namespace arbor::gen::wp
+}  // namespace arbor::generator::wp

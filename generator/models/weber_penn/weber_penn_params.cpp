@@ -6,7 +6,7 @@
 
 #include "generator/geometry/leaf_shapes.h"
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 namespace {
 
@@ -188,4 +188,4 @@ std::string check_consistency(const WeberPennParams& p, std::string& key) {
   return "";
 }
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator

@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-namespace arbor::gen {
+namespace arbor::generator {
 
 // Per-level parameters; the paper's "nX" names without the level digit.
 struct WeberPennLevel {
@@ -78,4 +78,4 @@ std::string set_param(WeberPennParams& params, const ParamInfo& info, int level,
 // paper name of the parameter to point at (e.g. "ScaleV", "2CurveV").
 std::string check_consistency(const WeberPennParams& params, std::string& key);
 
-}  // namespace arbor::gen
+}  // namespace arbor::generator
