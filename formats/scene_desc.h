@@ -12,6 +12,7 @@
 
 #include "common/error.h"
 #include "common/math.h"
+#include "generator/species.h"
 #include "imaging/output_spec.h"
 
 namespace arbor::formats {
@@ -138,9 +139,12 @@ struct ForestDesc {
 struct MeshMaterialDesc {
   std::string kind = "diffuse";  // "bark" | "leaf" | "diffuse"
   Rgb albedo{0.5, 0.5, 0.5};     // bark, diffuse
-  Rgb reflectance{0.06, 0.2, 0.04}, back_reflectance{0.1, 0.24, 0.07},
-      transmittance{0.05, 0.18, 0.03};                 // leaf
-  double cuticle_ior = 1.45, cuticle_roughness = 0.5;  // leaf: the species' defaults
+  // leaf: a species leaf's defaults (generator/species.h LeafLook), stated there once
+  Rgb reflectance = generator::LeafLook{}.reflectance;
+  Rgb back_reflectance = generator::LeafLook{}.back_reflectance;
+  Rgb transmittance = generator::LeafLook{}.transmittance;
+  double cuticle_ior = generator::LeafLook{}.cuticle_ior;
+  double cuticle_roughness = generator::LeafLook{}.cuticle_roughness;
 };
 
 struct MeshDesc {

@@ -20,6 +20,8 @@ namespace arbor::formats {
 
 namespace {
 
+namespace look_range = generator::look_range;
+
 std::string folder_of(const std::string& path) {
   const auto slash = path.find_last_of('/');
   return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
@@ -81,6 +83,13 @@ class SceneReader : TomlReader {
     for (const toml::node& e : *a) f(table(e, name));
   }
 
+  std::array<double, 3> triple(const toml::node& n, const std::string& name,
+                               const Range& range) const {
+    const toml::array* a = n.as_array();
+    if (!a || a->size() != 3) fail(n, name + " must be an array of 3 numbers");
+    return {number(*a->get(0), name, range), number(*a->get(1), name, range),
+            number(*a->get(2), name, range)};
+  }
   std::array<double, 3> triple(const toml::node& n, const std::string& name, double lo,
                                double hi) const {
     const toml::array* a = n.as_array();
@@ -253,15 +262,15 @@ class SceneReader : TomlReader {
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
       if (k == "albedo")
-        b.albedo = triple(n, owner + ".bark.albedo", 0.0, 1.0);
+        b.albedo = triple(n, owner + ".bark.albedo", look_range::kColour);
       else if (k == "bump_map")
         b.bump_map = file(n, owner + ".bark.bump_map");
       else if (k == "bump_height")
-        b.bump_height = number(n, owner + ".bark.bump_height", 0.0, 1.0);
+        b.bump_height = number(n, owner + ".bark.bump_height", look_range::kBumpHeight);
       else if (k == "bump_tile")
-        b.bump_tile = number(n, owner + ".bark.bump_tile", 1e-3, 100.0);
+        b.bump_tile = number(n, owner + ".bark.bump_tile", look_range::kBumpTile);
       else if (k == "roughness")
-        b.roughness = number(n, owner + ".bark.roughness", 0.0, 90.0);
+        b.roughness = number(n, owner + ".bark.roughness", look_range::kBarkRoughness);
       else if (k == "albedo_map")
         b.albedo_map = file(n, owner + ".bark.albedo_map");
       else
@@ -273,17 +282,18 @@ class SceneReader : TomlReader {
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
       if (k == "reflectance")
-        l.reflectance = triple(n, owner + ".leaf.reflectance", 0.0, 1.0);
+        l.reflectance = triple(n, owner + ".leaf.reflectance", look_range::kColour);
       else if (k == "back_reflectance")
-        l.back_reflectance = triple(n, owner + ".leaf.back_reflectance", 0.0, 1.0);
+        l.back_reflectance = triple(n, owner + ".leaf.back_reflectance", look_range::kColour);
       else if (k == "transmittance")
-        l.transmittance = triple(n, owner + ".leaf.transmittance", 0.0, 1.0);
+        l.transmittance = triple(n, owner + ".leaf.transmittance", look_range::kColour);
       else if (k == "albedo_map")
         l.albedo_map = file(n, owner + ".leaf.albedo_map");
       else if (k == "cuticle_ior")
-        l.cuticle_ior = number(n, owner + ".leaf.cuticle_ior", 1.0, 3.0);
+        l.cuticle_ior = number(n, owner + ".leaf.cuticle_ior", look_range::kCuticleIor);
       else if (k == "cuticle_roughness")
-        l.cuticle_roughness = number(n, owner + ".leaf.cuticle_roughness", 0.0, 1.0);
+        l.cuticle_roughness =
+            number(n, owner + ".leaf.cuticle_roughness", look_range::kCuticleRoughness);
       else
         unknown(key, owner + ".leaf");
     }
@@ -396,25 +406,24 @@ class SceneReader : TomlReader {
       if (k == "kind")
         m.kind = choice(n, owner + ".kind", {"bark", "leaf", "diffuse"});
       else if (k == "albedo")
-        m.albedo = triple(n, owner + ".albedo", 0.0, 1.0);
+        m.albedo = triple(n, owner + ".albedo", look_range::kColour);
       else if (k == "reflectance")
-        m.reflectance = triple(n, owner + ".reflectance", 0.0, 1.0);
+        m.reflectance = triple(n, owner + ".reflectance", look_range::kColour);
       else if (k == "back_reflectance")
-        m.back_reflectance = triple(n, owner + ".back_reflectance", 0.0, 1.0);
+        m.back_reflectance = triple(n, owner + ".back_reflectance", look_range::kColour);
       else if (k == "transmittance")
-        m.transmittance = triple(n, owner + ".transmittance", 0.0, 1.0);
+        m.transmittance = triple(n, owner + ".transmittance", look_range::kColour);
       else if (k == "cuticle_ior")
-        m.cuticle_ior = number(n, owner + ".cuticle_ior", 1.0, 3.0);
+        m.cuticle_ior = number(n, owner + ".cuticle_ior", look_range::kCuticleIor);
       else if (k == "cuticle_roughness")
-        m.cuticle_roughness = number(n, owner + ".cuticle_roughness", 0.0, 1.0);
+        m.cuticle_roughness =
+            number(n, owner + ".cuticle_roughness", look_range::kCuticleRoughness);
       else
         unknown(key, owner);
     }
-    for (size_t i = 0; i < 3; ++i) {
-      if (m.kind == "leaf" && (m.reflectance[i] + m.transmittance[i] > 1.0 ||
-                               m.back_reflectance[i] + m.transmittance[i] > 1.0)) {
-        throw InputError(at(t.source()), owner + ": reflectance + transmittance must be at most 1");
-      }
+    if (m.kind == "leaf" &&
+        !generator::leaf_conserves_energy(m.reflectance, m.back_reflectance, m.transmittance)) {
+      throw InputError(at(t.source()), owner + ": " + generator::kLeafEnergyRule);
     }
     return m;
   }

@@ -15,6 +15,8 @@ namespace arbor::formats {
 
 namespace {
 
+namespace look_range = generator::look_range;
+
 class TomlSpecies : TomlReader {
  public:
   explicit TomlSpecies(const std::string& path) : TomlReader(path) {}
@@ -26,11 +28,7 @@ class TomlSpecies : TomlReader {
     }
     Rgb c{};
     for (size_t i = 0; i < 3; ++i) {
-      c[i] = number(*a->get(i), name);
-      if (c[i] < 0.0 || c[i] > 1.0) {
-        throw InputError(at(a->get(i)->source()),
-                         std::string(name) + " components must be in [0, 1]");
-      }
+      c[i] = number(*a->get(i), name, look_range::kColour);
     }
     return c;
   }
@@ -83,15 +81,9 @@ class TomlSpecies : TomlReader {
       if (k == "albedo") {
         sp.bark.albedo = colour(node, "bark.albedo");
       } else if (k == "bump_height") {
-        const double h = number(node, "bark.bump_height");
-        if (h < 0.0 || h > 1.0)
-          throw InputError(at(node.source()), "bark.bump_height must be in [0, 1] metres");
-        sp.bark.bump_height = h;
+        sp.bark.bump_height = number(node, "bark.bump_height", look_range::kBumpHeight);
       } else if (k == "roughness") {
-        const double r = number(node, "bark.roughness");
-        if (r < 0.0 || r > 90.0)
-          throw InputError(at(node.source()), "bark.roughness must be in [0, 90] degrees");
-        sp.bark.roughness = r;
+        sp.bark.roughness = number(node, "bark.roughness", look_range::kBarkRoughness);
       } else {
         throw InputError(at(key.source()), "unknown key '" + k + "' in [bark]");
       }
@@ -131,30 +123,18 @@ class TomlSpecies : TomlReader {
       else if (k == "transmittance")
         sp.leaf.transmittance = colour(node, "leaf.transmittance");
       else if (k == "cuticle_ior") {
-        const double v = number(node, "leaf.cuticle_ior");
-        if (!(v >= 1.0 && v <= 3.0))
-          throw InputError(at(node.source()), "leaf.cuticle_ior must be in [1, 3] (1: no cuticle)");
-        sp.leaf.cuticle_ior = v;
+        sp.leaf.cuticle_ior = number(node, "leaf.cuticle_ior", look_range::kCuticleIor);
       } else if (k == "cuticle_roughness") {
-        const double v = number(node, "leaf.cuticle_roughness");
-        if (!(v >= 0.0 && v <= 1.0))
-          throw InputError(at(node.source()), "leaf.cuticle_roughness must be in [0, 1]");
-        sp.leaf.cuticle_roughness = v;
+        sp.leaf.cuticle_roughness =
+            number(node, "leaf.cuticle_roughness", look_range::kCuticleRoughness);
       } else if (k == "hinge_angle") {
-        const double a = number(node, "leaf.hinge_angle");
-        if (a < 0.0 || a > 90.0)
-          throw InputError(at(node.source()), "leaf.hinge_angle must be in [0, 90] degrees");
-        sp.leaf.hinge_angle = a;
+        sp.leaf.hinge_angle = number(node, "leaf.hinge_angle", look_range::kHingeAngle);
       } else
         throw InputError(at(key.source()), "unknown key '" + k + "' in [leaf]");
     }
-    for (size_t i = 0; i < 3; ++i) {
-      const double t_i = sp.leaf.transmittance[i];
-      if (sp.leaf.reflectance[i] + t_i > 1.0 || sp.leaf.back_reflectance[i] + t_i > 1.0) {
-        throw InputError(at(t.source()),
-                         "leaf reflectance + transmittance must be at most 1 in every channel "
-                         "(for the front and the back), or the leaf would create energy");
-      }
+    if (!generator::leaf_conserves_energy(sp.leaf.reflectance, sp.leaf.back_reflectance,
+                                          sp.leaf.transmittance)) {
+      throw InputError(at(t.source()), generator::kLeafEnergyRule);
     }
   }
 

@@ -12,6 +12,7 @@
 #include <toml++/toml.h>
 
 #include "common/error.h"
+#include "common/range.h"
 
 namespace arbor::formats {
 
@@ -108,6 +109,16 @@ class TomlReader {
     if (v < lo || v > hi) {
       fail(n, std::string(name) + " = " + std::to_string(v) + " is out of range [" +
                   std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    }
+    return v;
+  }
+  // A finite number in a value's stated range (common/range.h).
+  double number(const toml::node& n, std::string_view name, const Range& range) const {
+    const double v = number(n, name);
+    if (!range.contains(v)) {
+      char value[32];
+      std::snprintf(value, sizeof value, "%g", v);
+      fail(n, std::string(name) + " = " + value + " is out of range " + range.text());
     }
     return v;
   }

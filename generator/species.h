@@ -11,6 +11,7 @@
 
 #include "common/error.h"
 #include "common/math.h"
+#include "common/range.h"
 #include "generator/models/fractal/fractal.h"
 #include "generator/models/lsystem/lsystem.h"
 #include "generator/skeleton.h"
@@ -18,6 +19,30 @@
 #include "generator/models/weber_penn/weber_penn_params.h"
 
 namespace arbor::generator {
+
+// The range of each look value, stated once: the species reader, the scene reader (a tree's
+// overrides, a mesh's materials) and the scene builder all check against these.
+namespace look_range {
+inline constexpr Range kColour{0.0, 1.0, ""};  // albedo, reflectance, transmittance per channel
+inline constexpr Range kBumpHeight{0.0, 1.0, "metres"};
+inline constexpr Range kBumpTile{1e-3, 100.0, "metres"};
+inline constexpr Range kBarkRoughness{0.0, 90.0, "degrees"};
+inline constexpr Range kCuticleIor{1.0, 3.0, "(1: no cuticle)"};
+inline constexpr Range kCuticleRoughness{0.0, 1.0, ""};
+inline constexpr Range kHingeAngle{0.0, 90.0, "degrees"};
+}  // namespace look_range
+
+// A leaf creates no energy: front and back reflectance each plus the transmittance at most 1 in
+// every channel. The one statement of the rule; readers and the builder call it.
+inline bool leaf_conserves_energy(const Rgb& front, const Rgb& back, const Rgb& transmittance) {
+  for (int i = 0; i < 3; ++i) {
+    if (front[i] + transmittance[i] > 1.0 || back[i] + transmittance[i] > 1.0) return false;
+  }
+  return true;
+}
+inline constexpr const char* kLeafEnergyRule =
+    "leaf reflectance + transmittance must be at most 1 in every channel (for the front and the "
+    "back), or the leaf would create energy";
 
 // Default bark of the species (scene files may override it).
 struct BarkLook {

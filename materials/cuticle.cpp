@@ -77,9 +77,9 @@ CuticleCoat::CuticleCoat(double ior, double roughness)
   mean_albedo_ = 2.0 * mean;
 }
 
-std::shared_ptr<const CuticleCoat> CuticleCoat::make(double ior, double roughness) {
+std::unique_ptr<const CuticleCoat> CuticleCoat::make(double ior, double roughness) {
   if (ior == 1.0) return nullptr;
-  return std::make_shared<const CuticleCoat>(ior, roughness);
+  return std::make_unique<const CuticleCoat>(ior, roughness);
 }
 
 double CuticleCoat::albedo(double mu) const {

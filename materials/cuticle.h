@@ -22,7 +22,7 @@ class CuticleCoat {
   CuticleCoat(double ior, double roughness);
   // The coat of a leaf material, or null for ior 1 (no coat: the leaf BSDF is the bare diffuse
   // one).
-  static std::shared_ptr<const CuticleCoat> make(double ior, double roughness);
+  static std::unique_ptr<const CuticleCoat> make(double ior, double roughness);
 
   static constexpr double kMinAlpha = 1e-3;  // roughness 0: a mirror to within about 0.1°
 

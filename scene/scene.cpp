@@ -131,12 +131,14 @@ class SceneBuilder {
   }
 
   // One coat per (ior, roughness): its albedo table is computed once however many trees share it.
-  std::shared_ptr<const materials::CuticleCoat> cuticle(double ior, double roughness) {
+  const materials::CuticleCoat* cuticle(double ior, double roughness) {
     for (const auto& [key, coat] : cuticles_) {
       if (key.first == ior && key.second == roughness) return coat;
     }
-    cuticles_.emplace_back(std::make_pair(ior, roughness),
-                           materials::CuticleCoat::make(ior, roughness));
+    std::unique_ptr<const materials::CuticleCoat> coat =
+        materials::CuticleCoat::make(ior, roughness);
+    cuticles_.emplace_back(std::make_pair(ior, roughness), coat.get());
+    if (coat) s_.coats.push_back(std::move(coat));
     return cuticles_.back().second;
   }
 
@@ -153,30 +155,29 @@ class SceneBuilder {
     w.height = tm.height.value_or(own.height.value_or(w.height));
     w.radius = tm.radius.value_or(own.radius.value_or(w.radius));
     w.angle = tm.angle.value_or(own.angle.value_or(w.angle));
-    materials::BarkMaterial& b = look.bark.bark;
-    look.bark.kind = materials::Material::Kind::Bark;
+    materials::BarkMaterial b;
     b.albedo = to_vec3(bark.albedo.value_or(sp.bark.albedo));
     b.bump_height = static_cast<float>(bark.bump_height.value_or(sp.bark.bump_height));
     b.roughness = static_cast<float>(bark.roughness.value_or(sp.bark.roughness) * kPi / 180.0);
     b.bump_tile = static_cast<float>(bark.bump_tile);
     if (!bark.albedo_map.empty()) b.albedo_map = albedo_map(bark.albedo_map);
     if (!bark.bump_map.empty()) b.bump_map = bump_map(bark.bump_map);
-    materials::LeafMaterial& l = look.leaf.leaf;
-    look.leaf.kind = materials::Material::Kind::Leaf;
+    look.bark = b;
+    materials::LeafMaterial l;
     if (!leaf.albedo_map.empty()) l.albedo_map = albedo_map(leaf.albedo_map);
-    l.front = to_vec3(leaf.reflectance.value_or(sp.leaf.reflectance));
-    l.back = to_vec3(leaf.back_reflectance.value_or(sp.leaf.back_reflectance));
-    l.transmittance = to_vec3(leaf.transmittance.value_or(sp.leaf.transmittance));
+    const Rgb front = leaf.reflectance.value_or(sp.leaf.reflectance);
+    const Rgb back = leaf.back_reflectance.value_or(sp.leaf.back_reflectance);
+    const Rgb transmittance = leaf.transmittance.value_or(sp.leaf.transmittance);
+    if (!generator::leaf_conserves_energy(front, back, transmittance)) {
+      throw InputError(where, std::string(generator::kLeafEnergyRule) +
+                                  " (the species' values with this tree's overrides)");
+    }
+    l.front = to_vec3(front);
+    l.back = to_vec3(back);
+    l.transmittance = to_vec3(transmittance);
     l.cuticle = cuticle(leaf.cuticle_ior.value_or(sp.leaf.cuticle_ior),
                         leaf.cuticle_roughness.value_or(sp.leaf.cuticle_roughness));
-    for (int i = 0; i < 3; ++i) {
-      if (l.front[i] + l.transmittance[i] > 1.0f + 1e-6f ||
-          l.back[i] + l.transmittance[i] > 1.0f + 1e-6f) {
-        throw InputError(where,
-                         "leaf reflectance + transmittance must be at most 1 in every "
-                         "channel, front and back (species values with this tree's overrides)");
-      }
-    }
+    look.leaf = l;
     return look;
   }
 
@@ -225,8 +226,7 @@ class SceneBuilder {
   std::string ocio_config_;
   std::vector<std::pair<std::string, std::unique_ptr<generator::Species>>> species_;
   std::vector<std::pair<std::string, int>> prototype_keys_;
-  std::vector<std::pair<std::pair<double, double>, std::shared_ptr<const materials::CuticleCoat>>>
-      cuticles_;
+  std::vector<std::pair<std::pair<double, double>, const materials::CuticleCoat*>> cuticles_;
   std::map<std::string, int> object_count_;
   std::map<std::string, std::uint32_t> material_ids_;
 };
@@ -253,14 +253,15 @@ void SceneBuilder::add_mesh(const formats::MeshDesc& d) {
       const formats::MeshMaterialDesc& md = it->second;
       // A mesh's bark is its albedo, unmapped and unbumped; its leaves are untinted.
       if (md.kind == "leaf") {
-        material.kind = materials::Material::Kind::Leaf;
-        material.leaf.tinted = false;
-        material.leaf.front = to_vec3(md.reflectance);
-        material.leaf.back = to_vec3(md.back_reflectance);
-        material.leaf.transmittance = to_vec3(md.transmittance);
-        material.leaf.cuticle = cuticle(md.cuticle_ior, md.cuticle_roughness);
+        materials::LeafMaterial leaf;
+        leaf.tinted = false;
+        leaf.front = to_vec3(md.reflectance);
+        leaf.back = to_vec3(md.back_reflectance);
+        leaf.transmittance = to_vec3(md.transmittance);
+        leaf.cuticle = cuticle(md.cuticle_ior, md.cuticle_roughness);
+        material = leaf;
       } else {
-        material.albedo = to_vec3(md.albedo);
+        material = materials::DiffuseMaterial{to_vec3(md.albedo)};
       }
     }
     mesh.materials.push_back(material);
@@ -385,12 +386,15 @@ std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
     scene->object_names.emplace_back("ground");
     scene->ground_object_id = static_cast<std::uint32_t>(scene->object_names.size());
     scene->ground_material_id = b.material_named("ground");
-    scene->ground.albedo = to_vec3(desc.ground.albedo);
     if (desc.ground.patch_cover > 0.0) {
-      scene->ground.kind = materials::Material::Kind::Ground;
-      scene->ground.ground.patch_albedo = to_vec3(desc.ground.patch_albedo);
-      scene->ground.ground.set_cover(static_cast<float>(desc.ground.patch_cover));
-      scene->ground.ground.scale = static_cast<float>(desc.ground.patch_scale);
+      materials::GroundMaterial g;
+      g.albedo = to_vec3(desc.ground.albedo);
+      g.patch_albedo = to_vec3(desc.ground.patch_albedo);
+      g.set_cover(static_cast<float>(desc.ground.patch_cover));
+      g.scale = static_cast<float>(desc.ground.patch_scale);
+      scene->ground = g;
+    } else {
+      scene->ground = materials::DiffuseMaterial{to_vec3(desc.ground.albedo)};
     }
   }
   scene->stats.prototypes = scene->prototypes.size();

@@ -91,6 +91,8 @@ struct Scene {
   // The textures the materials point to.
   std::vector<std::pair<std::string, std::unique_ptr<materials::HeightMap>>> bump_maps;
   std::vector<std::pair<std::string, std::unique_ptr<materials::ColorMap>>> albedo_maps;
+  // The leaves' cuticles, one per (ior, roughness) in use (its albedo table computed once).
+  std::vector<std::unique_ptr<const materials::CuticleCoat>> coats;
 };
 
 // Builds the scene: loads each species once, grows each tree once, assembles materials (albedo

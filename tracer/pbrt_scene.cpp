@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <tuple>
+#include <variant>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -76,33 +77,30 @@ class Materials {
  public:
   explicit Materials(const Colors& colors) : colors_(colors) {}
 
+  // The pbrt statement of each material kind (a new kind must add one: std::visit needs it).
+  std::string statement(const materials::LeafMaterial& l, const std::string& label) const {
+    return generator::pbrt_leaf_material(
+        Colors::to_rgb(colors_.reflectance(l.front, label + " front")),
+        Colors::to_rgb(colors_.reflectance(l.back, label + " back")),
+        Colors::to_rgb(colors_.reflectance(l.transmittance, label + " transmittance")));
+  }
+  std::string statement(const materials::BarkMaterial& b, const std::string& label) const {
+    return "\"diffuse\" " + colors_.rgb("reflectance", b.albedo, label);
+  }
+  std::string statement(const materials::GroundMaterial& g, const std::string& label) const {
+    // The patches' noise has no pbrt counterpart: their cover-weighted mean, for the ground
+    // beyond the baked square around the camera (write_ground_exr).
+    const float c = g.cover;
+    return "\"diffuse\" " +
+           colors_.rgb("reflectance", (1.0f - c) * g.albedo + c * g.patch_albedo, label);
+  }
+  std::string statement(const materials::DiffuseMaterial& d, const std::string& label) const {
+    return "\"diffuse\" " + colors_.rgb("reflectance", d.albedo, label);
+  }
+
   // The name of the material for `m` (in scene space), made on first use.
   std::string name_of(const materials::Material& m, const std::string& label) {
-    std::string body;
-    switch (m.kind) {
-      case materials::Material::Kind::Leaf: {
-        const materials::LeafMaterial& l = m.leaf;
-        body = generator::pbrt_leaf_material(
-            Colors::to_rgb(colors_.reflectance(l.front, label + " front")),
-            Colors::to_rgb(colors_.reflectance(l.back, label + " back")),
-            Colors::to_rgb(colors_.reflectance(l.transmittance, label + " transmittance")));
-        break;
-      }
-      case materials::Material::Kind::Bark:
-        body = "\"diffuse\" " + colors_.rgb("reflectance", m.bark.albedo, label);
-        break;
-      case materials::Material::Kind::Ground: {
-        // The patches' noise has no pbrt counterpart: their cover-weighted mean, for the ground
-        // beyond the baked square around the camera (write_ground_exr).
-        const float c = m.ground.cover;
-        body = "\"diffuse\" " +
-               colors_.rgb("reflectance", (1.0f - c) * m.albedo + c * m.ground.patch_albedo, label);
-        break;
-      }
-      case materials::Material::Kind::Diffuse:
-        body = "\"diffuse\" " + colors_.rgb("reflectance", m.albedo, label);
-        break;
-    }
+    const std::string body = std::visit([&](const auto& k) { return statement(k, label); }, m.kind);
     auto [at, fresh] = names_.emplace(body, "");
     if (fresh) {
       at->second = "m" + std::to_string(names_.size()) + " " + label;
@@ -216,7 +214,7 @@ constexpr float kGroundHalf = 128.0f;
 // The ground's albedo over the square centred at `centre`, in pbrt's colour space, as pbrt's
 // imagemap reads it: row 0 at the square's +y edge (pbrt flips v: texture (0,0) is the image's
 // lower left), column 0 at its −x edge.
-void write_ground_exr(const materials::Material& ground, const Colors& colors,
+void write_ground_exr(const materials::GroundMaterial& ground, const Colors& colors,
                       const PbrtColorSpace& space, glm::vec2 centre, const std::string& path) {
   imaging::Image img;
   img.width = img.full_width = img.height = img.full_height = kGroundTexels;
@@ -227,9 +225,9 @@ void write_ground_exr(const materials::Material& ground, const Colors& colors,
     for (int column = 0; column < kGroundTexels; ++column) {
       const glm::vec2 xy(centre.x - kGroundHalf + (column + 0.5f) * texel,
                          centre.y + kGroundHalf - (row + 0.5f) * texel);
-      const float w = ground.ground.patch(xy);
+      const float w = ground.patch(xy);
       img.beauty[static_cast<std::size_t>(row) * kGroundTexels + column] = colors.reflectance(
-          ground.albedo + (ground.ground.patch_albedo - ground.albedo) * w, "the ground's patches");
+          ground.albedo + (ground.patch_albedo - ground.albedo) * w, "the ground's patches");
     }
   }
   imaging::OutputSpec output;
@@ -474,9 +472,8 @@ PbrtExport write_pbrt_scene(const scene::Scene& scene, const scene::RenderInput&
   text += "\n" + materials.text() + "\n";
   write_trees(scene, trees, text, file);
   write_meshes(scene, mesh_materials, text, file);
-  const bool ground_patches = scene.has_ground &&
-                              scene.ground.kind == materials::Material::Kind::Ground &&
-                              scene.ground.ground.cover > 0.0f;
+  const materials::GroundMaterial* patched = scene.ground.as<materials::GroundMaterial>();
+  const bool ground_patches = scene.has_ground && patched && patched->cover > 0.0f;
   // Centred on the camera, on a whole metre (the same export twice gives the same files).
   const glm::vec2 ground_centre(std::round(static_cast<float>(input.camera.position[0])),
                                 std::round(static_cast<float>(input.camera.position[1])));
@@ -490,7 +487,7 @@ PbrtExport write_pbrt_scene(const scene::Scene& scene, const scene::RenderInput&
     result.written.push_back(sky_path);
   }
   if (ground_patches) {
-    write_ground_exr(scene.ground, colors, space, ground_centre, ground_path);
+    write_ground_exr(*patched, colors, space, ground_centre, ground_path);
     result.written.push_back(ground_path);
   }
   file.write(text);

@@ -193,10 +193,6 @@ TEST(SceneFile, StructuralRulesAreChecked) {
   expect_error("[render\n", 1, 8, "");
 }
 
-}  // namespace arbor::formats
-
-namespace arbor::formats {
-
 // Camera, output-extension and colour errors once named no file or position and surfaced only
 // when rendering started; the loader finds them, at the key.
 TEST(SceneFile, CameraAndOutputErrorsAreFoundWithTheirKey) {

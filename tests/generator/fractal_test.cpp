@@ -197,10 +197,6 @@ TEST(Fractal, AbsurdSizesAreRefusedWithTheEstimate) {
   }
 }
 
-}  // namespace arbor::generator
-
-namespace arbor::generator {
-
 // Found by fuzzing (tests/fuzz/regressions/): size ratio 0.05 over seven levels makes twigs of
 // 39 nm, whose splines are NaN in float; such a tree is refused, naming its file.
 TEST(Fractal, TwigsShorterThanAMicrometreAreRefused) {

@@ -32,47 +32,6 @@ Skeleton grow(const std::string& text, std::uint64_t seed = 1) {
 
 }  // namespace
 
-TEST(LSystem, ParsesTheGrammar) {
-  const LSystem s = formats::parse_lsystem(
-      "# comment\niterations = 3;\nangle = 30;\nA: f [-s(0.6)C] f(2) +(10) <>v^ h(2)u(0.5)l(1) "
-      "r(0.5) B;\n"
-      "B(2): f;\nB(1): f f;\nC: f;\n",
-      "t.lsys");
-  EXPECT_EQ(s.iterations, 3);
-  EXPECT_DOUBLE_EQ(s.angle, 30.0);
-  ASSERT_EQ(s.rules.size(), 4u);
-  EXPECT_EQ(s.rules[0].name, 'A');
-  EXPECT_DOUBLE_EQ(s.rules[1].weight, 2.0);
-  const std::vector<LAction>& a = s.rules[0].body;
-  EXPECT_EQ(a[0].kind, LAction::Forward);
-  EXPECT_EQ(a[1].kind, LAction::Branch);
-  EXPECT_EQ(a[1].branch.size(), 3u);
-  EXPECT_TRUE(a[2].has_number);
-  EXPECT_DOUBLE_EQ(a[2].number, 2.0);
-  EXPECT_EQ(a.back().kind, LAction::Rule);
-  EXPECT_EQ(a.back().rule, 'B');
-}
-
-TEST(LSystem, MalformedInputIsRefusedWithItsPosition) {
-  expect_error("A: f[+A;\n", 1, 8, "']' is missing");
-  expect_error("A: f]+A;\n", 1, 5, "']' without a matching '['");
-  expect_error("A: ;\n", 1, 1, "rule A is empty");
-  expect_error("A: fB;\n", 1, 5, "rule B is used but never defined");
-  expect_error("A: f x;\n", 1, 6, "unknown action 'x'");
-  expect_error("A: f s;\n", 1, 7, "expected '('");
-  expect_error("A: f s(x);\n", 1, 8, "expected a number");
-  expect_error("A: f r(1.5);\n", 1, 6, "r(n) needs 0 < n");
-  expect_error("A: f", 1, 5, "the file ends where ';' to end rule A was expected");
-  expect_error("A: f[+A]", 1, 9, "';' to end rule A");
-  expect_error("iterations = 100;\nA: f;\n", 1, 14, "iterations = 100 is out of range");
-  expect_error("iterations = 2.5;\nA: f;\n", 1, 14, "whole number");
-  expect_error("depth = 3;\nA: f;\n", 1, 1, "unknown setting 'depth'");
-  expect_error("angle = 3;\nangle = 4;\nA: f;\n", 2, 1, "set twice");
-  expect_error("# only a comment\n", 1, 1, "no rules");
-  expect_error("A(0): f;\n", 1, 2, "weight must be above 0");
-  expect_error("A: f; 7\n", 1, 7, "expected a rule");
-}
-
 TEST(LSystem, IterationsBoundTheRecursion) {
   // A: f[+A][-A] draws 2^(n+1) - 1 segments with n iterations.
   for (int n : {0, 1, 2, 5}) {
@@ -190,10 +149,6 @@ TEST(LSystem, ShippedExamplesGrowValidTrees) {
   }
 }
 
-}  // namespace arbor::generator
-
-namespace arbor::generator {
-
 // 50,000 nested brackets once overflowed the stack: the nesting is bounded with a positioned
 // error, and the deepest nesting allowed still grows at the most iterations allowed.
 TEST(LSystem, DeepNestingIsRefusedAndTheDeepestAllowedGrows) {
@@ -207,19 +162,6 @@ TEST(LSystem, DeepNestingIsRefusedAndTheDeepestAllowedGrows) {
   expect_error("A: f" + std::string(101, '[') + "f" + std::string(101, ']') + ";\n", 1, 105,
                "nested more than 100");
 }
-
-TEST(LSystem, NumbersTooLargeForADoubleAreInputErrors) {
-  expect_error("step = " + std::string(400, '9') + ";\nA: f;\n", 1, 8, "too large");
-  expect_error("A: f(" + std::string(400, '1') + ");\n", 1, 6, "too large");
-  // Long but representable numbers are read exactly as short ones.
-  const LSystem s =
-      formats::parse_lsystem("angle = 30." + std::string(300, '0') + ";\nA: f;\n", "t.lsys");
-  EXPECT_EQ(s.angle, 30.0);
-}
-
-}  // namespace arbor::generator
-
-namespace arbor::generator {
 
 // Found by fuzzing: s(1e23) sent the turtle past float range (NaN and inf geometry), and a
 // move of length 0 made a limb segment with no direction.

@@ -266,10 +266,6 @@ TEST(TreeGeometry, StatsCountWhatIsThere) {
   EXPECT_GT(g.bounds_max.z, 3.0f);
 }
 
-}  // namespace arbor::generator
-
-namespace arbor::generator {
-
 TEST(TreeGeometry, PeriodicTaperKeepsTheCurvesWithinTheLimbsRadius) {
   // Weber & Penn's nTaper in (2, 3] (the Saguaro's 2.2) swells a limb periodically; its radius
   // law has unbounded slope where the swellings meet. No curve may grow past the thickest limb.
@@ -283,10 +279,6 @@ TEST(TreeGeometry, PeriodicTaperKeepsTheCurvesWithinTheLimbsRadius) {
   }
   EXPECT_LT(widest, 1.05f * thickest) << "thickest skeleton radius " << thickest;
 }
-
-}  // namespace arbor::generator
-
-namespace arbor::generator {
 
 TEST(TreeGeometry, RootButtressesWidenTheTrunksBaseAndMergeIntoIt) {
   Skeleton sk = grow_species("quaking_aspen");

@@ -230,10 +230,6 @@ TEST(TreeMesh, FailedWriteLeavesNothingBehind) {
   EXPECT_ANY_THROW(write_obj(mesh, "/nonexistent-dir/tree.obj", aspen_looks()));
 }
 
-}  // namespace arbor::generator
-
-namespace arbor::generator {
-
 // Exports once carried NaN normals (the quaking aspen 81, the willow 725: the trunk grid's last
 // ring, tapered to a point): every shipped species of every format tessellates to finite
 // positions, unit normals and finite uvs.

@@ -18,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include "expect_input_error.h"
+#include "treemaker_snippets.h"
 #include "generator/species.h"
 #include "formats/species_file.h"
 #include "formats/treemaker_template.h"
@@ -32,93 +33,7 @@ void expect_error(const std::string& text, int line, int column, const std::stri
                               line, column, fragment);
 }
 
-// The smallest complete template: one rule, one particle, one leaf.
-const std::string kRule =
-    "branch { level= 1 number= 1 to 2 (p=1 angle= 30 to 40 dir= 0 to 360 factor= 0.5 to 0.6) }\n";
-const std::string kColor = "color { green= 0,1,0 }\n";
-const std::string kParticle =
-    "particle { pos=0,0,0 mag= 10 to 12 dir= 0,0,1:5 growth= 0.2 color= green brightness= 0.5 to "
-    "0.6 }\n";
-const std::string kLeaf =
-    "leaf { p= 1 coord= limb out= 10 up= 10 color= green brightness= 0.5 to 0.6 tri= 0,0,0 1,0,1 "
-    "-1,0,1 }\n";
-
 }  // namespace
-
-TEST(TreeMakerTemplate, TheDogwoodParses) {
-  const std::string path = std::string(ARBOR_SOURCE_DIR) + "/species/dogwood.tmpl";
-  const TreeMakerTemplate t =
-      formats::parse_treemaker_template(formats::read_text_file(path), path);
-  EXPECT_EQ(t.iterations, 13);
-  EXPECT_DOUBLE_EQ(t.gravity, 0.08);
-  EXPECT_DOUBLE_EQ(*t.light.height, 0.4);
-  EXPECT_DOUBLE_EQ(*t.light.angle, 0.2);
-  ASSERT_EQ(t.colors.size(), 3u);
-  EXPECT_DOUBLE_EQ(t.color("brown")->rgb.y, 0.9);
-  ASSERT_EQ(t.branches.size(), 5u);
-  EXPECT_EQ(t.branches[2].choices.size(), 3u);
-  EXPECT_DOUBLE_EQ(t.branches[2].choices[2].factor.hi, 0.2);
-  // Levels without a rule use the nearest lower level's (§IV): 4–6 use level 3's, 8 uses 7's.
-  EXPECT_EQ(t.rule_for(5)->level, 3);
-  EXPECT_EQ(t.rule_for(8)->level, 7);
-  EXPECT_EQ(t.rule_for(13)->level, 9);
-  ASSERT_EQ(t.particles.size(), 1u);
-  EXPECT_DOUBLE_EQ(t.particles[0].mag.hi, 25.0);
-  EXPECT_DOUBLE_EQ(t.particles[0].max_deviation, 10.0);
-  EXPECT_DOUBLE_EQ(t.particles[0].acc, -0.8);
-  ASSERT_EQ(t.leaves.size(), 2u);
-  EXPECT_FALSE(t.leaves[0].limb_coords);
-  EXPECT_EQ(t.leaves[1].elements.size(), 5u);
-  EXPECT_EQ(t.leaves[1].elements[4].color, "green");
-  EXPECT_DOUBLE_EQ(t.leaves[1].elements[4].brightness.lo, 0.5);
-}
-
-TEST(TreeMakerTemplate, AnySpacingIsAllowed) {
-  const TreeMakerTemplate t = formats::parse_treemaker_template(
-      "iterations{i=3}color{green=0,1,0}branch{level=1 number=1 to 2(p=1 angle=30 to 40 dir=0 to "
-      "360 factor=0.5 to 0.6)}particle{pos=0,0,0 mag=10 to 12 dir=0,0,1:5 color=green}"
-      "leaf{p=1 coord=leaf out=1 up=1 color=green ln=0,0,0 0,0,1}",
-      "t.tmpl");
-  EXPECT_EQ(t.iterations, 3);
-  EXPECT_TRUE(t.leaves[0].elements[0].line);
-}
-
-TEST(TreeMakerTemplate, MalformedTemplatesAreRefusedWithTheirPosition) {
-  const std::string ok = kColor + kRule + kParticle + kLeaf;
-  EXPECT_NO_THROW(formats::parse_treemaker_template(ok, "t.tmpl"));
-  expect_error(kColor + kParticle + kRule + kLeaf, 3, 1,
-               "branching rules must come before the particles");
-  expect_error(
-      kColor +
-          "branch { level= 1 number= 1 to 2 (p=0.5 angle= 1 to 2 dir= 0 to 1 factor= 1 to 1) }\n" +
-          kParticle + kLeaf,
-      2, 1, "add up to 0.5");
-  expect_error(kColor + kRule + kParticle +
-                   "leaf { p= 0.7 coord= leaf out= 1 up= 1 color= green tri= 0,0,0 1,0,0 0,1,0 }\n",
-               4, 1, "leaf probabilities add up to 0.7");
-  expect_error(kColor + kRule + "particle { color= red }\n" + kLeaf, 3, 19,
-               "colour 'red' is not defined");
-  expect_error(kColor + kRule + kParticle + "leaf { p= 1 coord= tree }\n", 4, 20,
-               "coord must be 'limb' or 'leaf'");
-  expect_error(kColor + kRule + kParticle + "leaf { p= 1 tri= 0,0,0 1,1,1 2,2,2 }\n", 4, 13,
-               "color= before");
-  expect_error(kColor + kRule + "particle { mag= 20 to 10 }\n" + kLeaf, 3, 17,
-               "low end must not exceed");
-  expect_error(kColor + kRule + "particle { dir= 0,0,1 }\n" + kLeaf, 3, 23, "expected ':'");
-  expect_error(kColor + kRule + "particle { speed= 3 }\n" + kLeaf, 3, 12,
-               "unknown particle key 'speed'");
-  expect_error("iterations { i= 0 }\n", 1, 17, "iterations must be a whole number");
-  expect_error("iterations { i= 3 }\niterations { i= 4 }\n", 2, 1, "given twice");
-  expect_error("weather { rain= 3 }\n", 1, 1, "unknown section 'weather'");
-  expect_error("iterations { i= 3 \n", 2, 1, "expected '}' before the end of the file");
-  expect_error("iterations { i= 3x }\n", 1, 18, "expected '}'");
-  expect_error("color { green= 0,1 }\n", 1, 20, "expected ','");
-  expect_error(kColor + "branch { level= 1 number= 1 to 2 }\n", 2, 1,
-               "at least one (p angle dir factor)");
-  expect_error(kColor + kRule + kLeaf, 1, 1, "at least one particle");
-  expect_error(kColor + kRule + kParticle, 1, 1, "at least one leaf");
-  expect_error("", 1, 1, "at least one branching rule");
-}
 
 namespace {
 
@@ -137,10 +52,10 @@ Skeleton dogwood(std::uint64_t seed) {
 
 // A straight trunk growing 10 units (10 cm) a step for 5 iterations, no branching.
 std::string trunk(const std::string& extra_particle = "", const std::string& gravity = "0") {
-  return "iterations { i= 5 }\ngravity { g= " + gravity + " }\n" + kColor +
+  return "iterations { i= 5 }\ngravity { g= " + gravity + " }\n" + testing::kTmColor +
          "branch { level= 1 number= 0 to 0.5 (p=1 angle= 90 to 90 dir= 0 to 0 factor= 1 to 1) }\n"
          "particle { pos=0,0,0 mag= 10 to 10 dir= 0,0,1:0 growth= 0.5 color= green " +
-         extra_particle + " }\n" + kLeaf;
+         extra_particle + " }\n" + testing::kTmLeaf;
 }
 
 }  // namespace
@@ -195,10 +110,10 @@ TEST(TreeMakerGrowth, AgingShortensTheGrowthVector) {
 TEST(TreeMakerGrowth, GravityPullsHorizontalGrowthDown) {
   auto end_height = [](const std::string& g) {
     const std::string text =
-        "iterations { i= 8 }\ngravity { g= " + g + " }\n" + kColor +
+        "iterations { i= 8 }\ngravity { g= " + g + " }\n" + testing::kTmColor +
         "branch { level= 1 number= 0 to 0.5 (p=1 angle= 90 to 90 dir= 0 to 0 factor= 1 to 1) }\n"
         "particle { pos=0,0,1 mag= 10 to 10 dir= 1,0,0:0 color= green }\n" +
-        kLeaf;
+        testing::kTmLeaf;
     const Skeleton sk = grow_template(text);
     return sk.points[sk.stems[0].first_point + sk.stems[0].point_count - 1].position.z;
   };
@@ -211,11 +126,11 @@ TEST(TreeMakerGrowth, BranchesLeaveAtTheRuleAngleFromTheHorizontalDirection) {
   // Every branch at 90° from a vertical trunk, dir 90: straight "up" in the turtle's sense, i.e.
   // horizontal (the trunk is vertical), and the branch ends are all at its birth height.
   const std::string text =
-      "iterations { i= 3 }\n" + kColor +
+      "iterations { i= 3 }\n" + testing::kTmColor +
       "branch { level= 1 number= 1 to 1 (p=1 angle= 90 to 90 dir= 0 to 360 factor= 1 to 1) }\n"
       "branch { level= 2 number= 0 to 0.5 (p=1 angle= 10 to 10 dir= 0 to 0 factor= 1 to 1) }\n"
       "particle { pos=0,0,0 mag= 10 to 10 dir= 0,0,1:0 color= green }\n" +
-      kLeaf;
+      testing::kTmLeaf;
   const Skeleton sk = grow_template(text);
   int branches = 0;
   for (const Stem& s : sk.stems) {
@@ -252,21 +167,23 @@ TEST(TreeMakerGrowth, SameSeedSameTreeAndRoundTripsThroughSkeletonFiles) {
 }
 
 TEST(TreeMakerGrowth, SeveralParticlesFromOnePointMakeAShrub) {
-  const std::string two = kColor + kRule + kParticle +
-                          "particle { pos=0,0,0 mag= 8 to 9 dir= 1,0,1:5 color= green }\n" + kLeaf;
+  const std::string two = testing::kTmColor + testing::kTmRule + testing::kTmParticle +
+                          "particle { pos=0,0,0 mag= 8 to 9 dir= 1,0,1:5 color= green }\n" +
+                          testing::kTmLeaf;
   const Skeleton sk = grow_template("iterations { i= 4 }\n" + two);
   EXPECT_EQ(validate(sk), "");
   int from_root = 0;
   for (const Stem& s : sk.stems) from_root += (s.parent == 0 && s.parent_point == 0) ? 1 : 0;
   EXPECT_GE(from_root, 1);
-  const std::string apart = kColor + kRule + kParticle +
+  const std::string apart = testing::kTmColor + testing::kTmRule + testing::kTmParticle +
                             "particle { pos=5,0,0 mag= 8 to 9 dir= 0,0,1:5 color= green }\n" +
-                            kLeaf;
+                            testing::kTmLeaf;
   testing::expect_input_error([&] { grow_template(apart); }, "t.tmpl", 4, 1, "one root");
 }
 
 TEST(TreeMakerGrowth, LeafLinesBecomeThinLimbs) {
-  const std::string text = "iterations { i= 2 }\n" + kColor + kRule + kParticle +
+  const std::string text = "iterations { i= 2 }\n" + testing::kTmColor + testing::kTmRule +
+                           testing::kTmParticle +
                            "leaf { p= 1 coord= limb out= 0 up= 0 color= green ln= 0,0,0 0,0,5 }\n";
   const Skeleton sk = grow_template(text);
   ASSERT_GT(sk.leaf_lines.size(), 0u);
@@ -279,9 +196,9 @@ TEST(TreeMakerGrowth, LeafLinesBecomeThinLimbs) {
 
 TEST(TreeMakerGrowth, AbsurdTemplatesAreRefusedWithTheEstimate) {
   const std::string text =
-      "iterations { i= 40 }\n" + kColor +
+      "iterations { i= 40 }\n" + testing::kTmColor +
       "branch { level= 1 number= 3 to 4 (p=1 angle= 30 to 40 dir= 0 to 360 factor= 1 to 1) }\n" +
-      kParticle + kLeaf;
+      testing::kTmParticle + testing::kTmLeaf;
   try {
     grow_template(text);
     FAIL();
@@ -290,28 +207,24 @@ TEST(TreeMakerGrowth, AbsurdTemplatesAreRefusedWithTheEstimate) {
   }
 }
 
-}  // namespace arbor::generator
-
-namespace arbor::generator {
-
 // The estimate is the most branches the rules allow: with up to 3 new branches per branch and
 // iteration, f(n) = 1 + 3 Σ_{r<n} f(r) = 4^(n-1) for n iterations left, times the particles.
 TEST(TreeMakerGrowth, TheSizeEstimateCountsTheMostBranchesTheRulesAllow) {
   for (int i : {1, 2, 3, 6}) {
-    const std::string text = "iterations { i= " + std::to_string(i) + " }\n" + kColor +
+    const std::string text = "iterations { i= " + std::to_string(i) + " }\n" + testing::kTmColor +
                              "branch { level= 1 number= 2 to 3.5 (p=1 angle= 30 to 40 dir= 0 to "
                              "360 factor= 1 to 1) }\n" +
-                             kParticle + kParticle + kLeaf;
+                             testing::kTmParticle + testing::kTmParticle + testing::kTmLeaf;
     EXPECT_DOUBLE_EQ(treemaker_estimate(formats::parse_treemaker_template(text, "t.tmpl")),
                      2.0 * std::pow(4.0, i))
         << i;
   }
   // A second rule from level 3 on, allowing none.
   const std::string two =
-      "iterations { i= 3 }\n" + kColor +
+      "iterations { i= 3 }\n" + testing::kTmColor +
       "branch { level= 1 number= 3 to 3 (p=1 angle= 30 to 40 dir= 0 to 360 factor= 1 to 1) }\n"
       "branch { level= 3 number= 0 to 0.5 (p=1 angle= 30 to 40 dir= 0 to 360 factor= 1 to 1) }\n" +
-      kParticle + kLeaf;
+      testing::kTmParticle + testing::kTmLeaf;
   // Level 0 (the particle) with 4 iterations left: 1 + 3 [f1(1) + f1(2) + f1(3)], where level-1
   // branches spawn level-2 ones by the first rule (3 each) and level-2 branches spawn level-3
   // ones by the second (0 each): f2 = 1, f1(n) = 1 + 3 (n - 1), so 1 + 3 (1 + 4 + 7) = 37.
@@ -320,18 +233,14 @@ TEST(TreeMakerGrowth, TheSizeEstimateCountsTheMostBranchesTheRulesAllow) {
 
 // i= 1000 (the largest allowed) with deep rules once spent a minute estimating before refusing.
 TEST(TreeMakerGrowth, TheLargestTemplateIsRefusedAtOnce) {
-  std::string text = "iterations { i= 1000 }\n" + kColor;
+  std::string text = "iterations { i= 1000 }\n" + testing::kTmColor;
   for (int level = 1; level <= 1000; level += 37) {
     text += "branch { level= " + std::to_string(level) +
             " number= 1 to 2 (p=1 angle= 30 to 40 dir= 0 to 360 factor= 1 to 1) }\n";
   }
-  text += kParticle + kLeaf;
+  text += testing::kTmParticle + testing::kTmLeaf;
   EXPECT_THROW(grow_template(text), RuntimeFailure);
 }
-
-}  // namespace arbor::generator
-
-namespace arbor::generator {
 
 // Found by fuzzing (tests/fuzz/regressions/): a branch born where its parent began is moved to
 // the grandparent, and once started thicker than the grandparent there (an invalid skeleton).
@@ -343,10 +252,6 @@ TEST(TreeMakerGrowth, ABranchMovedToItsGrandparentStartsNoThickerThanIt) {
   const Skeleton sk = grow_treemaker(t, TreeMakerOptions{});
   EXPECT_EQ(validate(sk), "");
 }
-
-}  // namespace arbor::generator
-
-namespace arbor::generator {
 
 // Found by fuzzing (tests/fuzz/regressions/): a leaf line reaching 1e67 cm became a limb with
 // infinite float coordinates. Template numbers are bounded, and any tree grown past 1000 km is
@@ -367,10 +272,6 @@ TEST(TreeMakerGrowth, NumbersPastAMillionAreRefused) {
   sk.leaf_lines.back().b = glm::vec3(std::nanf(""), 0.0f, 0.0f);
   EXPECT_NE(scale_problem(sk), "");
 }
-
-}  // namespace arbor::generator
-
-namespace arbor::generator {
 
 // Found by fuzzing (tests/fuzz/regressions/): age= -1 drove the width growth below zero, so
 // limbs got negative radii; the growth stops at zero.

@@ -87,26 +87,25 @@ TEST(LeafMaterial, TheSideHitAndTheTintChooseTheReflectance) {
   leaf.transmittance = glm::vec3(0.4f);
   SurfacePoint p;
   p.color = glm::vec3(0.5f, 1.0f, 1.0f);
-  EXPECT_NEAR(leaf.reflectance(p).x, 0.05f, 1e-7f);
+  EXPECT_NEAR(leaf.albedo_at(p).x, 0.05f, 1e-7f);
   p.leaf_back = true;
-  EXPECT_NEAR(leaf.reflectance(p).x, 0.15f, 1e-7f);
+  EXPECT_NEAR(leaf.albedo_at(p).x, 0.15f, 1e-7f);
   leaf.tinted = false;  // mesh leaves: as given
-  EXPECT_NEAR(leaf.reflectance(p).x, 0.3f, 1e-7f);
+  EXPECT_NEAR(leaf.albedo_at(p).x, 0.3f, 1e-7f);
 }
 
 TEST(Material, TheBsdfAndTheAlbedoAovComeFromOneDispatch) {
-  Material bark;
-  bark.kind = Material::Kind::Bark;
-  bark.bark.albedo = glm::vec3(0.3f, 0.25f, 0.2f);
-  bark.bark.bump_height = 0.004f;  // procedural furrows
-  bark.bark.roughness = 0.3f;
-  Material leaf;
-  leaf.kind = Material::Kind::Leaf;
-  leaf.leaf.front = glm::vec3(0.1f);
-  leaf.leaf.back = glm::vec3(0.2f);
-  leaf.leaf.transmittance = glm::vec3(0.5f);
-  Material ground;
-  ground.albedo = glm::vec3(0.16f, 0.14f, 0.1f);
+  BarkMaterial b;
+  b.albedo = glm::vec3(0.3f, 0.25f, 0.2f);
+  b.bump_height = 0.004f;  // procedural furrows
+  b.roughness = 0.3f;
+  const Material bark = b;
+  LeafMaterial l;
+  l.front = glm::vec3(0.1f);
+  l.back = glm::vec3(0.2f);
+  l.transmittance = glm::vec3(0.5f);
+  const Material leaf = l;
+  const Material ground = DiffuseMaterial{glm::vec3(0.16f, 0.14f, 0.1f)};
   for (float a : {0.0f, 0.3f, 1.7f}) {
     SurfacePoint p = limb_point(a, 2.0f * a);
     p.leaf_back = a > 1.0f;
@@ -152,16 +151,16 @@ TEST(GroundMaterial, PatchesCoverTheAskedFractionWithSoftEdges) {
 }
 
 TEST(GroundMaterial, TheAlbedoMixesTheTwoColoursByThePatch) {
-  Material ground;
-  ground.kind = Material::Kind::Ground;
-  ground.albedo = glm::vec3(0.16f, 0.14f, 0.10f);
-  ground.ground.patch_albedo = glm::vec3(0.06f, 0.11f, 0.035f);
-  ground.ground.set_cover(0.5f);
+  GroundMaterial g;
+  g.albedo = glm::vec3(0.16f, 0.14f, 0.10f);
+  g.patch_albedo = glm::vec3(0.06f, 0.11f, 0.035f);
+  g.set_cover(0.5f);
+  const Material ground = g;
   SurfacePoint p;
   bool saw_soil = false, saw_grass = false;
   for (int i = 0; i < 2000 && !(saw_soil && saw_grass); ++i) {
     p.ground = glm::vec2(i * 0.37f, i * 0.11f);
-    const float w = ground.ground.patch(p.ground);
+    const float w = g.patch(p.ground);
     const glm::vec3 a = ground.albedo_at(p);
     EXPECT_NEAR(a.x, 0.16f + (0.06f - 0.16f) * w, 1e-6f);
     EXPECT_EQ(glm::vec3(std::get<OrenNayar>(ground.bsdf(p).lobes).albedo), a);

@@ -377,7 +377,8 @@ TEST(PbrtExport, GroundPatchesNearTheCameraAreAnImage) {
 
   const formats::SceneDesc desc = formats::load_scene(scene_path);
   const std::unique_ptr<const scene::Scene> built = scene::build_scene(desc, kOcioConfig);
-  const materials::Material& ground = built->ground;
+  ASSERT_NE(built->ground.as<materials::GroundMaterial>(), nullptr);
+  const materials::GroundMaterial& ground = *built->ground.as<materials::GroundMaterial>();
   // The camera at (12.4, -18.6) puts the square's centre on (12, -19); 0.25 m texels.
   double mean = 0.0;
   int patched = 0, bare = 0;
@@ -385,8 +386,8 @@ TEST(PbrtExport, GroundPatchesNearTheCameraAreAnImage) {
     for (int column = 0; column < 1024; column += 41) {
       const glm::vec2 xy(12.0f - 128.0f + (column + 0.5f) * 0.25f,
                          -19.0f + 128.0f - (row + 0.5f) * 0.25f);
-      const float w = ground.ground.patch(xy);
-      const glm::vec3 expected = ground.albedo + (ground.ground.patch_albedo - ground.albedo) * w;
+      const float w = ground.patch(xy);
+      const glm::vec3 expected = ground.albedo + (ground.patch_albedo - ground.albedo) * w;
       const float* p = &px[(static_cast<std::size_t>(row) * 1024 + column) * spec.nchannels];
       for (int k = 0; k < 3; ++k)
         EXPECT_NEAR(p[k], expected[k], 2e-3f * expected[k] + 1e-5f) << row << "," << column;

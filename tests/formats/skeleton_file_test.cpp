@@ -16,7 +16,9 @@
 #include "formats/species_file.h"
 #include "generator/export/skeleton_file.h"
 
-namespace arbor::generator {
+namespace arbor::formats {
+
+using namespace generator;  // the readers fill the generator's types
 
 namespace {
 
@@ -116,10 +118,6 @@ TEST(SkeletonFile, RoundTripsAnyModelExactly) {
   }
 }
 
-}  // namespace arbor::generator
-
-namespace arbor::generator {
-
 // A chain of limbs nested 20,000 deep once overflowed the stack (a recursion per stem).
 TEST(SkeletonFile, DeeplyNestedBranchesAreReadWithoutRecursion) {
   const int depth = 20000;
@@ -167,10 +165,6 @@ TEST(SkeletonFile, CoincidentPointsOnALimbAreRefused) {
   expect_error("point 0 0 0 0\npoint 1 0 0 0\nconnect 0 1\n", 3, 1, "same position");
 }
 
-}  // namespace arbor::generator
-
-namespace arbor::generator {
-
 // Found by fuzzing: a coordinate of 1e23 overflowed the splines' float arithmetic (NaN curves).
 TEST(SkeletonFile, CoordinatesBeyondAThousandKilometresAreRefused) {
   expect_error("point 0 0 0 0\npoint 1 0 99999999999999999999999 1.5\nconnect 0 1\n", 2, 11,
@@ -180,4 +174,4 @@ TEST(SkeletonFile, CoordinatesBeyondAThousandKilometresAreRefused) {
                "closer than 1 micrometre");
 }
 
-}  // namespace arbor::generator
+}  // namespace arbor::formats

@@ -1,0 +1,25 @@
+// A closed interval of allowed values and its unit, stated once where the value is defined
+// (e.g. generator/species.h's look ranges) and checked by every reader of that value.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+namespace arbor {
+
+struct Range {
+  double lo = 0.0, hi = 0.0;
+  std::string_view unit;  // "" for a pure number
+
+  constexpr bool contains(double v) const { return v >= lo && v <= hi; }  // false for NaN
+
+  // "[0, 90] degrees": the bounds as short as they print exactly enough for a message.
+  std::string text() const {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "[%g, %g]", lo, hi);
+    return unit.empty() ? std::string(buf) : std::string(buf) + " " + std::string(unit);
+  }
+};
+
+}  // namespace arbor

@@ -1,0 +1,30 @@
+// Leaf tints: a point of a leaf to its reflectance, transmittance and two-sided BSDF.
+#include "materials/leaf.h"
+
+namespace arbor::materials {
+
+glm::vec3 LeafMaterial::tint(const SurfacePoint& p) const {
+  const glm::vec3 tex = albedo_map ? albedo_map->sample(p.uv.x, p.uv.y) : glm::vec3(1.0f);
+  return tex * p.color;
+}
+
+glm::vec3 LeafMaterial::albedo_at(const SurfacePoint& p) const {
+  const glm::vec3 side = p.leaf_back ? back : front;
+  return tinted ? side * tint(p) : side;
+}
+
+SurfaceBsdf LeafMaterial::bsdf(const SurfacePoint& p) const {
+  const glm::vec3 t = tinted ? tint(p) : glm::vec3(1.0f);
+  const glm::vec3 side = p.leaf_back ? back : front;
+  LeafBsdf l;
+  l.reflectance = glm::dvec3(tinted ? side * t : side);
+  l.transmittance = glm::dvec3(tinted ? transmittance * t : transmittance);
+  l.coat = cuticle;
+  SurfaceBsdf b;
+  b.lobes = l;
+  b.normal = p.shading_normal;
+  b.albedo = glm::vec3(l.reflectance);
+  return b;
+}
+
+}  // namespace arbor::materials

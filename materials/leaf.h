@@ -1,0 +1,28 @@
+// A thin leaf: diffuse reflection (front and back differ) and diffuse transmission, both
+// multiplied by the leaf's albedo map over its uv and the primitive's colour, under an optional
+// glossy cuticle on both faces (untinted: the wax reflects white).
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include "materials/cuticle.h"
+#include "materials/surface.h"
+#include "materials/textures.h"
+
+namespace arbor::materials {
+
+struct LeafMaterial {
+  glm::vec3 front{0.1f}, back{0.1f}, transmittance{0.1f};
+  const ColorMap* albedo_map = nullptr;
+  // The cuticle, owned by the scene like the maps (one coat per ior and roughness, shared by
+  // every leaf material that has it); null: no coat.
+  const CuticleCoat* cuticle = nullptr;
+  bool tinted = true;  // false: R and T as given (mesh leaves have no uv or colour)
+
+  SurfaceBsdf bsdf(const SurfacePoint& p) const;
+  glm::vec3 tint(const SurfacePoint& p) const;
+  // The reflectance of the side that was hit, tinted: the albedo AOV of a leaf.
+  glm::vec3 albedo_at(const SurfacePoint& p) const;
+};
+
+}  // namespace arbor::materials

@@ -1,0 +1,70 @@
+// What a material sees of a surface point, and the BSDF it makes there: the closed set of lobes
+// (Oren–Nayar reflection, the two-sided leaf) that the integrator knows only by their flags.
+#pragma once
+
+#include <variant>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "materials/leaf_bsdf.h"
+#include "materials/oren_nayar.h"
+
+namespace arbor::materials {
+
+// What a material needs to know of the surface point it shades (world space, unit vectors).
+struct SurfacePoint {
+  glm::vec3 shading_normal{0.0f, 0.0f, 1.0f};  // on the side the ray came from
+  glm::vec3 geometric_normal{0.0f, 0.0f, 1.0f};
+  glm::vec3 tangent{1.0f, 0.0f, 0.0f};                // along the limb, for bark bump mapping
+  float along = 0.0f, azimuth = 0.0f, radius = 0.0f;  // bark coordinates (metres, radians, metres)
+  glm::vec2 uv{0.0f};                                 // over the unit leaf
+  glm::vec3 color{1.0f};   // the primitive's colour, multiplying the albedo
+  glm::vec2 ground{0.0f};  // world x, y of a ground point (its patches)
+  bool leaf_back = false;  // a leaf seen from its back (the back reflectance applies)
+};
+
+// The BSDF at a surface point: one of a closed set (Oren–Nayar reflection, the two-sided leaf),
+// which the integrator knows only by its lobe flags.
+struct SurfaceBsdf {
+  std::variant<OrenNayar, LeafBsdf> lobes;
+  glm::vec3 normal{0.0f};  // shading normal, on the side the ray came from
+  glm::vec3 albedo{0.0f};  // what the albedo AOV shows
+
+  // An opaque diffuse surface of `albedo` (σ: Oren–Nayar roughness, radians) about `normal`.
+  static SurfaceBsdf diffuse(glm::vec3 normal, glm::vec3 albedo, float sigma = 0.0f) {
+    SurfaceBsdf b;
+    OrenNayar lobe;
+    lobe.albedo = glm::dvec3(albedo);
+    lobe.sigma = sigma;
+    b.lobes = lobe;
+    b.normal = normal;
+    b.albedo = glm::vec3(lobe.albedo);
+    return b;
+  }
+
+  unsigned flags() const {
+    if (const LeafBsdf* l = std::get_if<LeafBsdf>(&lobes)) {
+      return kReflection | kTransmission | kDiffuse | (l->coat ? kGlossy : 0u);
+    }
+    return kReflection | kDiffuse;
+  }
+  // Light may arrive and leave through the surface (both sides of a leaf).
+  bool transmits() const { return (flags() & kTransmission) != 0; }
+
+  glm::vec3 eval(const glm::dvec3& wo, const glm::dvec3& wi) const {
+    return glm::vec3(std::visit([&](const auto& b) { return b.eval(wo, wi); }, lobes));
+  }
+  float pdf(const glm::dvec3& wo, const glm::dvec3& wi) const {
+    return static_cast<float>(std::visit([&](const auto& b) { return b.pdf(wo, wi); }, lobes));
+  }
+  // u chooses the direction, u_lobe the leaf's lobe (reflect or transmit).
+  BsdfSample sample(const glm::dvec3& wo, glm::vec2 u, float u_lobe) const {
+    if (const LeafBsdf* l = std::get_if<LeafBsdf>(&lobes)) {
+      return l->sample(wo, glm::dvec3(u_lobe, u.x, u.y));
+    }
+    return std::get<OrenNayar>(lobes).sample(wo, glm::dvec2(u.x, u.y));
+  }
+};
+
+}  // namespace arbor::materials
