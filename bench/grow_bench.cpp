@@ -1,6 +1,8 @@
 // Benchmark: `grow` of the four appendix species of Weber & Penn 1995 and of the shipped
 // L-systems, fractal trees, TREE-MAKER templates and skeleton file (seed 1, quality 1, one thread),
-// reporting stems and leaves grown and the peak resident memory of the process.
+// reporting stems and leaves grown and the peak resident memory of the process; and the build of
+// scenes/forest.toml's tree prototypes (its 4 Black Tupelo variants) on one thread and on every
+// core (forest_build/threads:1 and /threads:0; CPU seconds and wall time both reported).
 #include <sys/resource.h>
 
 #include <string>
@@ -9,7 +11,9 @@
 
 #include "generator/grow.h"
 #include "generator/species.h"
+#include "formats/scene_desc.h"
 #include "formats/species_file.h"
+#include "scene/scene.h"
 
 namespace {
 
@@ -30,6 +34,21 @@ void grow_species(benchmark::State& state, const char* file) {
   state.counters["stems"] = static_cast<double>(stems);
   state.counters["leaves"] = static_cast<double>(leaves);
   state.counters["peak_rss_MB"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+// The prototypes of a scene with a forest: species read, variants grown and their geometry built
+// (build_scene with `threads`; Embree is not involved).
+void forest_build(benchmark::State& state) {
+  const arbor::formats::SceneDesc desc =
+      arbor::formats::load_scene(std::string(ARBOR_SOURCE_DIR) + "/scenes/forest.toml");
+  const std::string ocio = std::string(ARBOR_SOURCE_DIR) + "/imaging/ocio/config.ocio";
+  std::size_t prototypes = 0;
+  for (auto _ : state) {
+    const auto scene =
+        arbor::scene::build_scene(desc, ocio, nullptr, 0, static_cast<unsigned>(state.range(0)));
+    prototypes = scene->prototypes.size();
+  }
+  state.counters["prototypes"] = static_cast<double>(prototypes);
 }
 
 }  // namespace
@@ -55,5 +74,13 @@ BENCHMARK_CAPTURE(grow_species, dogwood_tmpl, "dogwood.tmpl")->Unit(benchmark::k
 BENCHMARK_CAPTURE(grow_species, young_pine_tmpl, "young_pine.tmpl")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(grow_species, weeping_cherry_tmpl, "weeping_cherry.tmpl")
     ->Unit(benchmark::kMillisecond);
+
+BENCHMARK(forest_build)
+    ->Arg(1)
+    ->Arg(0)
+    ->ArgName("threads")
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 BENCHMARK_MAIN();

@@ -13,10 +13,14 @@ namespace arbor {
 
 using Vec3 = glm::dvec3;
 
-// Rotates v about the unit axis by angle (Rodrigues' formula).
-inline Vec3 rotate(const Vec3& v, const Vec3& axis, double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
+// Rotates v about the unit axis by the angle whose cosine and sine are c and s (Rodrigues'
+// formula).
+inline Vec3 rotate(const Vec3& v, const Vec3& axis, double c, double s) {
   return v * c + glm::cross(axis, v) * s + axis * glm::dot(axis, v) * (1.0 - c);
+}
+// Rotates v about the unit axis by angle.
+inline Vec3 rotate(const Vec3& v, const Vec3& axis, double angle) {
+  return rotate(v, axis, std::cos(angle), std::sin(angle));
 }
 
 // A local coordinate system: z along a stem (or leaf), y and x across it.
@@ -26,14 +30,24 @@ struct Frame {
   Vec3 z{0, 0, 1};
 
   // Rotation about the frame's own x axis: positive angles turn z toward -y.
-  Frame rotated_x(double angle) const { return {x, rotate(y, x, angle), rotate(z, x, angle)}; }
+  Frame rotated_x(double angle) const {
+    const double c = std::cos(angle), s = std::sin(angle);  // once for both axes
+    return {x, rotate(y, x, c, s), rotate(z, x, c, s)};
+  }
   // Rotation about the frame's own y axis: positive angles turn z toward +x.
-  Frame rotated_y(double angle) const { return {rotate(x, y, angle), y, rotate(z, y, angle)}; }
+  Frame rotated_y(double angle) const {
+    const double c = std::cos(angle), s = std::sin(angle);
+    return {rotate(x, y, c, s), y, rotate(z, y, c, s)};
+  }
   // Rotation about the frame's own z axis: positive angles turn x toward +y.
-  Frame rotated_z(double angle) const { return {rotate(x, z, angle), rotate(y, z, angle), z}; }
+  Frame rotated_z(double angle) const {
+    const double c = std::cos(angle), s = std::sin(angle);
+    return {rotate(x, z, c, s), rotate(y, z, c, s), z};
+  }
   // Rotation of the whole frame about an axis given in the parent coordinates.
   Frame rotated_about(const Vec3& axis, double angle) const {
-    return {rotate(x, axis, angle), rotate(y, axis, angle), rotate(z, axis, angle)};
+    const double c = std::cos(angle), s = std::sin(angle);
+    return {rotate(x, axis, c, s), rotate(y, axis, c, s), rotate(z, axis, c, s)};
   }
   // Re-orthonormalises after many rotations (Gram-Schmidt from z, then y).
   Frame orthonormalized() const {

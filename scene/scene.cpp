@@ -3,10 +3,14 @@
 #include "scene/scene.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cmath>
 #include <map>
+#include <mutex>
+#include <optional>
+#include <thread>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
@@ -85,33 +89,73 @@ class SceneBuilder {
     return *species_.back().second;
   }
 
+  // One tree to grow: its species file, seed and time, and the scene key to blame.
+  struct GrowRequest {
+    std::string path;
+    std::uint64_t seed = 0;
+    double time = 0.0;
+    SourceLocation where;
+    std::string key() const {
+      return path + "#" + std::to_string(seed) + "@" + std::to_string(time);
+    }
+  };
+
   int prototype_for(const std::string& path, std::uint64_t seed, double time,
                     const SourceLocation& where) {
-    const std::string key = path + "#" + std::to_string(seed) + "@" + std::to_string(time);
-    for (const auto& [k, index] : prototype_keys_) {
-      if (k == key) return index;
+    return prototypes_for({{path, seed, time, where}}).front();
+  }
+
+  // The prototype of each request, growing those not grown yet on up to `threads_` threads at
+  // once and adding them in the requests' order: growth is a function of (species, seed, time)
+  // alone, so the scene is the one growing them one by one would build, at any thread count.
+  // The first failing request in order is the error reported.
+  std::vector<int> prototypes_for(const std::vector<GrowRequest>& requests,
+                                  Progress* progress = nullptr, std::size_t* done = nullptr) {
+    std::vector<const GrowRequest*> jobs;
+    std::vector<const generator::Species*> job_species;
+    for (const GrowRequest& r : requests) {
+      const std::string key = r.key();
+      if (prototype_index(key) >= 0) continue;
+      if (std::any_of(jobs.begin(), jobs.end(),
+                      [&](const GrowRequest* j) { return j->key() == key; }))
+        continue;
+      jobs.push_back(&r);
+      job_species.push_back(&species(r.path));  // read here, once, in order
     }
-    const generator::Species& sp = species(path);
-    generator::GrowOptions options;
-    options.seed = seed;
-    options.time = time;
-    generator::Skeleton skeleton;
-    try {
-      skeleton = generator::grow_tree(sp, options);
-    } catch (const RuntimeFailure& e) {
-      throw InputError(where, std::string(e.what()));
+    std::vector<std::optional<TreePrototypeData>> grown(jobs.size());
+    std::vector<std::exception_ptr> errors(jobs.size());
+    std::atomic<std::size_t> next{0};
+    std::mutex progress_mutex;
+    const auto work = [&] {
+      for (std::size_t j; (j = next++) < jobs.size();) {
+        try {
+          grown[j] = grow_prototype(*job_species[j], *jobs[j]);
+        } catch (...) {
+          errors[j] = std::current_exception();
+        }
+        if (progress && done) {
+          const std::lock_guard<std::mutex> lock(progress_mutex);
+          progress->update(++*done);
+        }
+      }
+    };
+    const std::size_t helpers =
+        std::min<std::size_t>(threads_, jobs.size()) - (jobs.empty() ? 0 : 1);
+    std::vector<std::thread> pool;
+    for (std::size_t t = 0; t < helpers; ++t) pool.emplace_back(work);
+    work();
+    for (std::thread& t : pool) t.join();
+    for (std::size_t j = 0; j < jobs.size(); ++j) {
+      if (errors[j]) std::rethrow_exception(errors[j]);
+      add_prototype(jobs[j]->key(), std::move(*grown[j]));
     }
-    TreePrototypeData p;
-    p.geometry = std::make_unique<generator::TreeGeometry>(
-        generator::build_tree_geometry(skeleton, generator::geometry_options_for(sp)));
-    p.extent = tree_extent(skeleton, *p.geometry);
-    s_.stats.curve_segments += p.geometry->stats.curve_segments;
-    s_.stats.triangles += p.geometry->stats.leaf_triangles + p.geometry->stats.grid_triangles;
-    s_.stats.geometry_bytes += p.geometry->stats.bytes;
-    s_.prototypes.push_back(std::move(p));
-    const int index = static_cast<int>(s_.prototypes.size()) - 1;
-    prototype_keys_.emplace_back(key, index);
-    return index;
+    std::vector<int> indices;
+    for (const GrowRequest& r : requests) indices.push_back(prototype_index(r.key()));
+    return indices;
+  }
+
+  void set_threads(unsigned threads) {
+    threads_ = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
   }
 
   const materials::ColorMap* albedo_map(const std::string& path) {
@@ -222,8 +266,41 @@ class SceneBuilder {
   void add_mesh(const formats::MeshDesc& d);
 
  private:
+  static TreePrototypeData grow_prototype(const generator::Species& sp, const GrowRequest& r) {
+    generator::GrowOptions options;
+    options.seed = r.seed;
+    options.time = r.time;
+    generator::Skeleton skeleton;
+    try {
+      skeleton = generator::grow_tree(sp, options);
+    } catch (const RuntimeFailure& e) {
+      throw InputError(r.where, std::string(e.what()));
+    }
+    TreePrototypeData p;
+    p.geometry = std::make_unique<generator::TreeGeometry>(
+        generator::build_tree_geometry(skeleton, generator::geometry_options_for(sp)));
+    p.extent = tree_extent(skeleton, *p.geometry);
+    return p;
+  }
+
+  void add_prototype(const std::string& key, TreePrototypeData p) {
+    s_.stats.curve_segments += p.geometry->stats.curve_segments;
+    s_.stats.triangles += p.geometry->stats.leaf_triangles + p.geometry->stats.grid_triangles;
+    s_.stats.geometry_bytes += p.geometry->stats.bytes;
+    s_.prototypes.push_back(std::move(p));
+    prototype_keys_.emplace_back(key, static_cast<int>(s_.prototypes.size()) - 1);
+  }
+
+  int prototype_index(const std::string& key) const {
+    for (const auto& [k, index] : prototype_keys_) {
+      if (k == key) return index;
+    }
+    return -1;
+  }
+
   Scene& s_;
   std::string ocio_config_;
+  unsigned threads_ = 1;
   std::vector<std::pair<std::string, std::unique_ptr<generator::Species>>> species_;
   std::vector<std::pair<std::string, int>> prototype_keys_;
   std::vector<std::pair<std::pair<double, double>, const materials::CuticleCoat*>> cuticles_;
@@ -309,6 +386,38 @@ void SceneBuilder::add_mesh(const formats::MeshDesc& d) {
   s_.meshes.push_back(std::move(mesh));
 }
 
+// Refuses a forest whose variants would not fit `budget` bytes (0: no budget), from the scene's
+// geometry bytes before and after its first variant. Every variant of a species is about the
+// size of its first (the Weber & Penn size limits allow a 10^4 spread, but variants differ only by
+// their seed); Embree's structures double it.
+void check_forest_budget(const formats::ForestDesc& f, std::size_t before, std::size_t after,
+                         std::uint64_t budget) {
+  if (budget == 0) return;
+  const double each = 2.0 * static_cast<double>(after - before);
+  const double projected = 2.0 * static_cast<double>(before) + each * f.variants;
+  if (projected <= static_cast<double>(budget)) return;
+  char buf[400];
+  std::snprintf(
+      buf, sizeof buf,
+      "the forest's %d variants would need about %.1f GB of geometry (%.0f MB each, with "
+      "Embree's structures), more than the %.1f GB left for trees; lower variants, or use "
+      "--force to render it anyway",
+      f.variants, projected / double(1ull << 30), each / double(1ull << 20),
+      static_cast<double>(budget) / double(1ull << 30));
+  throw InputError(f.where, buf);
+}
+
+// The ground's material: patched when a cover is given, plain diffuse otherwise.
+materials::Material ground_material(const formats::GroundDesc& d) {
+  if (d.patch_cover <= 0.0) return materials::DiffuseMaterial{to_vec3(d.albedo)};
+  materials::GroundMaterial g;
+  g.albedo = to_vec3(d.albedo);
+  g.patch_albedo = to_vec3(d.patch_albedo);
+  g.set_cover(static_cast<float>(d.patch_cover));
+  g.scale = static_cast<float>(d.patch_scale);
+  return g;
+}
+
 }  // namespace
 
 glm::mat4 placement_matrix(const formats::Placement& pl) {
@@ -321,10 +430,11 @@ glm::mat4 placement_matrix(const formats::Placement& pl) {
 
 std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
                                          const std::string& ocio_config, Progress* progress,
-                                         std::uint64_t geometry_budget) {
+                                         std::uint64_t geometry_budget, unsigned threads) {
   const auto start = std::chrono::steady_clock::now();
   auto scene = std::make_unique<Scene>();
   SceneBuilder b(*scene, ocio_config);
+  b.set_threads(threads);
   std::size_t total = desc.trees.size(), done = 0;
   for (const formats::ForestDesc& f : desc.forests) total += static_cast<std::size_t>(f.variants);
   if (progress) progress->set_total(total);
@@ -336,40 +446,35 @@ std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
                ? time + desc.clock * desc.animation.years_per_second
                : time + desc.clock;
   };
-  for (const formats::TreeDesc& t : desc.trees) {
-    const int p = b.prototype_for(t.species, t.seed, animated(t.species, t.time), t.where);
-    b.add_instance(p, t.placement,
+  // The trees' prototypes first, grown in parallel; then their instances in scene order.
+  std::vector<SceneBuilder::GrowRequest> trees;
+  for (const formats::TreeDesc& t : desc.trees)
+    trees.push_back({t.species, t.seed, animated(t.species, t.time), t.where});
+  const std::vector<int> tree_prototypes = b.prototypes_for(trees, progress, &done);
+  for (std::size_t i = 0; i < desc.trees.size(); ++i) {
+    const formats::TreeDesc& t = desc.trees[i];
+    b.add_instance(tree_prototypes[i], t.placement,
                    b.look_for(b.species(t.species), t.bark, t.leaf, t.treemaker, t.where),
                    t.species);
-    if (progress) progress->update(++done);
   }
+  done = desc.trees.size();
   for (const formats::ForestDesc& f : desc.forests) {
     const TreeLook look = b.look_for(b.species(f.species), f.bark, f.leaf, f.treemaker, f.where);
-    std::vector<int> variants;
+    // The first variant alone (its size checks the budget), then the others in parallel.
+    std::vector<SceneBuilder::GrowRequest> requests;
     for (int v = 0; v < f.variants; ++v) {
-      const std::size_t before = scene->stats.geometry_bytes;
-      variants.push_back(b.prototype_for(f.species,
-                                         derive_key(f.seed, static_cast<std::uint64_t>(v)),
-                                         animated(f.species, 0.0), f.where));
-      if (progress) progress->update(++done);
-      if (v == 0 && geometry_budget > 0) {
-        // Every variant of a species is about the size of its first (the Weber & Penn size
-        // limits allow a 10^4 spread, but variants differ only by their seed).
-        const double each = 2.0 * static_cast<double>(scene->stats.geometry_bytes - before);
-        const double projected = 2.0 * static_cast<double>(before) + each * f.variants;
-        if (projected > static_cast<double>(geometry_budget)) {
-          char buf[400];
-          std::snprintf(
-              buf, sizeof buf,
-              "the forest's %d variants would need about %.1f GB of geometry (%.0f MB each, with "
-              "Embree's structures), more than the %.1f GB left for trees; lower variants, or use "
-              "--force to render it anyway",
-              f.variants, projected / double(1ull << 30), each / double(1ull << 20),
-              static_cast<double>(geometry_budget) / double(1ull << 30));
-          throw InputError(f.where, buf);
-        }
-      }
+      requests.push_back({f.species, derive_key(f.seed, static_cast<std::uint64_t>(v)),
+                          animated(f.species, 0.0), f.where});
     }
+    std::vector<int> variants;
+    {
+      const std::size_t before = scene->stats.geometry_bytes;
+      variants.push_back(b.prototypes_for({requests.front()}, progress, &done).front());
+      check_forest_budget(f, before, scene->stats.geometry_bytes, geometry_budget);
+    }
+    requests.erase(requests.begin());
+    const std::vector<int> rest = b.prototypes_for(requests, progress, &done);
+    variants.insert(variants.end(), rest.begin(), rest.end());
     for (int i = 0; i < f.count; ++i) {
       Rng rng(derive_key(f.seed ^ 0xf0e57u, static_cast<std::uint64_t>(i)));
       formats::Placement pl;
@@ -386,16 +491,7 @@ std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
     scene->object_names.emplace_back("ground");
     scene->ground_object_id = static_cast<std::uint32_t>(scene->object_names.size());
     scene->ground_material_id = b.material_named("ground");
-    if (desc.ground.patch_cover > 0.0) {
-      materials::GroundMaterial g;
-      g.albedo = to_vec3(desc.ground.albedo);
-      g.patch_albedo = to_vec3(desc.ground.patch_albedo);
-      g.set_cover(static_cast<float>(desc.ground.patch_cover));
-      g.scale = static_cast<float>(desc.ground.patch_scale);
-      scene->ground = g;
-    } else {
-      scene->ground = materials::DiffuseMaterial{to_vec3(desc.ground.albedo)};
-    }
+    scene->ground = ground_material(desc.ground);
   }
   scene->stats.prototypes = scene->prototypes.size();
   scene->stats.instances = scene->instances.size();

@@ -100,11 +100,12 @@ struct Scene {
 // species, meshes or textures, at the scene key that names them. With a `geometry_budget` (bytes;
 // 0: none), a forest whose variants would need more is refused once its first variant is grown
 // (InputError at the forest): each variant is taken at the first one's size, twice over for
-// Embree's structures over it.
+// Embree's structures over it. The trees' prototypes and a forest's variants are grown on up to
+// `threads` threads (0: every core); the scene is the same at any thread count.
 std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
                                          const std::string& ocio_config,
                                          Progress* progress = nullptr,
-                                         std::uint64_t geometry_budget = 0);
+                                         std::uint64_t geometry_budget = 0, unsigned threads = 0);
 
 // The affine map of a placement: translate · rotate about z · uniform scale.
 glm::mat4 placement_matrix(const formats::Placement& placement);

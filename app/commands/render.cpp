@@ -329,7 +329,8 @@ RunResult build_and_render(const formats::SceneDesc& scene, const scene::RenderI
   const std::unique_ptr<const scene::Scene> built =
       scene::build_scene(scene, color.config_path(), &build_progress,
                          scene::geometry_budget(scene, Film::costs(), a.force,
-                                                scene::usable_memory_bytes(), unit_passes));
+                                                scene::usable_memory_bytes(), unit_passes),
+                         static_cast<unsigned>(std::max(0, r.threads)));
   const World world(*built, device);
   build_progress.finish();
   if (treemaker) header.treemaker_weights = treemaker_weights_text(*built);

@@ -2,7 +2,9 @@
 // prototypes, placed by their instances, named for compositing, the ground added.
 #include "scene/scene.h"
 
+#include <cstring>
 #include <string>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -48,6 +50,46 @@ TEST(BuildScene, TreesOfOneSpeciesAndSeedShareOnePrototype) {
       EXPECT_NE(scene->object_names[a], scene->object_names[b]);
     }
   }
+}
+
+// The same bytes: a vector of trivially copyable values compared as memory.
+template <class T>
+bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+// Growing prototypes in parallel builds the scene growing them one by one builds: the same
+// prototypes in the same order, byte for byte, and the same instances.
+TEST(BuildScene, ParallelGrowthBuildsTheSceneSerialGrowthBuilds) {
+  const formats::SceneDesc desc = formats::parse_scene(
+      tree("young_tree.skel", 1, 0.0) + tree("dogwood.tmpl", 3, 4.0) +
+          tree("young_tree.skel", 1, 8.0) + tree("dogwood.tmpl", 4, 12.0) +
+          "[[forest]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) +
+          "/species/dogwood.tmpl\"\ncount = 12\nvariants = 5\narea = [[-9.0, -9.0], [9.0, 9.0]]\n",
+      "/tmp/scene.toml");
+  const std::unique_ptr<const Scene> one = build_scene(desc, kOcio, nullptr, 0, 1);
+  ASSERT_EQ(one->prototypes.size(), 3u + 5u);
+  for (unsigned threads : {2u, 3u, 0u}) {
+    SCOPED_TRACE(threads);
+    const std::unique_ptr<const Scene> many = build_scene(desc, kOcio, nullptr, 0, threads);
+    ASSERT_EQ(many->prototypes.size(), one->prototypes.size());
+    for (std::size_t p = 0; p < one->prototypes.size(); ++p) {
+      const generator::TreeGeometry& a = *one->prototypes[p].geometry;
+      const generator::TreeGeometry& b = *many->prototypes[p].geometry;
+      EXPECT_TRUE(same_bytes(a.curves.points, b.curves.points)) << p;
+      EXPECT_TRUE(same_bytes(a.leaves.positions, b.leaves.positions)) << p;
+      EXPECT_TRUE(same_bytes(a.cards.corners, b.cards.corners)) << p;
+    }
+    ASSERT_EQ(many->instances.size(), one->instances.size());
+    for (std::size_t i = 0; i < one->instances.size(); ++i) {
+      EXPECT_EQ(many->instances[i].prototype, one->instances[i].prototype) << i;
+      EXPECT_EQ(many->instances[i].to_world, one->instances[i].to_world) << i;
+    }
+  }
+  // The variants differ from each other (so the comparison above could see a swap).
+  EXPECT_FALSE(same_bytes(one->prototypes[3].geometry->leaves.positions,
+                          one->prototypes[4].geometry->leaves.positions));
 }
 
 TEST(BuildScene, AGroundlessSceneHasNoGround) {

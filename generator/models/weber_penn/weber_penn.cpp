@@ -313,7 +313,9 @@ class Grower {
     Rng split_rng(derive_key(s.key, kSplit));
     Rng sway_rng(derive_key(s.key, kSway));
     const double sway_offset[2] = {sway_rng.uniform() * 2.0 * kPi, sway_rng.uniform() * 2.0 * kPi};
-    const bool grows_leaves = !probe && s.level + 1 == p_.levels && p_.leaves != 0.0;
+    // A growth that only records pruned lengths (record_) needs no leaves: they place nothing
+    // that a stem depends on (their random numbers are their own stream).
+    const bool grows_leaves = !probe && !record_ && s.level + 1 == p_.levels && p_.leaves != 0.0;
     const bool grows_children = !probe && s.level + 1 < p_.levels;
     const bool fan_children = p_.levels > s.level + 1 && p_.at(s.level + 1).branches < 0.0;
     const bool fan_leaves = p_.leaves < 0.0;
@@ -505,7 +507,8 @@ class Grower {
   std::vector<wp::SplitDiffusion> split_error_;
 
  public:
-  // Pruned lengths by stem key: recorded from a growth at rest, replayed in one with wind.
+  // Pruned lengths by stem key: recorded from a growth at rest (stems only), replayed in one
+  // with wind.
   std::unordered_map<std::uint64_t, double>* record_ = nullptr;
   const std::unordered_map<std::uint64_t, double>* replay_ = nullptr;
 };
