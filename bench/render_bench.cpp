@@ -5,6 +5,11 @@
 // - frame/path_64spp and frame/treemaker: the default scene's frame (its camera, 160×120) by the
 //   path integrator at 64 spp and by the treemaker integrator at its default treemaker_spp —
 //   bench/run.sh prints their ratio (issue 6's target: treemaker ≥ 50× faster);
+// - ray_replay: the default scene at 160×120, 16 spp, rendered once with every ray it traces
+//   recorded (World::log_rays), then exactly those rays replayed through rtcIntersect1 /
+//   rtcOccluded1 on the same Embree scene (its leaf-card filter included); counters: the render's
+//   rays per CPU-second, the replay's, and their ratio `of_raw_embree` — Embree's share of the
+//   render, without arbor's shading, sampling and sky (issue 27's target: ≥ 0.8);
 // - world_build: growing, meshing and BVH building for the default scene;
 // - forest_1000: the world of 1,000 Black Tupelos from 8 variants (peak RSS counter; run alone
 //   by bench/run.sh so the peak is its own).
@@ -23,6 +28,7 @@
 #include "tracer/lights/sky.h"
 #include "imaging/color.h"
 #include "scene/scene.h"
+#include "tracer/embree/embree_internal.h"
 #include "tracer/embree/world.h"
 
 namespace {
@@ -115,6 +121,65 @@ void path_tracer(benchmark::State& state) { render_frames(state, 16, false); }
 
 void frame(benchmark::State& state, bool treemaker) { render_frames(state, 64, treemaker); }
 
+double cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+void ray_replay(benchmark::State& state) {
+  formats::SceneDesc scene = default_scene();
+  scene.render.width = 160;
+  scene.render.height = 120;
+  scene.render.spp = 16;
+  const tracer::EmbreeDevice device("threads=1");
+  BuiltWorld built(scene, device);
+  tracer::World& world = built.world;
+  const tracer::Sky sky(scene::sky_spec(scene.sky), scene::sun_spec(scene.sun),
+                        imaging::ColorPipeline(kOcioConfig).xyz_to_scene_linear());
+  double render_rays = 0.0, render_cpu = 0.0, replay_rays = 0.0, replay_cpu = 0.0;
+  for (auto _ : state) {
+    // The render alone (no log), then once more with the log to know its rays.
+    imaging::RenderStats stats;
+    double t0 = cpu_seconds();
+    benchmark::DoNotOptimize(tracer::render_image(
+        scene::render_input(scene), world, sky, [](float*) {}, stats));
+    render_cpu += cpu_seconds() - t0;
+    tracer::RayLog log;
+    world.log_rays(&log);
+    imaging::RenderStats logged;
+    tracer::render_image(
+        scene::render_input(scene), world, sky, [](float*) {}, logged);
+    world.log_rays(nullptr);
+    t0 = cpu_seconds();
+    for (const tracer::Ray& ray : log.closest) {
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      RTCRayHit rh = tracer::embree_ray_hit(ray);
+      rtcIntersect1(world.embree_scene(), &context, &rh);
+      benchmark::DoNotOptimize(rh.hit.geomID);
+    }
+    for (const tracer::Ray& ray : log.shadow) {
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      RTCRay r = tracer::embree_ray(ray);
+      rtcOccluded1(world.embree_scene(), &context, &r);
+      benchmark::DoNotOptimize(r.tfar);
+    }
+    replay_cpu += cpu_seconds() - t0;
+    // The render is deterministic: the logged render traced the same rays as the timed one.
+    replay_rays += static_cast<double>(log.closest.size() + log.shadow.size());
+    render_rays += static_cast<double>(log.closest.size() + log.shadow.size());
+    state.counters["rays_counted_by_render"] = static_cast<double>(logged.rays);
+    state.counters["shadow_fraction"] = static_cast<double>(log.shadow.size()) /
+                                        static_cast<double>(log.closest.size() + log.shadow.size());
+  }
+  state.counters["render_rays_per_cpu_s"] = render_rays / render_cpu;
+  state.counters["replay_rays_per_cpu_s"] = replay_rays / replay_cpu;
+  state.counters["of_raw_embree"] = (render_rays / render_cpu) / (replay_rays / replay_cpu);
+}
+
 void world_build(benchmark::State& state) {
   const formats::SceneDesc scene = default_scene();
   const tracer::EmbreeDevice device("threads=1");
@@ -150,6 +215,7 @@ BENCHMARK(raw_embree_rays)->Unit(benchmark::kMillisecond);
 BENCHMARK(path_tracer)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(frame, path_64spp, false)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK_CAPTURE(frame, treemaker, true)->Unit(benchmark::kMillisecond);
+BENCHMARK(ray_replay)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(world_build)->Unit(benchmark::kMillisecond);
 BENCHMARK(forest_1000)->Unit(benchmark::kMillisecond)->Iterations(1);
 

@@ -63,6 +63,10 @@ World::World(const scene::Scene& scene, const EmbreeDevice& device)
 World::~World() = default;
 
 bool World::intersect(const Ray& ray, WorldHit& hit) const {
+  if (log_) {
+    const std::lock_guard<std::mutex> lock(log_->mutex);
+    log_->closest.push_back(ray);
+  }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh = embree_ray_hit(ray);
@@ -154,6 +158,10 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
 }
 
 bool World::occluded(const Ray& ray) const {
+  if (log_) {
+    const std::lock_guard<std::mutex> lock(log_->mutex);
+    log_->shadow.push_back(ray);
+  }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay r = embree_ray(ray);

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "scene/scene.h"
@@ -14,6 +15,14 @@
 namespace arbor::tracer {
 
 class TreePrototype;
+
+// The rays a render asked the world to trace, in the order they were asked (with several threads
+// the order between threads is the scheduler's): for replaying exactly them through Embree alone
+// (bench/render_bench.cpp ray_replay), to tell Embree's share of a render's time from arbor's.
+struct RayLog {
+  std::mutex mutex;
+  std::vector<Ray> closest, shadow;
+};
 
 class World {
  public:
@@ -37,6 +46,8 @@ class World {
   RTCSceneTy* embree_scene() const {
     return top_.get();
   }  // for benchmarks of raw Embree throughput
+  // Records every ray traced from now on into `log` (null: stop); for benchmarks.
+  void log_rays(RayLog* log) { log_ = log; }
 
  private:
   const scene::Scene& scene_;
@@ -46,6 +57,7 @@ class World {
   std::vector<int> instance_of_geometry_;  // Embree geometry id in the top scene → instance
   std::vector<int> mesh_of_geometry_;      // Embree geometry id in the top scene → mesh
   double build_seconds_ = 0.0;
+  RayLog* log_ = nullptr;
 };
 
 }  // namespace arbor::tracer
