@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "common/math.h"
+#include "tracer/lights/sky_cache.h"
 
 namespace arbor::tracer {
 
@@ -19,7 +20,7 @@ SkyMap make_sky_map(const SkyContext& context) {
     case formats::SkyModel::Preetham: return preetham_sky_map(context);
     case formats::SkyModel::Constant: return constant_sky_map(context);
     case formats::SkyModel::Envmap: return envmap_sky_map(context);
-    case formats::SkyModel::Nishita: return nishita_sky_map(context);
+    case formats::SkyModel::Nishita: return cached_sky_map(context, "nishita", nishita_sky_map);
     case formats::SkyModel::None: break;
   }
   throw std::logic_error("make_sky_map: no map for this sky model");

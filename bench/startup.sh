@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Start-up of a render: the default scene at 1×1 pixel, 1 spp, one thread — loading, building and
+# the sky — run ROUNDS times interleaved with and without the sky map cache (a warm cache in a
+# folder of its own; ARBOR_CACHE_DIR=off), CPU seconds (user + system, getrusage of the child via
+# /usr/bin/time). Prints both ranges and medians and writes bench/results/startup.json.
+#
+#   bench/startup.sh [ARBOR (build/app/arbor)] [ROUNDS (5)]
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+arbor=${1:-$root/build/app/arbor} rounds=${2:-5}
+out=$root/bench/results/startup.json
+mkdir -p "$(dirname "$out")"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+run() {  # run CACHE_DIR → CPU seconds
+  ARBOR_CACHE_DIR=$1 /usr/bin/time -f "%U %S" -o "$tmp/t" "$arbor" render "$root/scenes/default.toml" \
+    --width 1 --height 1 --spp 1 --threads 1 -o "$tmp/one.exr" 2> /dev/null
+  awk '{printf "%.3f\n", $1 + $2}' "$tmp/t"
+}
+run "$tmp/cache" > /dev/null  # warm the cache
+for r in $(seq "$rounds"); do
+  echo "off $(run off)" >> "$tmp/runs"
+  echo "cached $(run "$tmp/cache")" >> "$tmp/runs"
+done
+python3 - "$tmp/runs" "$out" "$(uname -n)" "$(nproc)" <<'PY'
+import json, statistics, sys
+runs = {}
+for line in open(sys.argv[1]):
+    k, v = line.split()
+    runs.setdefault(k, []).append(float(v))
+json.dump({"machine": sys.argv[3], "cores": int(sys.argv[4]), "unit": "CPU s", "runs": runs},
+          open(sys.argv[2], "w"), indent=1)
+for k, v in runs.items():
+    print(f"{k:7s} {min(v):.2f}-{max(v):.2f} CPU s, median {statistics.median(v):.2f}")
+PY
