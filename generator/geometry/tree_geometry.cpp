@@ -346,14 +346,17 @@ void add_leaves(const Skeleton& sk, const GeometryOptions& o, TreeGeometry& g) {
       return leaf.position + leaf.axis * (y * leaf.length) + across * (x * leaf.width) +
              leaf.normal * (lift * leaf.width);
     };
-    std::vector<float> bounds{outline.lo.x};
+    // The card's edges across the leaf: its outline's, and the hinges inside it (at most 4; on
+    // the stack, not a vector per leaf — half a million allocations for the willow).
+    float bounds[4] = {outline.lo.x};
+    std::size_t edges = 1;
     if (hinged) {
       for (float x : {-hinge, hinge}) {
-        if (x > outline.lo.x && x < outline.hi.x) bounds.push_back(x);
+        if (x > outline.lo.x && x < outline.hi.x) bounds[edges++] = x;
       }
     }
-    bounds.push_back(outline.hi.x);
-    for (std::size_t k = 0; k + 1 < bounds.size(); ++k) {
+    bounds[edges++] = outline.hi.x;
+    for (std::size_t k = 0; k + 1 < edges; ++k) {
       LeafCard c;
       c.leaf = static_cast<std::int32_t>(li);
       c.shape = static_cast<std::uint16_t>(leaf.shape);
