@@ -115,16 +115,16 @@ int grow_command(const GrowRequest& a) {
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   long long mesh_triangles = -1;
-  if (!a.out.empty() || a.stats || a.json) {
+  // A skeleton file needs only the skeleton; the statistics and the meshes need the geometry.
+  if (ends_with(a.out, ".skel")) generator::write_skeleton_file(skeleton, a.out);
+  if (a.stats || a.json || (!a.out.empty() && !ends_with(a.out, ".skel"))) {
     const auto geometry_start = std::chrono::steady_clock::now();
     const generator::TreeGeometry geometry =
         generator::build_tree_geometry(skeleton, generator::geometry_options_for(species));
     generator::add_geometry_stats(
         stats, geometry.stats,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - geometry_start).count());
-    if (ends_with(a.out, ".skel")) {
-      generator::write_skeleton_file(skeleton, a.out);
-    } else if (ends_with(a.out, ".pbrt")) {
+    if (ends_with(a.out, ".pbrt")) {
       generator::write_pbrt(geometry, species.bark, species.leaf, a.out, up);
     } else if (!a.out.empty()) {
       const generator::TreeMesh mesh = generator::tessellate(geometry);
