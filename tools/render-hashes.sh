@@ -48,4 +48,6 @@ for species in "$root"/species/*; do
     "$arbor" grow "$species" --seed 7 -o "$out/$name.$ext" 2>>"$out/log"
   done
   (cd "$out" && sha1sum "$name.obj" "$name.pbrt" "$name.skel")
+  # Hashed: the full-size tree exports (about 6 GB over all species) are not kept.
+  rm -f "$out/$name.obj" "$out/$name.mtl" "$out/$name.pbrt" "$out/$name.skel"
 done
