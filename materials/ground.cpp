@@ -2,6 +2,7 @@
 #include "materials/ground.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <vector>
 
 #include "materials/bark_noise.h"
@@ -22,9 +23,12 @@ void GroundMaterial::set_cover(float c) {
   for (int i = 0; i < 512; ++i) {
     for (int j = 0; j < 512; ++j) v.push_back(noise(i * 0.137, j * 0.137));  // 70 × 70 scales
   }
-  std::sort(v.begin(), v.end());
+  // The order statistics a full sort would put at each quantile's index, without the sort.
   auto quantile = [&](double q) {
-    return v[std::min(v.size() - 1, static_cast<size_t>(q * v.size()))];
+    const auto k =
+        static_cast<std::ptrdiff_t>(std::min(v.size() - 1, static_cast<size_t>(q * v.size())));
+    std::nth_element(v.begin(), v.begin() + k, v.end());
+    return v[static_cast<size_t>(k)];
   };
   threshold = c >= 1.0f ? -1e9 : quantile(1.0 - c);
   edge = 0.25 * (quantile(0.84) - quantile(0.16));  // a quarter of the noise's spread

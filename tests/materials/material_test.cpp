@@ -3,6 +3,7 @@
 // and their tint, and one dispatch gives both the BSDF and the albedo AOV.
 #include "materials/material.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -148,6 +149,23 @@ TEST(GroundMaterial, PatchesCoverTheAskedFractionWithSoftEdges) {
   }
   g.set_cover(0.0f);
   EXPECT_EQ(g.patch({1.0f, 2.0f}), 0.0f);
+}
+
+// The threshold is the (1 − cover) quantile and the edge a quarter of the 16–84 % spread of the
+// noise's fixed 512 × 512 sample: exactly the values of the sorted sample at those indices.
+TEST(GroundMaterial, ThresholdAndEdgeAreTheSortedSamplesQuantiles) {
+  std::vector<double> v;
+  for (int i = 0; i < 512; ++i) {
+    for (int j = 0; j < 512; ++j) v.push_back(GroundMaterial::noise(i * 0.137, j * 0.137));
+  }
+  std::sort(v.begin(), v.end());
+  const auto at = [&](double q) { return v[static_cast<std::size_t>(q * v.size())]; };
+  for (float cover : {0.1f, 0.5f, 0.93f}) {
+    GroundMaterial g;
+    g.set_cover(cover);
+    EXPECT_EQ(g.threshold, at(1.0 - cover)) << cover;
+    EXPECT_EQ(g.edge, 0.25 * (at(0.84) - at(0.16))) << cover;
+  }
 }
 
 TEST(GroundMaterial, TheAlbedoMixesTheTwoColoursByThePatch) {
