@@ -10,6 +10,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <thread>
 
 #include <glm/geometric.hpp>
@@ -100,27 +101,22 @@ class SceneBuilder {
     }
   };
 
-  int prototype_for(const std::string& path, std::uint64_t seed, double time,
-                    const SourceLocation& where) {
-    return prototypes_for({{path, seed, time, where}}).front();
-  }
-
   // The prototype of each request, growing those not grown yet on up to `threads_` threads at
   // once and adding them in the requests' order: growth is a function of (species, seed, time)
   // alone, so the scene is the one growing them one by one would build, at any thread count.
   // The first failing request in order is the error reported.
   std::vector<int> prototypes_for(const std::vector<GrowRequest>& requests,
                                   Progress* progress = nullptr, std::size_t* done = nullptr) {
+    // The requests not grown yet, each key once, their species read here in order.
+    std::vector<std::string> keys;
     std::vector<const GrowRequest*> jobs;
     std::vector<const generator::Species*> job_species;
+    std::set<std::string> pending;
     for (const GrowRequest& r : requests) {
-      const std::string key = r.key();
-      if (prototype_index(key) >= 0) continue;
-      if (std::any_of(jobs.begin(), jobs.end(),
-                      [&](const GrowRequest* j) { return j->key() == key; }))
-        continue;
+      keys.push_back(r.key());
+      if (prototype_keys_.count(keys.back()) || !pending.insert(keys.back()).second) continue;
       jobs.push_back(&r);
-      job_species.push_back(&species(r.path));  // read here, once, in order
+      job_species.push_back(&species(r.path));
     }
     std::vector<std::optional<TreePrototypeData>> grown(jobs.size());
     std::vector<std::exception_ptr> errors(jobs.size());
@@ -139,10 +135,9 @@ class SceneBuilder {
         }
       }
     };
-    const std::size_t helpers =
-        std::min<std::size_t>(threads_, jobs.size()) - (jobs.empty() ? 0 : 1);
-    std::vector<std::thread> pool;
-    for (std::size_t t = 0; t < helpers; ++t) pool.emplace_back(work);
+    std::vector<std::thread> pool;  // this thread works too
+    for (std::size_t t = 1; t < std::min<std::size_t>(threads_, jobs.size()); ++t)
+      pool.emplace_back(work);
     work();
     for (std::thread& t : pool) t.join();
     for (std::size_t j = 0; j < jobs.size(); ++j) {
@@ -150,7 +145,7 @@ class SceneBuilder {
       add_prototype(jobs[j]->key(), std::move(*grown[j]));
     }
     std::vector<int> indices;
-    for (const GrowRequest& r : requests) indices.push_back(prototype_index(r.key()));
+    for (const std::string& key : keys) indices.push_back(prototype_keys_.at(key));
     return indices;
   }
 
@@ -288,21 +283,14 @@ class SceneBuilder {
     s_.stats.triangles += p.geometry->stats.leaf_triangles + p.geometry->stats.grid_triangles;
     s_.stats.geometry_bytes += p.geometry->stats.bytes;
     s_.prototypes.push_back(std::move(p));
-    prototype_keys_.emplace_back(key, static_cast<int>(s_.prototypes.size()) - 1);
-  }
-
-  int prototype_index(const std::string& key) const {
-    for (const auto& [k, index] : prototype_keys_) {
-      if (k == key) return index;
-    }
-    return -1;
+    prototype_keys_.emplace(key, static_cast<int>(s_.prototypes.size()) - 1);
   }
 
   Scene& s_;
   std::string ocio_config_;
   unsigned threads_ = 1;
   std::vector<std::pair<std::string, std::unique_ptr<generator::Species>>> species_;
-  std::vector<std::pair<std::string, int>> prototype_keys_;
+  std::map<std::string, int> prototype_keys_;  // (species, seed, time) → prototype
   std::vector<std::pair<std::pair<double, double>, const materials::CuticleCoat*>> cuticles_;
   std::map<std::string, int> object_count_;
   std::map<std::string, std::uint32_t> material_ids_;

@@ -2,6 +2,7 @@
 // value checks that one range: a species file, a tree's overrides in a scene and a mesh's
 // materials accept the bounds and refuse a step beyond them, for every value.
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
