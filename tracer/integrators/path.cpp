@@ -20,6 +20,26 @@ float power_heuristic(float a, float b) {
 
 }  // namespace
 
+PathIntegrator::LightChoice PathIntegrator::light_choice(const Sky& sky) {
+  const float sun = sky.has_sun() ? sky.sun_irradiance() : 0.0f;
+  const glm::vec3 e = sky.irradiance_up();
+  const float k = (e.x + e.y + e.z) / 3.0f;  // the sky's irradiance on a level plane
+  // Light-sampling the sky pays when BSDF sampling finds its light badly (a large relative
+  // variance V) and the sun, whose shadow rays it takes, lights a level plane little against
+  // it (S / K). Picking the sun with p ≈ S / (S + K) adds S K to a level surface's variance and
+  // cosine sampling leaves K² V, so the sky is worth its share when V > S / K; kSkyNeeMargin
+  // is the measured offset (docs/rendering.md, "Light selection").
+  const float s_level = sun * std::max(0.0f, sky.sun_direction().z);
+  const bool sample_sky =
+      !sky.empty() && k > 0.0f && sky.cosine_variance_up() > s_level / k + kSkyNeeMargin;
+  const float skyv = sample_sky ? k : 0.0f;
+  LightChoice c;
+  c.sun = sun + skyv > 0.0f ? sun / (sun + skyv) : 0.0f;
+  if (sun > 0.0f && skyv > 0.0f) c.sun = std::min(0.9f, std::max(0.1f, c.sun));
+  c.sky = skyv > 0.0f ? 1.0f - c.sun : 0.0f;
+  return c;
+}
+
 glm::vec3 surface_albedo(const WorldHit& hit) { return hit.material->albedo_at(hit.point()); }
 
 Ray spawn_ray(const glm::vec3& p, const glm::vec3& ng, const glm::vec3& dir) {
@@ -48,13 +68,13 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
       // Escaped: sky and sun, weighted against their own sampling where NEE could have found them.
       if (bsdf_pdf > 0.0f) {
         const LightSample sky = sky_.lookup(ray.direction);
-        out.radiance += beta * sky.radiance * power_heuristic(bsdf_pdf, (1.0f - p_sun_) * sky.pdf);
+        out.radiance += beta * sky.radiance * power_heuristic(bsdf_pdf, choice_.sky * sky.pdf);
       } else {
         out.radiance += beta * sky_.radiance(ray.direction);
       }
       if (sky_.in_sun(ray.direction)) {
         const float w_sun =
-            bsdf_pdf > 0.0f ? power_heuristic(bsdf_pdf, p_sun_ * sky_.sun_pdf()) : 1.0f;
+            bsdf_pdf > 0.0f ? power_heuristic(bsdf_pdf, choice_.sun * sky_.sun_pdf()) : 1.0f;
         out.radiance += beta * sky_.sun_radiance() * w_sun;
       }
       break;
@@ -74,11 +94,13 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
     const glm::dvec3 wo = frame.local(-ray.direction);
     const std::uint32_t dim = 2 + 4 * static_cast<std::uint32_t>(depth);
 
-    // Next-event estimation: one light, the sun or the sky, chosen by its irradiance.
-    const bool pick_sun = sampler.get2d(index, dim).x < p_sun_;
-    LightSample ls = pick_sun ? sky_.sample_sun(sampler.get2d(index, dim + 1))
-                              : sky_.sample(sampler.get2d(index, dim + 1));
-    ls.pdf *= pick_sun ? p_sun_ : 1.0f - p_sun_;
+    // Next-event estimation: one light, the sun or the sky (light_choice()), or none.
+    const bool pick_sun = sampler.get2d(index, dim).x < choice_.sun;
+    const glm::vec2 u_light = sampler.get2d(index, dim + 1);
+    const float p_light = pick_sun ? choice_.sun : choice_.sky;
+    LightSample ls;
+    if (p_light > 0.0f) ls = pick_sun ? sky_.sample_sun(u_light) : sky_.sample(u_light);
+    ls.pdf *= p_light;
     if (ls.pdf > 0.0f && (ls.radiance.x > 0.0f || ls.radiance.y > 0.0f || ls.radiance.z > 0.0f) &&
         (sh.transmits() ||
          glm::dot(ls.direction, s.geometric_normal) > 0.0f)) {  // not below an opaque surface

@@ -28,15 +28,20 @@ struct PathSample {
 class PathIntegrator {
  public:
   PathIntegrator(const World& world, const Sky& sky, int max_depth)
-      : world_(world), sky_(sky), max_depth_(max_depth) {
-    // The sun's share of next-event samples: its irradiance against the sky's (luminance-ish
-    // sums), at least 0.1 each way when both are present.
-    const float sun = sky.has_sun() ? sky.sun_irradiance() : 0.0f;
-    const glm::vec3 e = sky.irradiance_up();
-    const float skyv = (e.x + e.y + e.z) / 3.0f;
-    p_sun_ = sun + skyv > 0.0f ? sun / (sun + skyv) : 0.0f;
-    if (sun > 0.0f && skyv > 0.0f) p_sun_ = std::min(0.9f, std::max(0.1f, p_sun_));
-  }
+      : world_(world), sky_(sky), max_depth_(max_depth), choice_(light_choice(sky)) {}
+
+  // Next-event estimation picks one light per vertex: the sun with probability `sun`, the sky
+  // with `sky` (sun + sky is 1, or 0 when neither is worth a shadow ray).
+  struct LightChoice {
+    float sun = 0.0f, sky = 0.0f;
+  };
+  // The sky is light-sampled only when its cosine_variance_up() V exceeds S / K + kSkyNeeMargin
+  // (S: the sun's irradiance on a level plane, K: the sky's); otherwise BSDF sampling alone finds
+  // it, as Cycles does with a constant world, and the sun takes every shadow ray. A sampled sky
+  // shares them with the sun by irradiance (the sun's share S / (S + K) in [0.1, 0.9]).
+  static LightChoice light_choice(const Sky& sky);
+  static constexpr float kSkyNeeMargin = 0.5f;
+  LightChoice choice() const { return choice_; }
 
   // Dimension pairs 0 and 1 are the camera's (film, lens); each bounce uses four more.
   PathSample trace(const Ray& camera_ray, const PixelSampler& sampler, std::uint32_t index) const;
@@ -45,7 +50,7 @@ class PathIntegrator {
   const World& world_;
   const Sky& sky_;
   int max_depth_;
-  float p_sun_ = 0.5f;
+  LightChoice choice_;
 };
 
 // The diffuse colour at a hit, scene-linear, as the path integrator shades it: the bark albedo

@@ -62,15 +62,30 @@ Sky::Sky(const scene::SkySpec& sky, const scene::SunSpec& sun,
   distribution_ = Distribution2D(w, width_, height_);
   // Each texel covers (2π / width) (π / height) sin θ of solid angle.
   glm::dvec3 e(0.0);
+  double e_lum = 0.0, e2_lum = 0.0;  // ∫ Y cos θ dω and ∫ Y² cos θ dω over the upper hemisphere
   const double texel = 2.0 * kPi * kPi / (static_cast<double>(width_) * height_);
   for (int j = 0; j < height_; ++j) {
     const double theta = kPi * (j + 0.5) / height_;
     const double cos_theta = std::cos(theta);
     if (cos_theta <= 0.0) continue;
     glm::dvec3 row(0.0);
-    for (int i = 0; i < width_; ++i) row += glm::dvec3(map_[static_cast<size_t>(j) * width_ + i]);
-    e += row * (cos_theta * std::sin(theta) * texel);
+    double row_y = 0.0, row_y2 = 0.0;
+    for (int i = 0; i < width_; ++i) {
+      const glm::vec3 c = map_[static_cast<size_t>(j) * width_ + i];
+      row += glm::dvec3(c);
+      const double y = luminance(c.x, c.y, c.z);
+      row_y += y;
+      row_y2 += y * y;
+    }
+    const double dw = cos_theta * std::sin(theta) * texel;
+    e += row * dw;
+    e_lum += row_y * dw;
+    e2_lum += row_y2 * dw;
   }
+  // Cosine sampling (pdf cos θ / π) estimates E = ∫ Y cos θ dω by π Y(ω): its relative variance
+  // is π ∫ Y² cos θ dω / E² − 1, 0 for a constant sky.
+  cosine_variance_up_ =
+      e_lum > 0.0 ? static_cast<float>(kPi * e2_lum / (e_lum * e_lum) - 1.0) : 0.0f;
   irradiance_up_ = glm::vec3(e);
   present_ = !distribution_.empty();
 }

@@ -40,6 +40,11 @@ class Sky {
   // Irradiance of the sky (without the sun) on an upward-facing horizontal plane, unoccluded:
   // ∫ L(ω) max(0, cos θ) dω over the map. A constant sky of radiance L gives πL.
   glm::vec3 irradiance_up() const { return irradiance_up_; }
+  // The relative variance per sample of the luminance of irradiance_up() estimated by cosine-
+  // weighted directions (what a Lambertian surface's BSDF sampling does):
+  // π ∫ Y² cos θ dω / (∫ Y cos θ dω)² − 1 over the upper hemisphere. 0 for a constant sky; large
+  // for a sky whose light comes from a small bright region (an environment map's sun).
+  float cosine_variance_up() const { return cosine_variance_up_; }
 
   // The sun: a disk of half-angle `sun_half_angle` around `sun_direction`.
   bool has_sun() const { return sun_present_; }
@@ -63,6 +68,7 @@ class Sky {
   Distribution2D distribution_;
   bool present_ = false;
   glm::vec3 irradiance_up_{0.0f};
+  float cosine_variance_up_ = 0.0f;
   float rotation_ = 0.0f;  // radians about z
   bool sun_present_ = false;
   glm::vec3 sun_direction_{0.0f, 0.0f, 1.0f}, sun_radiance_{0.0f};
