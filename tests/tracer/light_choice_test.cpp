@@ -40,8 +40,7 @@ Sky cap_sky(int rows, int height) {
   formats::SkyDesc desc;
   desc.model = formats::SkyModel::Envmap;
   desc.path = write_cap(rows, height);
-  return Sky(scene::sky_spec(desc), scene::sun_spec(no_sun()), xyz_to_scene_linear(),
-             2 * height);
+  return Sky(scene::sky_spec(desc), scene::sun_spec(no_sun()), xyz_to_scene_linear(), 2 * height);
 }
 
 }  // namespace
