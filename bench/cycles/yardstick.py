@@ -114,9 +114,9 @@ def child_cpu():
     return r.ru_utime + r.ru_stime
 
 
-def run(cmd, log):
+def run(cmd, log, env=None):
     c0, w0 = child_cpu(), time.perf_counter()
-    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
     cpu, wall = child_cpu() - c0, time.perf_counter() - w0
     with open(log, "a") as f:
         f.write(" ".join(cmd) + "\n" + p.stdout + "\n")
@@ -149,7 +149,9 @@ class Renderers:
         cmd = [self.args.blender, "-b", "--factory-startup", "--python",
                os.path.join(ROOT, "bench", "cycles", "cycles_scene.py"), "--",
                os.path.join(self.work, "config.json"), out, str(spp), str(seed), str(threshold)]
-        cpu, wall, text = run(cmd, self.log)
+        # Blender reads $OCIO too: it keeps its own configuration (arbor's has no "Standard" view).
+        env = {k: v for k, v in os.environ.items() if k != "OCIO"}
+        cpu, wall, text = run(cmd, self.log, env)
         inner = json.loads(re.search(r"^yardstick: (.*)$", text, re.M).group(1))
         return {"cpu_s": cpu, "wall_s": wall, "render_cpu_s": inner["render_cpu_s"], "exr": out}
 
@@ -260,7 +262,9 @@ def main():
     p.add_argument("--spp-hi", type=int, default=64)
     p.add_argument("--adaptive", action="store_true")
     p.add_argument("--adaptive-spp", type=int, default=1024)
-    p.add_argument("--arbor-thresholds", type=float, nargs="+", default=[0.02, 0.03, 0.05, 0.08])
+    p.add_argument("--arbor-thresholds", type=float, nargs="+", default=[0.08, 0.12, 0.18, 0.27])
+    p.add_argument("--fixed-from", help="take the fixed-spp rounds (and so each renderer's "
+                   "start-up) from this earlier result instead of rendering them again")
     p.add_argument("--ref-spp", type=int, default=2048)
     p.add_argument("--work", default="/tmp/arbor_cycles_yardstick")
     p.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "cycles_yardstick.json"))
@@ -276,7 +280,7 @@ def main():
     json.dump(cfg, open(os.path.join(args.work, "config.json"), "w"), indent=1)
     open(os.path.join(args.work, "arbor.toml"), "w").write(arbor_scene(cfg))
     r = Renderers(args, work=args.work)
-    rounds = fixed(args, r)
+    rounds = json.load(open(args.fixed_from))["rounds"] if args.fixed_from else fixed(args, r)
     result = {"machine": os.uname().nodename, "date": time.strftime("%Y-%m-%d"),
               "arbor": args.arbor, "scene": cfg, "spp_lo": args.spp_lo, "spp_hi": args.spp_hi,
               "rounds": rounds, "summary": summary(rounds, args)}
