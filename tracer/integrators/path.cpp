@@ -127,9 +127,8 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
     if (!sh.transmits() && cos_g <= 0.0f) break;
     beta *= glm::vec3(bs.value) * static_cast<float>(std::fabs(bs.wi.z) / bs.pdf);
     bsdf_pdf = static_cast<float>(bs.pdf);
-    // Russian roulette at the third and later vertices (depth ≥ 2), survival √(largest
-    // throughput component) up to 1, as Cycles' (docs/rendering.md: less variance and less time
-    // than from the fourth vertex with survival min(0.95, throughput)).
+    // Russian roulette at the third and later vertices, survival √(largest throughput) up to 1
+    // (Cycles' rule; docs/rendering.md: less variance and time than from the fourth vertex).
     if (depth >= 2) {
       const float q = std::min(1.0f, std::sqrt(std::max({beta.x, beta.y, beta.z})));
       if (u2.y >= q) break;
