@@ -18,15 +18,19 @@ constexpr std::uint32_t reverse_bits(std::uint32_t x) {
   return (x >> 16) | (x << 16);
 }
 
-// Laine–Karras style permutation: an Owen scramble of the bit-reversed value.
+// Laine–Karras style permutation of a bit-reversed value (the hash only carries upward, so in
+// reversed bit order it scrambles each bit by the bits above it: an Owen scramble of r).
+constexpr std::uint32_t laine_karras(std::uint32_t r, std::uint32_t seed) {
+  r += seed;
+  r ^= r * 0x6c50b47cu;
+  r ^= r * 0xb82f1e52u;
+  r ^= r * 0xc7afe638u;
+  r ^= r * 0x8d22f6e6u;
+  return r;
+}
+// Owen scramble of x: the permutation above applied to x's bits reversed, reversed back.
 constexpr std::uint32_t owen_scramble(std::uint32_t x, std::uint32_t seed) {
-  x = reverse_bits(x);
-  x += seed;
-  x ^= x * 0x6c50b47cu;
-  x ^= x * 0xb82f1e52u;
-  x ^= x * 0xc7afe638u;
-  x ^= x * 0x8d22f6e6u;
-  return reverse_bits(x);
+  return reverse_bits(laine_karras(reverse_bits(x), seed));
 }
 
 constexpr std::uint32_t hash32(std::uint32_t a, std::uint32_t b) {
@@ -51,20 +55,23 @@ class PixelSampler {
   glm::vec2 get2d(std::uint32_t index, std::uint32_t dim) const {
     const std::uint32_t s = hash32(key_, dim);
     const std::uint32_t i = owen_scramble(index, s);  // shuffles the order per dimension pair
-    const std::uint32_t x = owen_scramble(reverse_bits(i), hash32(s, 1));
-    const std::uint32_t y = owen_scramble(sobol_second(i), hash32(s, 2));
+    // owen_scramble of the first Sobol' dimension (i reversed) and of the second, with the
+    // reversal inside owen_scramble cancelled against the points' own (bit for bit the same).
+    const std::uint32_t x = reverse_bits(laine_karras(i, hash32(s, 1)));
+    const std::uint32_t y = reverse_bits(laine_karras(sobol_second_reversed(i), hash32(s, 2)));
     return {to_unit(x), to_unit(y)};
   }
   float get1d(std::uint32_t index, std::uint32_t dim) const { return get2d(index, dim).x; }
 
-  // For tests: the second dimension's byte tables give what its bit loop gives.
+  // For tests: the second dimension's byte tables give what its bit loop gives, reversed.
   static bool sobol_tables_agree(std::uint32_t i) {
-    return sobol_second(i) == sobol_second_bits(i);
+    return sobol_second_reversed(i) == reverse_bits(sobol_second_bits(i));
   }
 
  private:
   // Second dimension of the Sobol' sequence (generator matrix with v_k = 1 + 2 v_{k-1} pattern):
-  // the XOR of the direction numbers of i's set bits, looked up a byte at a time.
+  // the XOR of the direction numbers of i's set bits; sobol_second_reversed looks its bit reversal
+  // up a byte at a time.
   static constexpr std::uint32_t sobol_second_bits(std::uint32_t i) {
     std::uint32_t r = 0;
     for (std::uint32_t v = 1u << 31; i; i >>= 1, v ^= v >> 1) {
@@ -76,11 +83,13 @@ class PixelSampler {
   static constexpr ByteTables sobol_second_tables() {
     ByteTables t{};
     for (std::uint32_t k = 0; k < 4; ++k) {
-      for (std::uint32_t b = 0; b < 256; ++b) t[k][b] = sobol_second_bits(b << (8 * k));
+      // Bit reversal commutes with XOR, so the tables hold the reversed direction numbers.
+      for (std::uint32_t b = 0; b < 256; ++b)
+        t[k][b] = reverse_bits(sobol_second_bits(b << (8 * k)));
     }
     return t;
   }
-  static std::uint32_t sobol_second(std::uint32_t i) {
+  static std::uint32_t sobol_second_reversed(std::uint32_t i) {
     static constexpr ByteTables t = sobol_second_tables();
     return t[0][i & 0xffu] ^ t[1][(i >> 8) & 0xffu] ^ t[2][(i >> 16) & 0xffu] ^ t[3][i >> 24];
   }
