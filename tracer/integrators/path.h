@@ -38,10 +38,10 @@ class PathIntegrator {
   // The sky is light-sampled only when its cosine_variance_up() V exceeds S / K + kSkyNeeMargin
   // (S: the sun's irradiance on a level plane, K: the sky's); otherwise BSDF sampling alone finds
   // it, as Cycles does with a constant world, and the sun takes every shadow ray. A sampled sky
-  // shares them with the sun by irradiance (the sun's share S / (S + K) in [0.1, 0.9]).
+  // shares them with the sun by irradiance: the sun's share is its irradiance facing it over that
+  // plus K, within [0.1, 0.9].
   static LightChoice light_choice(const Sky& sky);
   static constexpr float kSkyNeeMargin = 0.5f;
-  LightChoice choice() const { return choice_; }
 
   // Dimension pairs 0 and 1 are the camera's (film, lens); each bounce uses four more.
   PathSample trace(const Ray& camera_ray, const PixelSampler& sampler, std::uint32_t index) const;
