@@ -20,6 +20,17 @@ float power_heuristic(float a, float b) {
 
 }  // namespace
 
+namespace {
+// Whether next-event estimation takes the sun; the choice's random number is drawn only when
+// there are two lights to choose from (with one, u < 1 and u < 0 decide alike without it).
+bool picks_sun(const PathIntegrator::LightChoice& c, const PixelSampler& sampler,
+               std::uint32_t index, std::uint32_t dim) {
+  if (c.sun >= 1.0f) return true;
+  if (c.sun <= 0.0f) return false;
+  return sampler.get2d(index, dim).x < c.sun;
+}
+}  // namespace
+
 PathIntegrator::LightChoice PathIntegrator::light_choice(const Sky& sky) {
   const float sun = sky.has_sun() ? sky.sun_irradiance() : 0.0f;
   const glm::vec3 e = sky.irradiance_up();
@@ -66,7 +77,7 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
     ++out.rays;
     if (!world_.intersect(ray, hit)) {
       // Escaped: sky and sun, weighted against their own sampling where NEE could have found them.
-      if (bsdf_pdf > 0.0f) {
+      if (bsdf_pdf > 0.0f && choice_.sky > 0.0f) {  // else its weight is 1: no pdf needed
         const LightSample sky = sky_.lookup(ray.direction);
         out.radiance += beta * sky.radiance * power_heuristic(bsdf_pdf, choice_.sky * sky.pdf);
       } else {
@@ -95,7 +106,7 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
     const std::uint32_t dim = 2 + 4 * static_cast<std::uint32_t>(depth);
 
     // Next-event estimation: one light, the sun or the sky (light_choice()), or none.
-    const bool pick_sun = sampler.get2d(index, dim).x < choice_.sun;
+    const bool pick_sun = picks_sun(choice_, sampler, index, dim);
     const glm::vec2 u_light = sampler.get2d(index, dim + 1);
     const float p_light = pick_sun ? choice_.sun : choice_.sky;
     LightSample ls;
