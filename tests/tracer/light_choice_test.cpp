@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "common/math.h"
-#include "tests/tracer/test_world.h"
+#include "tracer/test_world.h"
 #include "tracer/integrators/path.h"
 #include "tracer/lights/sky.h"
 
