@@ -4,8 +4,8 @@
     /usr/bin/python3 bench/cycles/yardstick.py [--arbor build/app/arbor] [--rounds 3]
         [--spp-lo 16] [--spp-hi 64] [--adaptive] [--out bench/results/cycles_yardstick.json]
 
-Needs Debian's `blender` (3.4) and the python3 OpenImageIO and numpy packages; it is never run by
-CI. The scene: the default scene's Quaking Aspen (seed 7) exported by `arbor grow -o tree.obj`,
+Needs Debian's `blender` (3.4) and the python3 OpenImageIO and numpy packages
+(`tools/install-deps.sh --clients` installs all three); it is never run by CI. The scene: the default scene's Quaking Aspen (seed 7) exported by `arbor grow -o tree.obj`,
 the default scene's camera, a sun of irradiance 3 at elevation 38 and azimuth 150 with its
 0.53-degree disk, a constant sky, a Lambertian ground, Lambertian bark, leaves as Lambertian
 reflection plus Lambertian transmission (the same reflectance on both faces, no cuticle), 8
