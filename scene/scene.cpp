@@ -110,12 +110,14 @@ class SceneBuilder {
     // The requests not grown yet, each key once, their species read here in order.
     std::vector<std::string> keys;
     std::vector<const GrowRequest*> jobs;
+    std::vector<std::string> job_keys;
     std::vector<const generator::Species*> job_species;
     std::set<std::string> pending;
     for (const GrowRequest& r : requests) {
       keys.push_back(r.key());
       if (prototype_keys_.count(keys.back()) || !pending.insert(keys.back()).second) continue;
       jobs.push_back(&r);
+      job_keys.push_back(keys.back());
       job_species.push_back(&species(r.path));
     }
     std::vector<std::optional<TreePrototypeData>> grown(jobs.size());
@@ -142,7 +144,7 @@ class SceneBuilder {
     for (std::thread& t : pool) t.join();
     for (std::size_t j = 0; j < jobs.size(); ++j) {
       if (errors[j]) std::rethrow_exception(errors[j]);
-      add_prototype(jobs[j]->key(), std::move(*grown[j]));
+      add_prototype(job_keys[j], std::move(*grown[j]));
     }
     std::vector<int> indices;
     for (const std::string& key : keys) indices.push_back(prototype_keys_.at(key));

@@ -193,7 +193,7 @@ def quarter_means(img):
             for y in (0, 1) for x in (0, 1)]
 
 
-def summary(rounds, args):
+def summary(rounds):
     px = SCENE["width"] * SCENE["height"]
     out = {}
     for who, rs in rounds.items():
@@ -283,7 +283,7 @@ def main():
     rounds = json.load(open(args.fixed_from))["rounds"] if args.fixed_from else fixed(args, r)
     result = {"machine": os.uname().nodename, "date": time.strftime("%Y-%m-%d"),
               "arbor": args.arbor, "scene": cfg, "spp_lo": args.spp_lo, "spp_hi": args.spp_hi,
-              "rounds": rounds, "summary": summary(rounds, args)}
+              "rounds": rounds, "summary": summary(rounds)}
     if args.adaptive:
         result["adaptive"] = adaptive(args, r, rounds)
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)

@@ -18,9 +18,6 @@ float power_heuristic(float a, float b) {
   return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
 }
 
-}  // namespace
-
-namespace {
 // Whether next-event estimation takes the sun; the choice's random number is drawn only when
 // there are two lights to choose from (with one, u < 1 and u < 0 decide alike without it).
 bool picks_sun(const PathIntegrator::LightChoice& c, const PixelSampler& sampler,
@@ -29,6 +26,7 @@ bool picks_sun(const PathIntegrator::LightChoice& c, const PixelSampler& sampler
   if (c.sun <= 0.0f) return false;
   return sampler.get2d(index, dim).x < c.sun;
 }
+
 }  // namespace
 
 PathIntegrator::LightChoice PathIntegrator::light_choice(const Sky& sky) {

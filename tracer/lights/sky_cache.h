@@ -6,8 +6,8 @@
 // sky renders the identical image. A damaged, foreign or truncated file is ignored and replaced.
 //
 // Where: $ARBOR_CACHE_DIR, else $XDG_CACHE_HOME/arbor, else $HOME/.cache/arbor; ARBOR_CACHE_DIR
-// set to "off" (or an empty value) turns the cache off. At most kMaxFiles maps are kept (the
-// oldest removed first). Failing to read or write the cache never fails a render.
+// set to "off" (or an empty value) turns the cache off. At most kMaxSkyCacheFiles maps are kept
+// (the oldest removed first). Failing to read or write the cache never fails a render.
 #pragma once
 
 #include <cstdint>
