@@ -19,6 +19,7 @@ arbor_require(TBB libtbb-dev CONFIG)
 arbor_require(embree libembree-dev 3.13 CONFIG)
 arbor_require(OpenImageIO libopenimageio-dev CONFIG)
 arbor_require(OpenEXR "libopenexr-dev python3-imath" CONFIG)
+arbor_require(PNG libpng-dev)
 # Debian 12's OpenColorIOConfig.cmake (in /usr/share/cmake) computes a wrong install prefix, so
 # the target is defined here from the header and the library.
 find_path(ARBOR_OCIO_INCLUDE_DIR OpenColorIO/OpenColorIO.h)

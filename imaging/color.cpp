@@ -350,6 +350,20 @@ ColorTransform ColorPipeline::to_output(const std::string& colorspace) const {
   }
 }
 
+ColorTransform ColorPipeline::to_display(const std::string& colorspace, const std::string& display,
+                                         const std::string& view) const {
+  try {
+    OCIO::DisplayViewTransformRcPtr t = OCIO::DisplayViewTransform::Create();
+    t->setSrc(colorspace.c_str());
+    t->setDisplay(display.c_str());
+    t->setView(view.c_str());
+    return apply(impl_->config->getProcessor(t)->getDefaultCPUProcessor());
+  } catch (const OCIO::Exception& e) {
+    throw InputError({config_path_, 0, 0}, "OCIO cannot show " + colorspace + " on display \"" +
+                                               display + "\", view \"" + view + "\": " + e.what());
+  }
+}
+
 ColorTransform ColorPipeline::xyz_to_scene_linear() const {
   std::call_once(impl_->xyz_once, [&] { impl_->find_xyz(config_path_); });
   if (!impl_->xyz) throw InputError({config_path_, 0, 0}, impl_->xyz_failure);
@@ -359,6 +373,10 @@ ColorTransform ColorPipeline::xyz_to_scene_linear() const {
 std::string ColorPipeline::xyz_route() const {
   (void)xyz_to_scene_linear();
   return impl_->xyz_route;
+}
+
+bool ColorPipeline::has_colorspace(const std::string& colorspace) const {
+  return impl_->config->getColorSpace(colorspace.c_str()) != nullptr;
 }
 
 std::vector<std::string> ColorPipeline::names_of(const std::string& colorspace) const {

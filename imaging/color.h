@@ -29,6 +29,9 @@ class ColorPipeline {
   void check(const OutputSpec& output, const OutputKeys& where = {}) const;
   // scene_linear → `colorspace`, per pixel.
   ColorTransform to_output(const std::string& colorspace) const;
+  // `colorspace` → a display's view (display-referred, as the PNG is written), per pixel.
+  ColorTransform to_display(const std::string& colorspace, const std::string& display,
+                            const std::string& view) const;
   // InputError unless `display` is a display of the config and `view` one of its views, listing
   // what the config has; `display_where`/`view_where` locate the names (a scene key, or none).
   void check_display_view(const std::string& display, const std::string& view,
@@ -44,6 +47,8 @@ class ColorPipeline {
   ColorTransform xyz_to_scene_linear() const;
   // Which way xyz_to_scene_linear() went, for messages and tests.
   std::string xyz_route() const;
+  // Whether the config has a colour space of this name (or alias, or role).
+  bool has_colorspace(const std::string& colorspace) const;
   // The colour space's name and aliases (just `colorspace` when the config lacks it).
   std::vector<std::string> names_of(const std::string& colorspace) const;
   // The space's CIE xy chromaticities (red, green, blue, white: 8 numbers): the published ones

@@ -7,26 +7,35 @@
 #include <cmath>
 #include <cstdio>
 
-#include <OpenImageIO/color.h>
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-#include <OpenImageIO/imageio.h>
-
 #include "common/error.h"
+#include "common/image_library.h"
 #include "imaging/image_file.h"
+#include "imaging/image_output.h"
 #include "imaging/statistics.h"
 
 namespace arbor::imaging {
 
 namespace {
 
-OIIO::ImageBuf rgb_buffer(const CompareImage& im, const std::vector<float>& data) {
-  OIIO::ImageBuf buf(OIIO::ImageSpec(im.width, im.height, 3, OIIO::TypeDesc::FLOAT));
-  OIIO::ImageBufAlgo::zero(buf);
-  buf.set_pixels(OIIO::ROI(0, im.width, 0, im.height, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT,
-                 data.data());
-  return buf;
-}
+// An RGB float picture (display-referred) being composed.
+struct Picture {
+  int width = 0, height = 0;
+  std::vector<float> rgb;
+  Picture(int w, int h) : width(w), height(h), rgb(3 * static_cast<std::size_t>(w) * h, 0.0f) {}
+  void set(int x, int y, const float v[3]) {
+    for (int c = 0; c < 3; ++c) rgb[3 * (static_cast<std::size_t>(y) * width + x) + c] = v[c];
+  }
+  // `from` with its top-left corner at (x0, y0), clipped to this picture.
+  void paste(int x0, int y0, const Picture& from) {
+    for (int y = 0; y < from.height && y0 + y < height; ++y)
+      for (int x = 0; x < from.width && x0 + x < width; ++x)
+        set(x0 + x, y0 + y, &from.rgb[3 * (static_cast<std::size_t>(y) * from.width + x)]);
+  }
+  void text(int x, int y, const std::string& s, bool right_aligned = false) {
+    image_library("label a comparison picture")
+        .draw_text(rgb, width, height, x, y, s, 12, right_aligned);
+  }
+};
 
 void require_same_size(const CompareImage& a, const CompareImage& b) {
   if (a.width != b.width || a.height != b.height) {
@@ -62,9 +71,6 @@ void ramp(float t, float rgb[3]) {
   for (int c = 0; c < 3; ++c) rgb[c] = stops[i][c] + f * (stops[i + 1][c] - stops[i][c]);
 }
 
-// By name: OIIO looks for it in its font folders ($OPENIMAGEIO_FONTS, the system's fonts).
-const char* const kFont = "DejaVuSans";
-
 std::string short_number(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3g", v);
@@ -72,17 +78,16 @@ std::string short_number(double v) {
 }
 
 // The heatmap with its scale bar: height + 36 rows, display-referred floats in [0, 1].
-OIIO::ImageBuf heatmap_buffer(const CompareImage& a, const CompareImage& b) {
+Picture heatmap(const CompareImage& a, const CompareImage& b) {
   const std::vector<float> err = pixel_errors(a, b);
   const float top = err.empty() ? 0.0f : *std::max_element(err.begin(), err.end());
   const int bar = 36;
-  OIIO::ImageBuf buf(OIIO::ImageSpec(a.width, a.height + bar, 3, OIIO::TypeDesc::FLOAT));
-  OIIO::ImageBufAlgo::zero(buf);
+  Picture pic(a.width, a.height + bar);
   for (int y = 0; y < a.height; ++y) {
     for (int x = 0; x < a.width; ++x) {
       float rgb[3];
       ramp(top > 0 ? err[static_cast<std::size_t>(y) * a.width + x] / top : 0.0f, rgb);
-      buf.setpixel(x, y, rgb);
+      pic.set(x, y, rgb);
     }
   }
   // The bar: the ramp from 0 (left) to the largest error (right), labelled at both ends.
@@ -92,16 +97,13 @@ OIIO::ImageBuf heatmap_buffer(const CompareImage& a, const CompareImage& b) {
     for (int x = x0; x < x1; ++x) {
       float rgb[3];
       ramp(static_cast<float>(x - x0) / static_cast<float>(std::max(1, x1 - x0 - 1)), rgb);
-      buf.setpixel(x, y, rgb);
+      pic.set(x, y, rgb);
     }
   }
-  const float white[3] = {1.0f, 1.0f, 1.0f};
   // Labels are a convenience: without FreeType or the font the bar is still drawn.
-  OIIO::ImageBufAlgo::render_text(buf, x0, a.height + 31, "0", 12, kFont, white);
-  OIIO::ImageBufAlgo::render_text(buf, x1, a.height + 31, short_number(top) + " |a-b|", 12, kFont,
-                                  white, OIIO::ImageBufAlgo::TextAlignX::Right);
-  (void)buf.geterror();  // a missing font is not an error of the comparison
-  return buf;
+  pic.text(x0, a.height + 31, "0");
+  pic.text(x1, a.height + 31, short_number(top) + " |a-b|", true);
+  return pic;
 }
 
 // One ulp of v stored as a half float (11 significant bits; below the smallest normal half, the
@@ -142,22 +144,22 @@ double pooled_z(double d, double v) {
 
 CompareImage read_compare_image(const std::string& path) {
   const ImageChannels image = read_image_channels(path);
-  const OIIO::ImageSpec& spec = image.spec;
+  const DecodedImage& spec = image.image;
   CompareImage im;
   im.path = path;
   im.width = spec.width;
   im.height = spec.height;
   // arbor's own attribute names the OCIO space exactly; OIIO reports EXRs as plain "Linear".
-  im.colorspace = spec.get_string_attribute("arbor:colorspace");
+  im.colorspace = spec.attribute("arbor:colorspace");
   const int r = image.index("R"), g = image.index("G"), bl = image.index("B");
   if (r < 0 || g < 0 || bl < 0) throw InputError({path, 0, 0}, "has no R, G and B channels");
-  im.half_beauty = spec.channelformat(r) == OIIO::TypeDesc::HALF;
-  im.passes = spec.get_int_attribute("arbor:passes", 0);
-  im.sequence_passes = im.passes >= 2 && spec.get_int_attribute("arbor:independent_passes", 1) == 0;
-  im.spp = spec.get_int_attribute("arbor:spp", 0);
+  im.half_beauty = spec.channel_kinds[static_cast<std::size_t>(r)] == 'h';
+  im.passes = spec.int_attribute("arbor:passes", 0);
+  im.sequence_passes = im.passes >= 2 && spec.int_attribute("arbor:independent_passes", 1) == 0;
+  im.spp = spec.int_attribute("arbor:spp", 0);
   // Integer pixels are display-encoded (sRGB PNGs, JPEGs): not the same quantity as an EXR's
   // scene-linear values.
-  im.display_encoded = !spec.channelformat(r).is_floating_point();
+  im.display_encoded = spec.channel_kinds[static_cast<std::size_t>(r)] == 'i';
   const int vr = image.index("variance.R"), vg = image.index("variance.G"),
             vb = image.index("variance.B");
   const bool has_var = vr >= 0 && vg >= 0 && vb >= 0;
@@ -184,16 +186,15 @@ CompareImage read_compare_image(const std::string& path) {
 
 CompareMetrics compare_images(const CompareImage& a, const CompareImage& b) {
   require_same_size(a, b);
-  const OIIO::ImageBuf ba = rgb_buffer(a, a.rgb), bb = rgb_buffer(b, b.rgb);
-  const OIIO::ImageBufAlgo::CompareResults r = OIIO::ImageBufAlgo::compare(ba, bb, 1e30f, 1e30f);
-  if (r.error) throw RuntimeFailure("cannot compare " + a.path + " and " + b.path);
+  const ImageDifference r =
+      image_library("compare images").difference(a.rgb, b.rgb, a.width, a.height, 3);
   CompareMetrics m;
-  m.rmse = r.rms_error;
-  m.mean_abs = r.meanerror;
-  m.max_abs = r.maxerror;
-  m.max_x = r.maxx;
-  m.max_y = r.maxy;
-  m.psnr = r.PSNR;
+  m.rmse = r.rms;
+  m.mean_abs = r.mean_abs;
+  m.max_abs = r.max_abs;
+  m.max_x = r.max_x;
+  m.max_y = r.max_y;
+  m.psnr = r.psnr;
   double rel = 0;
   for (std::size_t i = 0; i < a.rgb.size(); ++i) {
     const double d = static_cast<double>(a.rgb[i]) - b.rgb[i];
@@ -331,49 +332,50 @@ void write_compare_pictures(const CompareImage& a, const CompareImage& b,
                             const ComparePictures& pictures) {
   require_same_size(a, b);
   if (pictures.heatmap.empty() && pictures.side_by_side.empty()) return;
-  const OIIO::ImageBuf heat = heatmap_buffer(a, b);
-  OIIO::ImageBuf row;
+  const Picture heat = heatmap(a, b);
+  Picture row(0, 0);
   if (!pictures.side_by_side.empty()) {
     // A display or view the config lacks is named with what it offers, before any work.
-    ColorPipeline(pictures.ocio_config).check_display_view(pictures.display, pictures.view, {}, {});
-    OIIO::ColorConfig config(pictures.ocio_config);
-    const std::vector<std::string> names = config.getColorSpaceNames();
+    const ColorPipeline pipeline(pictures.ocio_config);
+    pipeline.check_display_view(pictures.display, pictures.view, {}, {});
     auto shown = [&](const CompareImage& im) {
-      OIIO::ImageBuf out;
       // Images not written by arbor are taken to be in the config's scene_linear role.
       const std::string from = im.colorspace.empty() ? "scene_linear" : im.colorspace;
-      if (!im.colorspace.empty() && std::find(names.begin(), names.end(), from) == names.end()) {
+      if (!im.colorspace.empty() && !pipeline.has_colorspace(from)) {
         throw InputError({im.path, 0, 0},
                          "its colour space \"" + from + "\" is not in " + pictures.ocio_config);
       }
-      if (!OIIO::ImageBufAlgo::ociodisplay(out, rgb_buffer(im, im.rgb), pictures.display,
-                                           pictures.view, from, "", false, "", "", &config)) {
+      DecodedImage out;
+      out.width = im.width;
+      out.height = im.height;
+      out.channels = 3;
+      out.channel_names = {"R", "G", "B"};
+      out.pixels = im.rgb;
+      const std::string why =
+          image_library("show " + im.path)
+              .convert(out, pictures.ocio_config, from, "", pictures.display, pictures.view);
+      if (!why.empty()) {
         throw InputError({im.path, 0, 0}, "cannot show it through display \"" + pictures.display +
-                                              "\", view \"" + pictures.view +
-                                              "\": " + out.geterror());
+                                              "\", view \"" + pictures.view + "\": " + why);
       }
-      return out;
+      Picture pic(im.width, im.height);
+      pic.rgb = std::move(out.pixels);
+      return pic;
     };
-    const OIIO::ImageBuf sa = shown(a), sb = shown(b);
+    const Picture sa = shown(a), sb = shown(b);
     const int gap = 4;
-    row.reset(OIIO::ImageSpec(3 * a.width + 2 * gap, heat.spec().height, 3, OIIO::TypeDesc::FLOAT));
-    OIIO::ImageBufAlgo::zero(row);
-    const float white[3] = {1.0f, 1.0f, 1.0f};
-    const bool ok = OIIO::ImageBufAlgo::paste(row, 0, 0, 0, 0, sa) &&
-                    OIIO::ImageBufAlgo::paste(row, a.width + gap, 0, 0, 0, sb) &&
-                    OIIO::ImageBufAlgo::paste(row, 2 * (a.width + gap), 0, 0, 0, heat);
-    if (!ok)
-      throw RuntimeFailure("cannot compose " + pictures.side_by_side + ": " + row.geterror());
-    OIIO::ImageBufAlgo::render_text(row, 4, a.height + 22, "A", 12, kFont, white);
-    OIIO::ImageBufAlgo::render_text(row, a.width + gap + 4, a.height + 22, "B", 12, kFont, white);
-    (void)row.geterror();
+    row = Picture(3 * a.width + 2 * gap, heat.height);
+    row.paste(0, 0, sa);
+    row.paste(a.width + gap, 0, sb);
+    row.paste(2 * (a.width + gap), 0, heat);
+    row.text(4, a.height + 22, "A");
+    row.text(a.width + gap + 4, a.height + 22, "B");
   }
   // Both pictures are made before either is written: a bad view leaves neither behind.
   if (!pictures.heatmap.empty())
-    write_imagebuf_atomic(heat, pictures.heatmap, OIIO::TypeDesc::UINT8);
-  if (!pictures.side_by_side.empty()) {
-    write_imagebuf_atomic(row, pictures.side_by_side, OIIO::TypeDesc::UINT8);
-  }
+    write_encoded_atomic(pictures.heatmap, heat.width, heat.height, 3, heat.rgb, true);
+  if (!pictures.side_by_side.empty())
+    write_encoded_atomic(pictures.side_by_side, row.width, row.height, 3, row.rgb, true);
 }
 
 }  // namespace arbor::imaging

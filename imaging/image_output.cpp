@@ -6,11 +6,10 @@
 #include <cstring>
 #include <stdexcept>
 
-#include <OpenImageIO/color.h>
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include <cmath>
+#include <csetjmp>
+
+#include <png.h>
 
 #include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
@@ -18,6 +17,7 @@
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfIO.h>
+#include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfFloatAttribute.h>
 #include <OpenEXR/ImfOutputFile.h>
@@ -27,9 +27,9 @@
 #include "arbor/version.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/image_library.h"
 #include "common/json.h"
 #include "imaging/cryptomatte.h"
-#include "imaging/image_file.h"
 
 namespace arbor::imaging {
 
@@ -342,49 +342,101 @@ void write_exr(const Image& img, const OutputSpec& o, const ExrMetadata& meta,
   out.commit();
 }
 
-void write_png(const Image& img, const OutputSpec& o, const ColorPipeline& color,
-               const std::string& path) {
-  OIIO::ImageBuf src(OIIO::ImageSpec(img.width, img.height, 3, OIIO::TypeDesc::FLOAT));
-  for (int y = 0; y < img.height; ++y) {
-    for (int x = 0; x < img.width; ++x) {
-      const glm::vec3& v = img.beauty[static_cast<std::size_t>(y) * img.width + x];
-      const float px[3] = {v.x, v.y, v.z};
-      src.setpixel(x, y, px);
-    }
+namespace {
+
+// Whole-image PNG encoding into memory through libpng; libpng reports errors by longjmp, so no
+// object with a destructor lives in this frame. "" or libpng's message.
+struct PngSink {
+  std::vector<unsigned char> bytes;
+  char error[256] = "";
+};
+
+void png_append(png_structp png, png_bytep data, png_size_t n) {
+  auto* sink = static_cast<PngSink*>(png_get_io_ptr(png));
+  sink->bytes.insert(sink->bytes.end(), data, data + n);
+}
+void png_flush(png_structp) {}
+[[noreturn]] void png_fail(png_structp png, png_const_charp message) {
+  auto* sink = static_cast<PngSink*>(png_get_error_ptr(png));
+  std::snprintf(sink->error, sizeof sink->error, "%s", message);
+  png_longjmp(png, 1);
+}
+void png_warn(png_structp, png_const_charp) {}
+
+bool encode_png(PngSink& sink, const unsigned char* rgb, int width, int height, png_bytep* rows) {
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &sink, png_fail, png_warn);
+  if (!png) return false;
+  png_infop info = png_create_info_struct(png);
+  if (!info || setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, info ? &info : nullptr);
+    return false;
   }
-  OIIO::ColorConfig config(color.config_path());
-  OIIO::ImageBuf shown;
-  if (!OIIO::ImageBufAlgo::ociodisplay(shown, src, o.display, o.view, o.colorspace, "", false, "",
-                                       "", &config)) {
-    throw RuntimeFailure("cannot apply the display view for " + path + ": " + shown.geterror());
-  }
-  write_imagebuf_atomic(shown, path, OIIO::TypeDesc::UINT8);
+  png_set_write_fn(png, &sink, png_append, png_flush);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
+               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+               PNG_FILTER_TYPE_DEFAULT);
+  for (int y = 0; y < height; ++y)
+    rows[y] = const_cast<png_bytep>(rgb + static_cast<std::size_t>(y) * width * 3);
+  png_write_info(png, info);
+  png_write_image(png, rows);
+  png_write_end(png, info);
+  png_destroy_write_struct(&png, &info);
+  return true;
 }
 
-void write_image_atomic(const std::string& path, const OIIO::ImageSpec& spec,
-                        const std::function<bool(OIIO::ImageOutput&)>& write_pixels) {
-  // OIIO's writers do not all report a failed write (a PNG on a full disk "succeeds"), so the
-  // file is encoded in memory and written by AtomicFile, which checks every byte reaches disk.
-  std::vector<unsigned char> bytes;
-  OIIO::Filesystem::IOVecOutput memory(bytes);
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw RuntimeFailure("cannot write " + path + ": " + OIIO::geterror());
-  OIIO::ImageSpec with_proxy = spec;
-  void* proxy = &memory;
-  with_proxy.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-  if (!out->open(path, with_proxy) || !write_pixels(*out) || !out->close()) {
-    throw RuntimeFailure("cannot write " + path + ": " + out->geterror());
+// A display-referred value in [0, 1] as 8 bits: rounded to nearest (ties to even), clamped —
+// as OpenImageIO converts, so that PNGs kept their pixels when arbor stopped writing them
+// through it.
+unsigned char to_8_bit(float v) {
+  const float s = v * 255.0f;
+  if (!(s > 0.0f)) return 0;
+  if (s >= 255.0f) return 255;
+  return static_cast<unsigned char>(std::nearbyint(s));
+}
+
+}  // namespace
+
+void write_png(const Image& img, const OutputSpec& o, const ColorPipeline& color,
+               const std::string& path) {
+  const ColorTransform shown = color.to_display(o.colorspace, o.display, o.view);
+  const std::size_t n = static_cast<std::size_t>(img.width) * img.height;
+  std::vector<unsigned char> rgb(3 * n);
+  for (std::size_t p = 0; p < n; ++p) {
+    float v[3] = {img.beauty[p].x, img.beauty[p].y, img.beauty[p].z};
+    shown(v);
+    for (int c = 0; c < 3; ++c) rgb[3 * p + c] = to_8_bit(v[c]);
   }
+  PngSink sink;
+  std::vector<png_bytep> rows(static_cast<std::size_t>(img.height));
+  if (!encode_png(sink, rgb.data(), img.width, img.height, rows.data()))
+    throw RuntimeFailure("cannot write " + path + ": " + sink.error);
+  AtomicFile file(path, true);
+  file.write(sink.bytes.data(), sink.bytes.size());
+  file.commit();
+}
+
+void write_encoded_atomic(const std::string& path, int width, int height, int channels,
+                          const std::vector<float>& pixels, bool eight_bit) {
+  std::vector<unsigned char> bytes;
+  const std::string why = image_library("write " + path)
+                              .encode(path, width, height, channels, pixels, eight_bit, bytes);
+  if (!why.empty()) throw RuntimeFailure("cannot write " + path + ": " + why);
   AtomicFile file(path, true);
   file.write(bytes.data(), bytes.size());
   file.commit();
 }
 
-void write_imagebuf_atomic(const OIIO::ImageBuf& buf, const std::string& path,
-                           OIIO::TypeDesc type) {
-  OIIO::ImageSpec spec = buf.spec();
-  spec.set_format(type);
-  write_image_atomic(path, spec, [&](OIIO::ImageOutput& out) { return buf.write(&out); });
+std::string finished_exr_fingerprint(const std::string& path) {
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imf::Header& header = file.header();
+    const auto* incomplete = header.findTypedAttribute<Imf::IntAttribute>("arbor:incomplete");
+    if (incomplete && incomplete->value() != 0) return "";
+    const auto* fingerprint = header.findTypedAttribute<Imf::StringAttribute>("arbor:fingerprint");
+    return fingerprint ? fingerprint->value() : "";
+  } catch (const std::exception&) {
+    return "";
+  }
 }
 
 }  // namespace arbor::imaging

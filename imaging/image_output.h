@@ -51,4 +51,14 @@ void write_exr(const Image& image, const OutputSpec& output, const ExrMetadata& 
 void write_png(const Image& image, const OutputSpec& output, const ColorPipeline& color,
                const std::string& path);
 
+// Encodes pixels (width*height*channels floats; display-referred in [0, 1] when eight_bit) in the
+// format path's extension names, through OpenImageIO (libarbor_oiio.so), and writes the file
+// atomically. RuntimeFailure naming the file when it cannot.
+void write_encoded_atomic(const std::string& path, int width, int height, int channels,
+                          const std::vector<float>& pixels, bool eight_bit);
+
+// The arbor:fingerprint of an EXR that is a finished render; "" when it cannot be read as an EXR,
+// has none, or says it is incomplete.
+std::string finished_exr_fingerprint(const std::string& path);
+
 }  // namespace arbor::imaging

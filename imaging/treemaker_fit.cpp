@@ -4,8 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include <OpenImageIO/imageio.h>
-
 #include "common/error.h"
 #include "imaging/image_file.h"
 #include "imaging/treemaker_channels.h"
@@ -143,12 +141,11 @@ void measure_errors(const CompareImage& exact, const TreemakerAovs& tm, Treemake
 }  // namespace
 
 bool has_treemaker_aovs(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) return false;
-  const OIIO::ImageSpec& spec = in->spec();
+  DecodedImage header;
+  if (!image_library("read " + path).read(path, false, header).empty()) return false;
   for (const std::string& name : treemaker_channel_names()) {
     bool found = false;
-    for (const std::string& c : spec.channelnames) found = found || c == name;
+    for (const std::string& c : header.channel_names) found = found || c == name;
     if (!found) return false;
   }
   return true;
@@ -158,10 +155,10 @@ TreemakerAovs read_treemaker_aovs(const std::string& path) {
   const ImageChannels image = read_image_channels(path);
   TreemakerAovs t;
   t.path = path;
-  t.width = image.spec.width;
-  t.height = image.spec.height;
-  t.colorspace = image.spec.get_string_attribute("arbor:colorspace");
-  t.weights = image.spec.get_string_attribute("arbor:treemaker_weights");
+  t.width = image.image.width;
+  t.height = image.image.height;
+  t.colorspace = image.image.attribute("arbor:colorspace");
+  t.weights = image.image.attribute("arbor:treemaker_weights");
   auto need = [&](const std::string& name) {
     const int c = image.index(name);
     if (c < 0) {

@@ -4,12 +4,9 @@
 #include <cmath>
 
 #include <glm/common.hpp>
-#include <OpenImageIO/color.h>
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 
 #include "common/error.h"
-#include "common/input_file.h"
+#include "common/image_library.h"
 #include "common/math.h"
 
 namespace arbor::materials {
@@ -32,29 +29,19 @@ T wrapped_bilinear(const std::vector<T>& values, int width, int height, double u
   return (at(ix, iy) * (1 - tx) + at(ix + 1, iy) * tx) * (1 - ty) +
          (at(ix, iy + 1) * (1 - tx) + at(ix + 1, iy + 1) * tx) * ty;
 }
-OIIO::ImageBuf read_float_image(const std::string& path) {
-  check_input_file(path, "image");
-  OIIO::ImageBuf image(path);
-  if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
-    throw InputError({path, 0, 0}, "cannot read the image: " + image.geterror());
-  }
-  return image;
-}
-
 // Every pixel of `image` through `texel(px, channels, x, y)`, row by row; sets width and height.
 template <typename T, typename Texel>
-std::vector<T> load_texels(const OIIO::ImageBuf& image, const std::string& path, int& width,
+std::vector<T> load_texels(const DecodedImage& image, const std::string& path, int& width,
                            int& height, Texel texel) {
-  const OIIO::ImageSpec& spec = image.spec();
-  width = spec.width;
-  height = spec.height;
+  width = image.width;
+  height = image.height;
   if (width < 1 || height < 1) throw InputError({path, 0, 0}, "the image is empty");
   std::vector<T> values(static_cast<std::size_t>(width) * height);
-  std::vector<float> px(static_cast<std::size_t>(spec.nchannels));
+  const std::size_t channels = static_cast<std::size_t>(image.channels);
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
-      image.getpixel(x, y, px.data(), spec.nchannels);
-      values[static_cast<std::size_t>(y) * width + x] = texel(px.data(), spec.nchannels, x, y);
+      const std::size_t p = static_cast<std::size_t>(y) * width + x;
+      values[p] = texel(&image.pixels[p * channels], image.channels, x, y);
     }
   }
   return values;
@@ -64,7 +51,8 @@ std::vector<T> load_texels(const OIIO::ImageBuf& image, const std::string& path,
 
 HeightMap::HeightMap(const std::string& path) {
   values_ = load_texels<float>(
-      read_float_image(path), path, width_, height_, [&](const float* px, int channels, int, int) {
+      read_image_file(path, "image", true), path, width_, height_,
+      [&](const float* px, int channels, int, int) {
         const float v = channels >= 3 ? luminance(px[0], px[1], px[2]) : px[0];
         if (!std::isfinite(v))
           throw InputError({path, 0, 0}, "the image has a pixel that is not finite");
@@ -80,24 +68,20 @@ float HeightMap::sample(double u, double v) const {
 }
 
 ColorMap::ColorMap(const std::string& path, const std::string& ocio_config) {
-  const OIIO::ImageBuf image = read_float_image(path);
+  DecodedImage image = read_image_file(path, "image", true);
   // OIIO names the file's encoding ("sRGB" for PNG/JPEG, "Linear" for EXR).
-  const std::string declared = image.spec().get_string_attribute("oiio:ColorSpace", "Linear");
+  const std::string declared = image.attribute("oiio:ColorSpace", "Linear");
   const bool srgb =
       declared.find("sRGB") != std::string::npos || declared.find("srgb") != std::string::npos;
-  OIIO::ImageBuf linear;
   if (srgb) {
-    OIIO::ColorConfig config(ocio_config);
-    if (!OIIO::ImageBufAlgo::colorconvert(linear, image, "sRGB - Texture", "scene_linear", true, "",
-                                          "", &config)) {
-      throw InputError({path, 0, 0},
-                       "cannot convert the image to scene-linear: " + linear.geterror());
-    }
-  } else {
-    linear = image;
+    const std::string why =
+        image_library("read " + path)
+            .convert(image, ocio_config, "sRGB - Texture", "scene_linear", "", "");
+    if (!why.empty())
+      throw InputError({path, 0, 0}, "cannot convert the image to scene-linear: " + why);
   }
   values_ = load_texels<glm::vec3>(
-      linear, path, width_, height_, [&](const float* px, int channels, int x, int y) {
+      image, path, width_, height_, [&](const float* px, int channels, int x, int y) {
         const glm::vec3 c = channels >= 3 ? glm::vec3(px[0], px[1], px[2]) : glm::vec3(px[0]);
         for (int k = 0; k < 3; ++k) {
           if (!std::isfinite(c[k]) || c[k] < 0.0f || c[k] > 1.0f + 1e-4f) {

@@ -9,9 +9,10 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libembree-dev          # Embree 3.13: ray tracing of curves, grids, triangles
-  libopenimageio-dev     # OpenImageIO 2.4: image I/O, comparison, colour conversion
+  libopenimageio-dev     # OpenImageIO 2.4: textures, environment maps, compare (libarbor_oiio.so)
   openimageio-tools      # oiiotool / idiff, used by checks
   libopenexr-dev         # OpenEXR 3.1
+  libpng-dev             # libpng: the PNG a render writes (without loading OpenImageIO)
   python3-imath          # Debian's Imath CMake targets name its Python binding library
   libopencolorio-dev     # OpenColorIO 2.1
   libglm-dev             # GLM 0.9.9

@@ -5,10 +5,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include <OpenImageIO/imageio.h>
-
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/image_library.h"
 #include "common/json.h"
 #include "imaging/compare.h"
 #include "imaging/treemaker_channels.h"
@@ -21,7 +20,7 @@ namespace {
 void check_image_output(const std::string& path, const CompareRequest& a, const char* option) {
   if (path.empty()) return;
   refuse_overwriting(option, path, {a.a, a.b});
-  if (!OIIO::ImageOutput::create(path)) {
+  if (!image_library("write " + path).writable(path)) {
     throw InputError({}, std::string(option) + " " + path +
                              ": no image format for this extension (use .png, .exr, .tif or .jpg)");
   }

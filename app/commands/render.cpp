@@ -15,8 +15,6 @@
 #include <cstdlib>
 #include <unistd.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/executable.h"
@@ -27,6 +25,7 @@
 #include "common/strings.h"
 #include "formats/scene_desc.h"
 #include "imaging/color.h"
+#include "imaging/image_output.h"
 #include "scene/frame.h"
 #include "scene/render_budget.h"
 #include "scene/render_input.h"
@@ -100,11 +99,7 @@ std::string render_fingerprint(const formats::SceneDesc& scene, const RenderRequ
 // The EXR's arbor:fingerprint and whether it says it is a finished render, or "" when it cannot
 // be read.
 std::string finished_fingerprint(const std::string& exr) {
-  auto in = OIIO::ImageInput::open(exr);
-  if (!in) return "";
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.get_int_attribute("arbor:incomplete", 0) != 0) return "";
-  return spec.get_string_attribute("arbor:fingerprint");
+  return imaging::finished_exr_fingerprint(exr);
 }
 
 }  // namespace

@@ -251,3 +251,30 @@ TEST(Outputs, IdsAndAlphaMergeBitIdentically) {
   EXPECT_EQ(refused.code, 2) << refused.err;
   EXPECT_NE(refused.err.find("not a part of the same render"), std::string::npos) << refused.err;
 }
+
+// OpenImageIO (264 shared libraries on Debian, 0.3 CPU-s to bind) is loaded only by what needs
+// it: a render writes its EXR and PNG without it, `compare` loads it. The dynamic loader says
+// which objects it opens (LD_DEBUG=files, on stderr).
+TEST(Outputs, ARenderLoadsOpenImageIoOnlyWhenItReadsAnImage) {
+  const std::string dir = ::testing::TempDir();
+  const std::string scene = outputs_scene("no_oiio.toml", "");
+  const CliRun render =
+      run_arbor_with("LD_DEBUG=files", "render " + scene + " --width 8 --height 6 --spp 1 -o " +
+                                           dir + "no_oiio.exr --png " + dir + "no_oiio.png");
+  ASSERT_EQ(render.code, 0) << render.err.substr(render.err.size() > 4000 ? render.err.size() - 4000
+                                                                          : 0);
+  EXPECT_EQ(render.err.find("libOpenImageIO"), std::string::npos);
+  EXPECT_EQ(render.err.find("libarbor_oiio"), std::string::npos);
+  // What it wrote reads back as before: an 8-bit RGB PNG of the same size.
+  auto png = OIIO::ImageInput::open(dir + "no_oiio.png");
+  ASSERT_TRUE(png);
+  EXPECT_EQ(png->spec().width, 8);
+  EXPECT_EQ(png->spec().nchannels, 3);
+  EXPECT_EQ(png->spec().format, OIIO::TypeDesc::UINT8);
+  // compare reads images through the module, which brings OpenImageIO in.
+  const CliRun cmp =
+      run_arbor_with("LD_DEBUG=files", "compare " + dir + "no_oiio.exr " + dir + "no_oiio.exr");
+  ASSERT_EQ(cmp.code, 0);
+  EXPECT_NE(cmp.err.find("libarbor_oiio.so"), std::string::npos);
+  EXPECT_NE(cmp.err.find("libOpenImageIO"), std::string::npos);
+}
