@@ -6,11 +6,42 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "common/math.h"
+
 namespace arbor::tracer {
+
+// The atmosphere's definition, shared by the sky models and the Monte Carlo simulation that checks
+// them (sky_monte_carlo.h). docs/rendering.md, "Sky", gives the sources.
+namespace atmosphere {
+constexpr double kEarthRadius = 6360e3;  // m
+constexpr double kTop = 60e3;            // m: the atmosphere's thickness
+constexpr double kTopRadius = kEarthRadius + kTop;
+constexpr double kRayleighHeight = 8000.0;  // m, scale height of the molecules
+constexpr double kMieHeight = 1200.0;       // m, scale height of the aerosols
+// Aerosols at sea level: scattering 2e-5 m⁻¹ (an aerosol optical depth of 0.024 at any wavelength,
+// a very clear day), single-scattering albedo 0.9, asymmetry g = 0.76.
+constexpr double kMieScattering = 2.0e-5, kMieExtinction = kMieScattering / 0.9, kMieG = 0.76;
+// Ozone: a layer between 10 and 40 km peaking at 25 km (a tent of unit peak), holding 300 Dobson
+// units (1 DU = 2.687e20 molecules m⁻²) in all: peak number density 300 × 2.687e20 / 15 km.
+constexpr double kOzonePeakDensity = 300.0 * 2.687e20 / 15e3;  // molecules m⁻³
+constexpr double kSunTemperature = 5778.0;  // K: the extraterrestrial sun as a black body
+
+// The Rayleigh phase function, 3/(16π) (1 + cos² θ).
+inline double rayleigh_phase(double c) { return 3.0 / (16.0 * kPi) * (1.0 + c * c); }
+
+// The Cornette–Shanks phase function (the one Nishita et al. use for aerosols), normalised over
+// the sphere: 3/(8π) (1 − g²)(1 + cos² θ) / ((2 + g²)(1 + g² − 2g cos θ)^(3/2)).
+inline double mie_phase(double c) {
+  const double g = kMieG, g2 = g * g;
+  return 3.0 / (8.0 * kPi) * (1.0 - g2) * (1.0 + c * c) /
+         ((2.0 + g2) * std::pow(1.0 + g2 - 2.0 * g * c, 1.5));
+}
+}  // namespace atmosphere
 
 struct Atmosphere {
   double air_density = 1.0;    // × the standard Rayleigh profile
@@ -38,6 +69,11 @@ class NishitaSky {
   glm::dvec3 extraterrestrial_xyz() const { return space_xyz_; }
   // Transmittance of the atmosphere from the observer towards `direction`, at wavelength index k.
   double transmittance(const glm::dvec3& direction, int k) const;
+  // What wavelength k adds to XYZ per unit of radiance relative to the extraterrestrial sun
+  // (its spectral irradiance × the colour matching functions × the band's width).
+  glm::dvec3 spectral_weight(int k) const {
+    return solar_[static_cast<std::size_t>(k)] * cmf_[static_cast<std::size_t>(k)];
+  }
 
   static double wavelength(int k) { return 380.0 + 400.0 * k / (kWavelengths - 1); }  // nm
   // Rayleigh scattering coefficient of sea-level air (m⁻¹) at `nm` nanometres.
