@@ -46,16 +46,17 @@ TEST(SkyMonteCarlo, SingleScatteringAgreesWithNishitaInTwentyOneDirections) {
   o.paths = 40000;
   int i = 0;
   for (const Case& c : cases()) {
-    const glm::dvec3 sun = direction(c.sun_elevation, 0.0), view = direction(c.elevation, c.azimuth);
+    const glm::dvec3 sun = direction(c.sun_elevation, 0.0),
+                     view = direction(c.elevation, c.azimuth);
     const NishitaSky model(air, sun, 1.0);
     const glm::dvec3 exact = model.radiance_xyz(view, 512);
     o.seed = static_cast<std::uint64_t>(++i);
     const SkyMonteCarloResult mc = simulate_sky_radiance(model, air, sun, view, o);
     for (int k = 0; k < 3; ++k) {
-      SCOPED_TRACE(testing::Message() << "sun " << c.sun_elevation << "°, view " << c.elevation
-                                      << "°/" << c.azimuth << "°, component " << k << ": model "
-                                      << exact[k] << ", simulated " << mc.xyz[k] << " ± "
-                                      << mc.standard_error[k]);
+      SCOPED_TRACE(testing::Message()
+                   << "sun " << c.sun_elevation << "°, view " << c.elevation << "°/" << c.azimuth
+                   << "°, component " << k << ": model " << exact[k] << ", simulated " << mc.xyz[k]
+                   << " ± " << mc.standard_error[k]);
       EXPECT_LT(mc.standard_error[k], 0.03 * exact[k]);
       EXPECT_NEAR(mc.xyz[k], exact[k], 4.0 * mc.standard_error[k] + 0.005 * exact[k]);
     }
@@ -96,7 +97,8 @@ TEST(SkyMonteCarlo, MultipleScatteringAndTheGroundBrightenTheSky) {
   const Atmosphere thin{0.01, 0.01, 1.0, 0.0};
   const SkyMonteCarloResult one = y(thin, direction(5, 90), true, 0.0);
   const SkyMonteCarloResult all = y(thin, direction(5, 90), false, 0.0);
-  EXPECT_NEAR(all.xyz.y, one.xyz.y, 4.0 * (all.standard_error.y + one.standard_error.y) + 0.01 * one.xyz.y);
+  EXPECT_NEAR(all.xyz.y, one.xyz.y,
+              4.0 * (all.standard_error.y + one.standard_error.y) + 0.01 * one.xyz.y);
 }
 
 }  // namespace arbor::tracer

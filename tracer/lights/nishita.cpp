@@ -20,17 +20,6 @@ namespace {
 
 using namespace atmosphere;
 
-// Distance from radius r along cos zenith μ to the top of the atmosphere (r inside it).
-double to_top(double r, double mu) {
-  const double disc = r * r * (mu * mu - 1.0) + kTopRadius * kTopRadius;
-  return std::max(0.0, -r * mu + std::sqrt(std::max(0.0, disc)));
-}
-
-// Whether a ray from radius r along cos zenith μ meets the Earth.
-bool hits_earth(double r, double mu) {
-  return mu < 0.0 && r * r * (mu * mu - 1.0) + kEarthRadius * kEarthRadius >= 0.0;
-}
-
 // The black-body spectral radiance shape at `nm` (any scale).
 double planck(double nm) {
   const double l = nm * 1e-9;
@@ -106,6 +95,7 @@ NishitaSky::NishitaSky(const Atmosphere& atmosphere, const glm::dvec3& sun_direc
       sun_table_[static_cast<size_t>(i) * kCols + j] = integrate_to_space(r, mu, 96);
     }
   }
+  if (a_.multiple_scattering) build_multiple_scattering();
   if (!hits_earth(r0_, sun_.z)) {
     const auto tau = optical_depth(integrate_to_space(r0_, sun_.z, 512));
     for (int k = 0; k < kWavelengths; ++k) sun_xyz_ += solar_[k] * std::exp(-tau[k]) * cmf_[k];
@@ -199,7 +189,17 @@ glm::dvec3 NishitaSky::radiance_xyz(const glm::dvec3& view, int steps) const {
     seen.rayleigh += rho.rayleigh * dt;
     seen.mie += rho.mie * dt;
     seen.ozone += rho.ozone * dt;
-    const Depth sun = depth_to_sun(r, glm::dot(p, sun_) / r);
+    const double mu_sun = glm::dot(p, sun_) / r;
+    if (a_.multiple_scattering) {
+      // Light scattered more than once: σ_s ψ_ms (Hillaire 2020, eq. 11), lit in the shadow too.
+      const Spectrum psi = multiple_scattering(r, mu_sun), ss = scattering(rho);
+      for (int k = 0; k < kWavelengths; ++k) {
+        const double tau = beta_r_[k] * to_point.rayleigh + kMieExtinction * to_point.mie +
+                           sigma_o_[k] * to_point.ozone;
+        l[k] += ss[k] * psi[k] * dt * std::exp(-tau);
+      }
+    }
+    const Depth sun = depth_to_sun(r, mu_sun);
     if (!std::isfinite(sun.rayleigh)) continue;  // the point is in the Earth's shadow
     const double mie = kMieScattering * rho.mie * pm * dt,
                  mie_depth = kMieExtinction * (to_point.mie + sun.mie);

@@ -5,6 +5,7 @@
 // integrated spectrally and returned as CIE XYZ. docs/rendering.md, "Sky", gives every constant.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -41,6 +42,17 @@ inline double mie_phase(double c) {
   return 3.0 / (8.0 * kPi) * (1.0 - g2) * (1.0 + c * c) /
          ((2.0 + g2) * std::pow(1.0 + g2 - 2.0 * g * c, 1.5));
 }
+// Distance from radius r along cos zenith μ to the top of the atmosphere (r inside it).
+inline double to_top(double r, double mu) {
+  const double disc = r * r * (mu * mu - 1.0) + kTopRadius * kTopRadius;
+  return std::max(0.0, -r * mu + std::sqrt(std::max(0.0, disc)));
+}
+
+// Whether a ray from radius r along cos zenith μ meets the Earth.
+inline bool hits_earth(double r, double mu) {
+  return mu < 0.0 && r * r * (mu * mu - 1.0) + kEarthRadius * kEarthRadius >= 0.0;
+}
+
 }  // namespace atmosphere
 
 struct Atmosphere {
@@ -48,6 +60,10 @@ struct Atmosphere {
   double dust_density = 1.0;   // × the clear-day aerosol (Mie) profile
   double ozone_density = 1.0;  // × a 300 Dobson-unit ozone layer
   double altitude = 0.0;       // metres above sea level of the observer (the scene's z = 0)
+  // Every order of scattering (nishita_multiple.cpp: Hillaire 2020's multiple-scattering table)
+  // and the light of a Lambertian ground of this albedo; off: Nishita's single scattering.
+  bool multiple_scattering = false;
+  double ground_albedo = 0.0;
 };
 
 class NishitaSky {
@@ -92,6 +108,12 @@ class NishitaSky {
   Depth depth_to_sun(double r, double mu) const;    // tabulated depth_to_space towards the sun
   Depth integrate_to_space(double r, double mu, int steps) const;
   std::array<double, kWavelengths> optical_depth(const Depth& d) const;
+  using Spectrum = std::array<double, kWavelengths>;
+  // Multiple scattering (nishita_multiple.cpp): the table ψ_ms over altitude and the sun's cos
+  // zenith, and its bilinear lookup at radius r.
+  void build_multiple_scattering();
+  Spectrum multiple_scattering(double r, double mu_sun) const;
+  Spectrum scattering(const Depth& rho) const;  // σ_s at densities rho, per wavelength
 
   Atmosphere a_;
   glm::dvec3 sun_{0.0, 0.0, 1.0};
@@ -102,6 +124,8 @@ class NishitaSky {
   // depth_to_sun's table: altitude rows (h = H u²) × μ columns over [-1, 1].
   static constexpr int kRows = 64, kCols = 256;
   std::vector<Depth> sun_table_;
+  static constexpr int kMsRows = 32, kMsCols = 64;
+  std::vector<Spectrum> ms_table_;  // ψ_ms: altitude rows (h = H u²) × μ_sun columns over [-1, 1]
   glm::dvec3 sun_xyz_{0.0}, space_xyz_{0.0};
 };
 

@@ -26,11 +26,14 @@ using namespace atmosphere;
 
 struct Medium {
   const Atmosphere& a;
-  double beta_r, sigma_o;  // at the path's wavelength: Rayleigh scattering, ozone cross-section × peak
+  double beta_r,
+      sigma_o;  // at the path's wavelength: Rayleigh scattering, ozone cross-section × peak
   double majorant;
 
   double height(const glm::dvec3& p) const { return glm::length(p) - kEarthRadius; }
-  double rayleigh(double h) const { return beta_r * a.air_density * std::exp(-h / kRayleighHeight); }
+  double rayleigh(double h) const {
+    return beta_r * a.air_density * std::exp(-h / kRayleighHeight);
+  }
   double mie_density(double h) const { return a.dust_density * std::exp(-h / kMieHeight); }
   double ozone(double h) const {
     return sigma_o * a.ozone_density * std::max(0.0, 1.0 - std::fabs(h - 25e3) / 15e3);
@@ -162,8 +165,7 @@ double trace(const Medium& m, glm::dvec3 p, glm::dvec3 d, const glm::dvec3& sun,
 }  // namespace
 
 SkyMonteCarloResult simulate_sky_radiance(const NishitaSky& units, const Atmosphere& atmosphere,
-                                          const glm::dvec3& sun_direction,
-                                          const glm::dvec3& view,
+                                          const glm::dvec3& sun_direction, const glm::dvec3& view,
                                           const SkyMonteCarloOptions& o) {
   const glm::dvec3 sun = glm::normalize(sun_direction), d = glm::normalize(view);
   constexpr int kW = NishitaSky::kWavelengths;

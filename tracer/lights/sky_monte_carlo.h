@@ -17,9 +17,9 @@
 namespace arbor::tracer {
 
 struct SkyMonteCarloOptions {
-  int paths = 20000;                // paths traced for the direction
-  bool single_scattering = false;   // only the first scattering (and no ground): Nishita's model
-  double ground_albedo = 0.0;       // Lambertian ground reflectance (the same at every wavelength)
+  int paths = 20000;               // paths traced for the direction
+  bool single_scattering = false;  // only the first scattering (and no ground): Nishita's model
+  double ground_albedo = 0.0;      // Lambertian ground reflectance (the same at every wavelength)
   std::uint64_t seed = 1;
 };
 
@@ -35,8 +35,7 @@ struct SkyMonteCarloResult {
 // weights (the sun's spectrum × colour matching functions) are the model's, so the two are
 // compared in the same units; wavelengths are sampled in proportion to them.
 SkyMonteCarloResult simulate_sky_radiance(const NishitaSky& units, const Atmosphere& atmosphere,
-                                          const glm::dvec3& sun_direction,
-                                          const glm::dvec3& view,
+                                          const glm::dvec3& sun_direction, const glm::dvec3& view,
                                           const SkyMonteCarloOptions& options);
 
 }  // namespace arbor::tracer
