@@ -48,8 +48,8 @@ void NishitaSky::build_multiple_scattering() {
           const glm::dvec3 w(s * std::cos(phi), s * std::sin(phi), mu);
           const bool ground = hits_earth(r, mu);
           const double length =
-              ground ? -r * mu - std::sqrt(std::max(0.0, r * r * (mu * mu - 1.0) +
-                                                          kEarthRadius * kEarthRadius))
+              ground ? -r * mu - std::sqrt(std::max(
+                                     0.0, r * r * (mu * mu - 1.0) + kEarthRadius * kEarthRadius))
                      : to_top(r, mu);
           // Light travelling from y to x (along −ω) left the sun's beam at cos θ = ω · sun.
           const double cs = glm::dot(w, sun), pr = rayleigh_phase(cs), pm = mie_phase(cs);
