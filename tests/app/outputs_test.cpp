@@ -278,3 +278,18 @@ TEST(Outputs, ARenderLoadsOpenImageIoOnlyWhenItReadsAnImage) {
   EXPECT_NE(cmp.err.find("libarbor_oiio.so"), std::string::npos);
   EXPECT_NE(cmp.err.find("libOpenImageIO"), std::string::npos);
 }
+
+// Through the module, a file that is not an image is still refused as what it should have been.
+TEST(Outputs, AnEnvironmentMapThatIsNotAnImageIsNamedAsOne) {
+  const std::string dir = ::testing::TempDir();
+  const std::string bad = write_temp("not_an_image.exr", "stands for an image");
+  const std::string scene = write_temp("bad_env.toml",
+                                       "[render]\nwidth = 8\nheight = 6\nspp = 1\n[sky]\nmodel = "
+                                       "\"envmap\"\npath = \"" +
+                                           bad + "\"\n");
+  const CliRun r = run_arbor("render " + scene + " -o " + dir + "bad_env.exr");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find(bad + ": error: cannot read the environment map: "), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::ifstream(dir + "bad_env.exr").good());
+}
