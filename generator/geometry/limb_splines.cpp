@@ -81,7 +81,12 @@ DVec3 CubicSpline::second_derivative_at_knot(std::size_t i, int side) const {
 }
 
 double CubicSpline::curvature(double t) const {
-  const DVec3 d1 = derivative(t), d2 = second_derivative(t);
+  // derivative(t) and second_derivative(t), sharing one search and one segment.
+  double u = 0.0;
+  const std::size_t i = locate(t, u);
+  const Hermite segment = segment_of(*this, i);
+  const double h = params[i + 1] - params[i];
+  const DVec3 d1 = segment.d1(u) / h, d2 = segment.d2(u) / (h * h);
   const double speed = glm::length(d1);
   if (speed < 1e-12) return 0.0;
   return glm::length(glm::cross(d1, d2)) / (speed * speed * speed);
