@@ -73,13 +73,9 @@ const ImageLibrary& image_library(const std::string& needed_for) {
 DecodedImage read_image_file(const std::string& path, const std::string& what, bool pixels) {
   check_input_file(path, what);
   DecodedImage image;
-  std::string why = image_library("read " + path).read(path, pixels, image);
-  if (why.empty()) return image;
-  // The message names what the file should be ("cannot read the environment map: …").
-  const std::string generic = "cannot read the image: ";
-  if (what != "image" && why.rfind(generic, 0) == 0)
-    why = "cannot read the " + what + ": " + why.substr(generic.size());
-  throw InputError({path, 0, 0}, why);
+  const std::string why = image_library("read " + path).read(path, pixels, image);
+  if (!why.empty()) throw InputError({path, 0, 0}, "cannot read the " + what + ": " + why);
+  return image;
 }
 
 }  // namespace arbor

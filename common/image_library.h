@@ -26,18 +26,13 @@ struct DecodedImage {
   int int_attribute(const std::string& name, int fallback) const;
 };
 
-// Error metrics over every channel (OIIO's ImageBufAlgo::compare).
-struct ImageDifference {
-  double mean_abs = 0, rms = 0, psnr = 0, max_abs = 0;
-  int max_x = 0, max_y = 0;
-};
-
 // What the module offers. Every call reports failure as a non-empty message, never by throwing:
 // no exception crosses the module's boundary.
 class ImageLibrary {
  public:
   virtual ~ImageLibrary() = default;
-  // The file's first subimage; its pixels only when `pixels`.
+  // The file's first subimage; its pixels only when `pixels`. A failure's message completes
+  // "cannot read the image: …" (OIIO's reason, "its pixels: …", "it has an unsupported size …").
   virtual std::string read(const std::string& path, bool pixels, DecodedImage& out) const = 0;
   // The bytes of `pixels` (width*height*channels floats in [0, 1] written as 8 bits, or as
   // floats when !eight_bit) in the format `path`'s extension names.
@@ -57,8 +52,6 @@ class ImageLibrary {
   // convenience.
   virtual void draw_text(std::vector<float>& rgb, int width, int height, int x, int y,
                          const std::string& text, int size, bool right_aligned) const = 0;
-  virtual ImageDifference difference(const std::vector<float>& a, const std::vector<float>& b,
-                                     int width, int height, int channels) const = 0;
 };
 
 // The module, loaded on the first call: beside the executable in ../lib/arbor/ (the build tree

@@ -186,15 +186,24 @@ CompareImage read_compare_image(const std::string& path) {
 
 CompareMetrics compare_images(const CompareImage& a, const CompareImage& b) {
   require_same_size(a, b);
-  const ImageDifference r =
-      image_library("compare images").difference(a.rgb, b.rgb, a.width, a.height, 3);
+  // Over every R, G and B value (in double): mean |a − b|, RMS, the largest |a − b| (the first
+  // pixel where it is reached), and PSNR for a peak of 1 (infinite for identical images).
   CompareMetrics m;
-  m.rmse = r.rms;
-  m.mean_abs = r.mean_abs;
-  m.max_abs = r.max_abs;
-  m.max_x = r.max_x;
-  m.max_y = r.max_y;
-  m.psnr = r.psnr;
+  double sum = 0, sum2 = 0;
+  for (std::size_t i = 0; i < a.rgb.size(); ++i) {
+    const double d = std::fabs(static_cast<double>(a.rgb[i]) - b.rgb[i]);
+    sum += d;
+    sum2 += d * d;
+    if (d > m.max_abs) {
+      m.max_abs = d;
+      m.max_x = static_cast<int>((i / 3) % static_cast<std::size_t>(a.width));
+      m.max_y = static_cast<int>((i / 3) / static_cast<std::size_t>(a.width));
+    }
+  }
+  const double values = std::max<double>(1.0, static_cast<double>(a.rgb.size()));
+  m.mean_abs = sum / values;
+  m.rmse = std::sqrt(sum2 / values);
+  m.psnr = m.rmse > 0 ? 20.0 * std::log10(1.0 / m.rmse) : HUGE_VAL;
   double rel = 0;
   for (std::size_t i = 0; i < a.rgb.size(); ++i) {
     const double d = static_cast<double>(a.rgb[i]) - b.rgb[i];

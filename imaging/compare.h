@@ -1,4 +1,4 @@
-// Image comparison: error metrics through OIIO, false-colour heatmaps, side-by-side pictures
+// Image comparison: error metrics, false-colour heatmaps, side-by-side pictures
 // through the OCIO display view, and the per-pixel z-test of render tests (DESIGN.md, "How we
 // know it is right").
 #pragma once
@@ -32,7 +32,7 @@ struct CompareMetrics {
   int max_x = 0, max_y = 0;  // where max_abs is
 };
 
-// RMSE, mean absolute error, max error and PSNR (peak 1) from OIIO's ImageBufAlgo::compare,
+// RMSE, mean absolute error, max error (and where) and PSNR (peak 1; infinite when equal),
 // over R, G and B. rel_mse = mean over channels of (a-b)^2 / (b^2 + 0.01), B the reference.
 CompareMetrics compare_images(const CompareImage& a, const CompareImage& b);
 

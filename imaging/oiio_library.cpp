@@ -51,14 +51,13 @@ class OiioLibrary final : public ImageLibrary {
       auto in = OIIO::ImageInput::open(path);
       if (!in) {
         std::string why = OIIO::geterror();
-        if (why.empty()) why = "cannot be read as an image";
-        return "cannot read the image: " + why;
+        return why.empty() ? "it cannot be read as an image" : why;
       }
       const OIIO::ImageSpec& spec = in->spec();
       const long long n = static_cast<long long>(spec.width) * spec.height;
       if (spec.width <= 0 || spec.height <= 0 || n > (1LL << 28) || spec.nchannels < 1 ||
           spec.nchannels > 1024 || n * spec.nchannels > (1LL << 30)) {
-        return "has an unsupported size " + std::to_string(spec.width) + "x" +
+        return "it has an unsupported size " + std::to_string(spec.width) + "x" +
                std::to_string(spec.height) + " with " + std::to_string(spec.nchannels) +
                " channels";
       }
@@ -75,10 +74,10 @@ class OiioLibrary final : public ImageLibrary {
       if (!pixels) return {};
       out.pixels.resize(static_cast<std::size_t>(n) * static_cast<std::size_t>(spec.nchannels));
       if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out.pixels.data()))
-        return "cannot read the pixels: " + in->geterror();
+        return "its pixels: " + in->geterror();
       return {};
     } catch (const std::exception& e) {
-      return std::string("cannot read the image: ") + e.what();
+      return e.what();
     }
   }
 
@@ -141,22 +140,6 @@ class OiioLibrary final : public ImageLibrary {
       (void)buf.geterror();  // a missing font is not an error: the picture is drawn without it
     } catch (const std::exception&) {
     }
-  }
-
-  ImageDifference difference(const std::vector<float>& a, const std::vector<float>& b, int width,
-                             int height, int channels) const override {
-    const OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::FLOAT);
-    const OIIO::ImageBuf ba(spec, const_cast<float*>(a.data()));
-    const OIIO::ImageBuf bb(spec, const_cast<float*>(b.data()));
-    const OIIO::ImageBufAlgo::CompareResults r = OIIO::ImageBufAlgo::compare(ba, bb, 1e30f, 1e30f);
-    ImageDifference d;
-    d.mean_abs = r.meanerror;
-    d.rms = r.rms_error;
-    d.psnr = r.PSNR;
-    d.max_abs = r.maxerror;
-    d.max_x = r.maxx;
-    d.max_y = r.maxy;
-    return d;
   }
 };
 

@@ -96,16 +96,6 @@ std::string render_fingerprint(const formats::SceneDesc& scene, const RenderRequ
   return fingerprint_hex(fnv1a("arbor render 2 " + settings));
 }
 
-// The EXR's arbor:fingerprint and whether it says it is a finished render, or "" when it cannot
-// be read.
-std::string finished_fingerprint(const std::string& exr) {
-  return imaging::finished_exr_fingerprint(exr);
-}
-
-}  // namespace
-
-namespace {
-
 // An installed scene (<prefix>/share/arbor/scenes/) names its outputs relative to itself, in a
 // folder users do not write in: those outputs go under the current folder instead, with a note.
 void relocate_installed_outputs(formats::SceneDesc& scene, const RenderRequest& a) {
@@ -267,7 +257,7 @@ std::unique_ptr<Film> open_film(const formats::SceneDesc& scene, const scene::Re
   const std::string& exr = scene.output.exr;
   const std::string state = state_path(exr);
   if (::access(state.c_str(), F_OK) != 0) {
-    if (finished_fingerprint(exr) == header.fingerprint) {
+    if (imaging::finished_exr_fingerprint(exr) == header.fingerprint) {
       std::fprintf(stderr, "arbor: %s is already finished; nothing to resume\n", exr.c_str());
       return nullptr;
     }

@@ -135,16 +135,22 @@ NishitaSky::Depth NishitaSky::depth_to_space(double r, double mu) const {
   return integrate_to_space(r, mu, 512);
 }
 
+NishitaSky::TableCell NishitaSky::table_cell(double r, double mu, int rows, int cols) {
+  const double u = std::sqrt(std::clamp((r - kEarthRadius) / kTop, 0.0, 1.0)) * (rows - 1);
+  const double v = (std::clamp(mu, -1.0, 1.0) + 1.0) * 0.5 * (cols - 1);
+  const int i = std::min(rows - 2, static_cast<int>(u)),
+            j = std::min(cols - 2, static_cast<int>(v));
+  return {i, j, u - i, v - j};
+}
+
 NishitaSky::Depth NishitaSky::depth_to_sun(double r, double mu) const {
   if (hits_earth(r, mu)) {
     const double inf = std::numeric_limits<double>::infinity();
     return {inf, inf, inf};
   }
-  const double u = std::sqrt(std::clamp((r - kEarthRadius) / kTop, 0.0, 1.0)) * (kRows - 1);
-  const double v = (std::clamp(mu, -1.0, 1.0) + 1.0) * 0.5 * (kCols - 1);
-  const int i = std::min(kRows - 2, static_cast<int>(u)),
-            j = std::min(kCols - 2, static_cast<int>(v));
-  const double fu = u - i, fv = v - j;
+  const TableCell cell = table_cell(r, mu, kRows, kCols);
+  const int i = cell.i, j = cell.j;
+  const double fu = cell.fu, fv = cell.fv;
   const Depth& d00 = sun_table_[static_cast<size_t>(i) * kCols + j];
   const Depth& d01 = sun_table_[static_cast<size_t>(i) * kCols + j + 1];
   const Depth& d10 = sun_table_[static_cast<size_t>(i + 1) * kCols + j];

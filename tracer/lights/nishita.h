@@ -106,6 +106,13 @@ class NishitaSky {
   Depth densities(double r) const;                  // at radius r: the three profiles' densities
   Depth depth_to_space(double r, double mu) const;  // along a ray from radius r at cos zenith μ
   Depth depth_to_sun(double r, double mu) const;    // tabulated depth_to_space towards the sun
+  // A table over altitude rows (h = H u²) and cos-zenith columns over [-1, 1]: the cell holding
+  // (r, μ) and the bilinear weights within it.
+  struct TableCell {
+    int i, j;
+    double fu, fv;
+  };
+  static TableCell table_cell(double r, double mu, int rows, int cols);
   Depth integrate_to_space(double r, double mu, int steps) const;
   std::array<double, kWavelengths> optical_depth(const Depth& d) const;
   using Spectrum = std::array<double, kWavelengths>;

@@ -105,11 +105,9 @@ void NishitaSky::build_multiple_scattering() {
 }
 
 NishitaSky::Spectrum NishitaSky::multiple_scattering(double r, double mu_sun) const {
-  const double u = std::sqrt(std::clamp((r - kEarthRadius) / kTop, 0.0, 1.0)) * (kMsRows - 1);
-  const double v = (std::clamp(mu_sun, -1.0, 1.0) + 1.0) * 0.5 * (kMsCols - 1);
-  const int i = std::min(kMsRows - 2, static_cast<int>(u)),
-            j = std::min(kMsCols - 2, static_cast<int>(v));
-  const double fu = u - i, fv = v - j;
+  const TableCell cell = table_cell(r, mu_sun, kMsRows, kMsCols);
+  const int i = cell.i, j = cell.j;
+  const double fu = cell.fu, fv = cell.fv;
   const Spectrum& a = ms_table_[static_cast<size_t>(i) * kMsCols + j];
   const Spectrum& b = ms_table_[static_cast<size_t>(i) * kMsCols + j + 1];
   const Spectrum& c = ms_table_[static_cast<size_t>(i + 1) * kMsCols + j];

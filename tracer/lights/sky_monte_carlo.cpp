@@ -170,12 +170,15 @@ SkyMonteCarloResult simulate_sky_radiance(const NishitaSky& units, const Atmosph
   const glm::dvec3 sun = glm::normalize(sun_direction), d = glm::normalize(view);
   constexpr int kW = NishitaSky::kWavelengths;
   std::array<glm::dvec3, kW> weight{};
-  std::array<double, kW> cdf{};
+  std::array<double, kW> cdf{}, beta_r{}, sigma_o{};
   double total = 0.0;
   for (int k = 0; k < kW; ++k) {
     weight[k] = units.spectral_weight(k);
     total += weight[k].x + weight[k].y + weight[k].z;
     cdf[k] = total;
+    const double nm = NishitaSky::wavelength(k);
+    beta_r[k] = NishitaSky::rayleigh_scattering(nm);
+    sigma_o[k] = NishitaSky::ozone_cross_section(nm) * kOzonePeakDensity;
   }
   Rng rng(derive_key(o.seed, 0x736b794d43ull));
   const glm::dvec3 observer(0.0, 0.0, kEarthRadius + atmosphere.altitude);
@@ -185,12 +188,9 @@ SkyMonteCarloResult simulate_sky_radiance(const NishitaSky& units, const Atmosph
     const double u = rng.uniform() * total;
     const int k = static_cast<int>(std::lower_bound(cdf.begin(), cdf.end(), u) - cdf.begin());
     const int kk = std::min(k, kW - 1);
-    const double nm = NishitaSky::wavelength(kk);
-    const double beta_r = NishitaSky::rayleigh_scattering(nm);
-    const double sigma_o = NishitaSky::ozone_cross_section(nm) * kOzonePeakDensity;
-    const Medium m{atmosphere, beta_r, sigma_o,
-                   beta_r * atmosphere.air_density + kMieExtinction * atmosphere.dust_density +
-                       sigma_o * atmosphere.ozone_density};
+    const Medium m{atmosphere, beta_r[kk], sigma_o[kk],
+                   beta_r[kk] * atmosphere.air_density + kMieExtinction * atmosphere.dust_density +
+                       sigma_o[kk] * atmosphere.ozone_density};
     int n = 0;
     const double l = trace(m, observer, d, sun, o, rng, n);
     const glm::dvec3 w = weight[kk];
