@@ -34,6 +34,19 @@ double lobe(double x, double mu, double s1, double s2) {
 
 }  // namespace
 
+double atmosphere::mie_forward_fraction() {
+  static const double f = [] {
+    constexpr int n = 20000;  // midpoints in cos θ; the peak at g = 0.76 is a few hundred wide
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const double t = -1.0 + 2.0 * (i + 0.5) / n;
+      sum += mie_phase(t) * 0.5 * (3.0 * t * t - 1.0);
+    }
+    return 2.0 * kPi * sum * 2.0 / n;
+  }();
+  return f;
+}
+
 double NishitaSky::rayleigh_scattering(double nm) {
   // β = 8π³ (n² − 1)² / (3 N λ⁴) × (6 + 3ρ) / (6 − 7ρ) (the King correction for depolarisation
   // ρ = 0.0279), with the refractive index of standard air (15 °C, 101 325 Pa) by Peck & Reeder's
@@ -95,7 +108,11 @@ NishitaSky::NishitaSky(const Atmosphere& atmosphere, const glm::dvec3& sun_direc
       sun_table_[static_cast<size_t>(i) * kCols + j] = integrate_to_space(r, mu, 96);
     }
   }
-  if (a_.multiple_scattering) build_multiple_scattering();
+  if (a_.multiple_scattering) {
+    forward_ = mie_forward_fraction();
+    mie_extinction_ = kMieExtinction - forward_ * kMieScattering;
+    build_multiple_scattering();
+  }
   if (!hits_earth(r0_, sun_.z)) {
     const auto tau = optical_depth(integrate_to_space(r0_, sun_.z, 512));
     for (int k = 0; k < kWavelengths; ++k) sun_xyz_ += solar_[k] * std::exp(-tau[k]) * cmf_[k];
@@ -198,17 +215,18 @@ glm::dvec3 NishitaSky::radiance_xyz(const glm::dvec3& view, int steps) const {
     const double mu_sun = glm::dot(p, sun_) / r;
     if (a_.multiple_scattering) {
       // Light scattered more than once: σ_s ψ_ms (Hillaire 2020, eq. 11), lit in the shadow too.
-      const Spectrum psi = multiple_scattering(r, mu_sun), ss = scattering(rho);
-      for (int k = 0; k < kWavelengths; ++k) {
-        const double tau = beta_r_[k] * to_point.rayleigh + kMieExtinction * to_point.mie +
-                           sigma_o_[k] * to_point.ozone;
-        l[k] += ss[k] * psi[k] * dt * std::exp(-tau);
-      }
+      const Spectrum psi = multiple_scattering(r, mu_sun), ss = scattering(rho),
+                     tau = scaled_depth(to_point);
+      for (int k = 0; k < kWavelengths; ++k) l[k] += ss[k] * psi[k] * dt * std::exp(-tau[k]);
     }
     const Depth sun = depth_to_sun(r, mu_sun);
     if (!std::isfinite(sun.rayleigh)) continue;  // the point is in the Earth's shadow
-    const double mie = kMieScattering * rho.mie * pm * dt,
-                 mie_depth = kMieExtinction * (to_point.mie + sun.mie);
+    const double mie = kMieScattering * rho.mie * pm * dt;
+    // With multiple scattering, δ-M scaled towards the observer (nishita_multiple.cpp) and true
+    // towards the sun; without, Nishita's.
+    const double mie_depth = a_.multiple_scattering
+                                 ? mie_extinction_ * to_point.mie + kMieExtinction * sun.mie
+                                 : kMieExtinction * (to_point.mie + sun.mie);
     for (int k = 0; k < kWavelengths; ++k) {
       const double tau = beta_r_[k] * (to_point.rayleigh + sun.rayleigh) + mie_depth +
                          sigma_o_[k] * (to_point.ozone + sun.ozone);

@@ -37,6 +37,11 @@ inline double rayleigh_phase(double c) { return 3.0 / (16.0 * kPi) * (1.0 + c * 
 
 // The Cornette–Shanks phase function (the one Nishita et al. use for aerosols), normalised over
 // the sphere: 3/(8π) (1 − g²)(1 + cos² θ) / ((2 + g²)(1 + g² − 2g cos θ)^(3/2)).
+inline double mie_phase(double c);
+// The δ-M forward fraction of the aerosol phase function (Wiscombe 1977): its second Legendre
+// moment χ₂ = 2π ∫ p(t) P₂(t) dt, 0.656 for g = 0.76.
+double mie_forward_fraction();
+
 inline double mie_phase(double c) {
   const double g = kMieG, g2 = g * g;
   return 3.0 / (8.0 * kPi) * (1.0 - g2) * (1.0 + c * c) /
@@ -120,9 +125,14 @@ class NishitaSky {
   // zenith, and its bilinear lookup at radius r.
   void build_multiple_scattering();
   Spectrum multiple_scattering(double r, double mu_sun) const;
-  Spectrum scattering(const Depth& rho) const;  // σ_s at densities rho, per wavelength
+  // The multiple-scattering part is computed in the δ-M scaled atmosphere (nishita_multiple.cpp):
+  // the aerosols' forward peak, a fraction f of their scattering, counted as unscattered.
+  Spectrum scattering(const Depth& rho) const;  // σ_s − f σ_m at densities rho, per wavelength
+  Spectrum scaled_depth(const Depth& d) const;  // optical depth with σ_t − f σ_m for the aerosols
 
   Atmosphere a_;
+  double forward_ = 0.0;                                // f (0 without multiple scattering)
+  double mie_extinction_ = atmosphere::kMieExtinction;  // σ_t − f σ_m at sea level, per dust
   glm::dvec3 sun_{0.0, 0.0, 1.0};
   double r0_ = 0.0;                           // the observer's radius
   std::array<double, kWavelengths> solar_{};  // extraterrestrial spectral irradiance, scaled
@@ -131,8 +141,11 @@ class NishitaSky {
   // depth_to_sun's table: altitude rows (h = H u²) × μ columns over [-1, 1].
   static constexpr int kRows = 64, kCols = 256;
   std::vector<Depth> sun_table_;
-  static constexpr int kMsRows = 32, kMsCols = 64;
-  std::vector<Spectrum> ms_table_;  // ψ_ms: altitude rows (h = H u²) × μ_sun columns over [-1, 1]
+  static constexpr int kMsRows = 32, kMsCols = 11;
+  static constexpr double kMsSpan = 10.0 * kPi / 180.0;  // radians either side of the sun's
+  // ψ_ms: altitude rows (h = H u²) × columns of the sun's zenith angle over [lo, hi]
+  std::vector<Spectrum> ms_table_;
+  double ms_theta_lo_ = 0.0, ms_theta_hi_ = kPi;
   glm::dvec3 sun_xyz_{0.0}, space_xyz_{0.0};
 };
 
