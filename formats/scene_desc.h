@@ -24,9 +24,9 @@ inline constexpr std::array<const char*, 2> kIntegratorNames = {"path", "treemak
 const char* name_of(Integrator integrator);
 std::optional<Integrator> integrator_named(std::string_view name);
 
-enum class SkyModel { Preetham, Nishita, Constant, Envmap, None };
-inline constexpr std::array<const char*, 5> kSkyModelNames = {"preetham", "nishita", "constant",
-                                                              "envmap", "none"};
+enum class SkyModel { Preetham, Nishita, Constant, Envmap, None, Atmosphere };
+inline constexpr std::array<const char*, 6> kSkyModelNames = {"preetham", "nishita", "constant",
+                                                              "envmap",   "none",    "atmosphere"};
 const char* name_of(SkyModel model);
 
 struct RenderSettings {
@@ -68,9 +68,16 @@ struct SunDesc {
 
 struct SkyDesc {
   SkyModel model = SkyModel::Preetham;
-  double turbidity = 3.0;
-  // nishita: multipliers of the standard atmosphere's profiles, the observer's altitude (m)
+  double turbidity = 3.0;  // preetham: Preetham's; atmosphere: Linke's (docs/rendering.md)
+  // nishita, atmosphere: multipliers of the standard atmosphere's profiles, the observer's altitude
+  // (m)
   double air_density = 1.0, dust_density = 1.0, ozone_density = 1.0, altitude = 0.0;
+  // atmosphere: the aerosols by one of turbidity, visibility (km; 0: not given) or dust_density
+  // (the one given; turbidity 3 when none is); the ground's albedo under the whole sky (negative:
+  // the luminance of [ground]'s albedo, the reader fills it in)
+  double visibility = 0.0;
+  bool turbidity_given = false, dust_given = false;
+  double ground_albedo = -1.0;
   Rgb color{1.0, 1.0, 1.0};
   std::string path;       // envmap
   double rotation = 0.0;  // envmap, degrees about z
@@ -85,6 +92,18 @@ struct GroundDesc {
   Rgb patch_albedo{0.06, 0.11, 0.035};
   double patch_cover = 0.0, patch_scale = 3.0;
 };
+
+// The ground's albedo as one number, what the atmosphere's sky sees: the luminance (Rec. 709) of
+// its albedo and its patches' by the share each covers.
+inline double mean_albedo(const GroundDesc& g) {
+  auto y = [](const Rgb& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; };
+  return (1.0 - g.patch_cover) * y(g.albedo) + g.patch_cover * y(g.patch_albedo);
+}
+
+// Linke's turbidity of an atmosphere without aerosols (and 1.5 cm of precipitable water), rounded
+// up: the smallest sky.turbidity of the atmosphere model (tracer/lights/nishita.h,
+// dust_for_turbidity; docs/rendering.md, "Sky").
+inline constexpr double kClearestLinkeTurbidity = 2.21;
 
 // Overrides of a species' bark and leaves; unset fields keep the species' values.
 struct BarkOverride {

@@ -10,9 +10,6 @@
 #include "common/input_file.h"
 #include "formats/toml_reader.h"
 
-#include <glm/geometric.hpp>
-#include <glm/vec3.hpp>
-
 #include "formats/scene_desc.h"
 #include "formats/species_file.h"
 
@@ -65,6 +62,7 @@ class SceneReader : TomlReader {
         throw InputError(at(key.source()), "unknown table or key '" + k + "'");
     }
     check_camera(s.camera);
+    if (s.sky.ground_albedo < 0.0) s.sky.ground_albedo = mean_albedo(s.ground);
     if (s.camera.focus_distance == 0.0) {
       const double dx = s.camera.look_at[0] - s.camera.position[0];
       const double dy = s.camera.look_at[1] - s.camera.position[1];
@@ -209,17 +207,44 @@ class SceneReader : TomlReader {
   }
 
   void sky(const toml::table& t, SkyDesc& s) const {
+    // Whether the model is "atmosphere", known after the loop (a table's keys come in any order).
+    const toml::node* model = t.get("model");
+    const bool atmosphere =
+        model && model->as_string() && model->as_string()->get() == "atmosphere";
+    bool visibility = false;
+    const toml::node* aerosol_key = nullptr;  // the first of the three given
+    auto atmosphere_only = [&](const toml::node& n) {
+      if (!atmosphere) fail(n, "this key belongs to sky.model = \"atmosphere\"");
+    };
+    auto aerosol = [&](const toml::node& n, bool& given) {
+      given = true;
+      if (!atmosphere) return;
+      if (aerosol_key)
+        fail(n,
+             "give the aerosols once: one of sky.turbidity, sky.visibility and "
+             "sky.dust_density");
+      aerosol_key = &n;
+    };
     for (auto&& [key, n] : t) {
       const std::string k(key.str());
       if (k == "model")
         s.model = static_cast<SkyModel>(choice_index(n, "sky.model", kSkyModelNames));
-      else if (k == "turbidity")
+      else if (k == "turbidity") {
         s.turbidity = number(n, "sky.turbidity", 1.7, 10.0);
-      else if (k == "air_density")
+        aerosol(n, s.turbidity_given);
+      } else if (k == "visibility") {
+        atmosphere_only(n);
+        s.visibility = number(n, "sky.visibility", 1.0, 300.0);
+        aerosol(n, visibility);
+      } else if (k == "ground_albedo") {
+        atmosphere_only(n);
+        s.ground_albedo = number(n, "sky.ground_albedo", 0.0, 1.0);
+      } else if (k == "air_density")
         s.air_density = number(n, "sky.air_density", 0.0, 10.0);
-      else if (k == "dust_density")
+      else if (k == "dust_density") {
         s.dust_density = number(n, "sky.dust_density", 0.0, 100.0);
-      else if (k == "ozone_density")
+        aerosol(n, s.dust_given);
+      } else if (k == "ozone_density")
         s.ozone_density = number(n, "sky.ozone_density", 0.0, 10.0);
       else if (k == "altitude")
         s.altitude = number(n, "sky.altitude", 0.0, 50000.0);
@@ -233,6 +258,11 @@ class SceneReader : TomlReader {
         s.scale = number(n, "sky.scale", 0.0, 1e6);
       else
         unknown(key, "sky");
+    }
+    if (atmosphere && s.turbidity_given && s.turbidity < kClearestLinkeTurbidity) {
+      fail(*t.get("turbidity"),
+           "sky.turbidity (Linke's) must be at least 2.21, the turbidity of "
+           "air without aerosols and 1.5 cm of water vapour");
     }
     if (s.model == SkyModel::Envmap && s.path.empty()) {
       throw InputError(at(t.source()),
@@ -505,31 +535,6 @@ class SceneReader : TomlReader {
 
 }  // namespace
 
-void check_camera(const CameraDesc& d) {
-  const glm::vec3 origin(d.position[0], d.position[1], d.position[2]);
-  const glm::vec3 target(d.look_at[0], d.look_at[1], d.look_at[2]);
-  const glm::vec3 up(d.up[0], d.up[1], d.up[2]);
-  if (glm::length(target - origin) < 1e-9f) {
-    throw InputError(d.look_at_where, "camera.look_at must differ from camera.position");
-  }
-  if (glm::length(glm::cross(glm::normalize(target - origin), up)) < 1e-6f) {
-    throw InputError(d.up_where,
-                     "camera.up must not be parallel to the viewing direction (nor zero)");
-  }
-}
-
-const char* name_of(Integrator integrator) {
-  return kIntegratorNames[static_cast<std::size_t>(integrator)];
-}
-const char* name_of(SkyModel model) { return kSkyModelNames[static_cast<std::size_t>(model)]; }
-
-std::optional<Integrator> integrator_named(std::string_view name) {
-  for (std::size_t i = 0; i < kIntegratorNames.size(); ++i) {
-    if (name == kIntegratorNames[i]) return static_cast<Integrator>(i);
-  }
-  return std::nullopt;
-}
-
 SceneDesc parse_scene(const std::string& text, const std::string& path) {
   return SceneReader(path).read(text);
 }
@@ -544,39 +549,6 @@ SceneDesc load_scene(const std::string& path) {
     if (!problem.empty()) throw InputError(f.where, f.key + " " + f.path + " " + problem);
   }
   return scene;
-}
-
-std::string frame_path(const std::string& path, int frame) {
-  const std::size_t first = path.find('#');
-  if (first == std::string::npos) return path;
-  std::size_t last = first;
-  while (last < path.size() && path[last] == '#') ++last;
-  std::string number = std::to_string(frame);
-  if (number.size() < last - first) number.insert(0, last - first - number.size(), '0');
-  return path.substr(0, first) + number + path.substr(last);
-}
-
-std::vector<std::string> scene_inputs(const SceneDesc& s) {
-  std::vector<std::string> in{s.path};
-  auto add = [&](const std::string& p) {
-    if (!p.empty()) in.push_back(p);
-  };
-  auto looks = [&](const BarkOverride& b, const LeafOverride& l) {
-    add(b.bump_map);
-    add(b.albedo_map);
-    add(l.albedo_map);
-  };
-  for (const TreeDesc& t : s.trees) {
-    add(t.species);
-    looks(t.bark, t.leaf);
-  }
-  for (const ForestDesc& f : s.forests) {
-    add(f.species);
-    looks(f.bark, f.leaf);
-  }
-  for (const MeshDesc& m : s.meshes) add(m.path);
-  if (s.sky.model == SkyModel::Envmap) add(s.sky.path);
-  return in;
 }
 
 }  // namespace arbor::formats

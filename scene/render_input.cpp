@@ -25,6 +25,11 @@ SkySpec sky_spec(const formats::SkyDesc& s) {
   sky.dust_density = s.dust_density;
   sky.ozone_density = s.ozone_density;
   sky.altitude = s.altitude;
+  sky.visibility = s.visibility;
+  sky.turbidity_given = s.turbidity_given;
+  sky.dust_given = s.dust_given;
+  // A description made in code has no [ground] read with it: the default ground's.
+  sky.ground_albedo = s.ground_albedo >= 0.0 ? s.ground_albedo : formats::mean_albedo({});
   sky.color = {s.color[0], s.color[1], s.color[2]};
   sky.path = s.path;
   sky.rotation = s.rotation;

@@ -52,9 +52,13 @@ struct SkySpec {
   formats::SkyModel model = formats::SkyModel::None;
   double turbidity = 0.0;                                                             // preetham
   double air_density = 1.0, dust_density = 1.0, ozone_density = 1.0, altitude = 0.0;  // nishita
-  glm::dvec3 color{1.0};                                                              // constant
-  std::string path;                                                                   // envmap
-  double rotation = 0.0, scale = 1.0;                                                 // envmap
+  // atmosphere (formats::SkyDesc): the aerosols by the key given, the ground's albedo
+  double visibility = 0.0;
+  bool turbidity_given = false, dust_given = false;
+  double ground_albedo = 0.0;
+  glm::dvec3 color{1.0};               // constant
+  std::string path;                    // envmap
+  double rotation = 0.0, scale = 1.0;  // envmap
 };
 
 struct RenderInput {

@@ -208,4 +208,41 @@ TEST(SceneFile, CameraAndOutputErrorsAreFoundWithTheirKey) {
   expect_error("[output]\npng = \"out/a.exr\"\n", 2, 7, "output.png must name a .png file");
 }
 
+// The atmosphere sky's keys: the aerosols by one of three keys, the ground's albedo by default
+// from [ground], and the keys that belong to it refused elsewhere, at the key.
+TEST(SceneFile, TheAtmosphereSkysKeys) {
+  const SceneDesc a = parse_scene(
+      "[sky]\nmodel = \"atmosphere\"\nvisibility = 40.0\n[ground]\nalbedo = [0.2, 0.2, 0.2]\n",
+      "s.toml");
+  EXPECT_EQ(a.sky.model, SkyModel::Atmosphere);
+  EXPECT_DOUBLE_EQ(a.sky.visibility, 40.0);
+  EXPECT_FALSE(a.sky.turbidity_given);
+  EXPECT_FALSE(a.sky.dust_given);
+  EXPECT_NEAR(a.sky.ground_albedo, 0.2, 1e-12);  // [ground]'s, no patches
+  const SceneDesc b = parse_scene(
+      "[sky]\nmodel = \"atmosphere\"\nturbidity = 4.0\nground_albedo = 0.3\n[ground]\n"
+      "patch_cover = 0.5\n",
+      "s.toml");
+  EXPECT_TRUE(b.sky.turbidity_given);
+  EXPECT_DOUBLE_EQ(b.sky.ground_albedo, 0.3);  // given: [ground] does not matter
+  // Half soil, half grass: the mean of the two luminances.
+  const SceneDesc c = parse_scene("[ground]\npatch_cover = 0.5\n", "s.toml");
+  const GroundDesc g;
+  auto y = [](const Rgb& v) { return 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2]; };
+  EXPECT_NEAR(c.sky.ground_albedo, 0.5 * (y(g.albedo) + y(g.patch_albedo)), 1e-12);
+
+  expect_error("[sky]\nmodel = \"atmosphere\"\nturbidity = 3.0\nvisibility = 30.0\n", 4, 14,
+               "give the aerosols once");
+  expect_error("[sky]\nmodel = \"atmosphere\"\ndust_density = 2.0\nturbidity = 3.0\n", 4, 13,
+               "give the aerosols once");
+  expect_error("[sky]\nmodel = \"atmosphere\"\nturbidity = 2.0\n", 3, 13, "at least 2.21");
+  expect_error("[sky]\nmodel = \"nishita\"\nvisibility = 30.0\n", 3, 14,
+               "belongs to sky.model = \"atmosphere\"");
+  expect_error("[sky]\nground_albedo = 0.2\n", 2, 17, "belongs to sky.model");
+  expect_error("[sky]\nmodel = \"atmosphere\"\nvisibility = 500.0\n", 3, 14, "sky.visibility");
+  expect_error("[sky]\nmodel = \"atmosphere\"\nground_albedo = 1.5\n", 3, 17, "sky.ground_albedo");
+  // Preetham's turbidity keeps its own range.
+  EXPECT_NO_THROW(parse_scene("[sky]\nturbidity = 2.0\n", "s.toml"));
+}
+
 }  // namespace arbor::formats

@@ -47,6 +47,20 @@ double atmosphere::mie_forward_fraction() {
   return f;
 }
 
+double atmosphere::dust_for_turbidity(double linke_turbidity) {
+  constexpr double m = 2.0, water = 1.5;  // air mass, precipitable water (cm)
+  const double clean = -0.101 + 0.235 * std::pow(m, -0.16);
+  const double vapour = 0.112 * std::pow(m, -0.55) * std::pow(water, 0.34);
+  const double aerosol = linke_turbidity / (9.4 + 0.9 * m) - clean - vapour;
+  // The aerosols' optical depth is the column of dust 1 (its scale height) × its extinction.
+  return std::max(0.0, aerosol) / (kMieExtinction * kMieHeight);
+}
+
+double atmosphere::dust_for_visibility(double km) {
+  const double extinction = 3.912 / (km * 1e3) - NishitaSky::rayleigh_scattering(550.0);
+  return std::max(0.0, extinction) / kMieExtinction;
+}
+
 double NishitaSky::rayleigh_scattering(double nm) {
   // β = 8π³ (n² − 1)² / (3 N λ⁴) × (6 + 3ρ) / (6 − 7ρ) (the King correction for depolarisation
   // ρ = 0.0279), with the refractive index of standard air (15 °C, 101 325 Pa) by Peck & Reeder's

@@ -58,6 +58,16 @@ inline bool hits_earth(double r, double mu) {
   return mu < 0.0 && r * r * (mu * mu - 1.0) + kEarthRadius * kEarthRadius >= 0.0;
 }
 
+// The dust_density of Linke's turbidity TL (at air mass 2, Kasten 1980's pyrheliometric formula
+// TL = (9.4 + 0.9 M) δ with δ the broadband optical depth): δ = δ_cda + δ_w + δ_a, the
+// clean dry atmosphere's δ_cda = −0.101 + 0.235 M^−0.16 and the water vapour's
+// δ_w = 0.112 M^−0.55 w^0.34 fitted by Molineaux, Ineichen & O'Neill 1998 (Appl. Opt. 37), w =
+// 1.5 cm, and δ_a the aerosols' optical depth at 700 nm (their equivalence). TL 3 → δ_a 0.071.
+double dust_for_turbidity(double linke_turbidity);
+// The dust_density of a meteorological visibility in km (Koschmieder: 3.912 / the extinction at
+// 550 nm at the ground, the air's included). 50 km → 2.4, 20 km → 6.4.
+double dust_for_visibility(double km);
+
 }  // namespace atmosphere
 
 struct Atmosphere {

@@ -1,5 +1,6 @@
-// Nishita's single-scattering sky (nishita.h) as a map, white-balanced to the sun outside the
-// atmosphere, and the sun's irradiance at the ground through the same atmosphere.
+// Nishita's single-scattering sky (nishita.h), or the atmosphere's every order, as a map,
+// white-balanced to the sun outside the atmosphere, and the sun's irradiance at the ground through
+// the same atmosphere.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -19,6 +20,16 @@ SkyMap nishita_sky_map(const SkyContext& c) {
   Atmosphere atmosphere;
   atmosphere.air_density = c.sky.air_density;
   atmosphere.dust_density = c.sky.dust_density;
+  if (c.sky.model == formats::SkyModel::Atmosphere) {
+    // Every order of scattering over a ground of the albedo given; the aerosols by the key given.
+    atmosphere.multiple_scattering = true;
+    atmosphere.ground_albedo = c.sky.ground_albedo;
+    if (!c.sky.dust_given) {
+      atmosphere.dust_density = c.sky.visibility > 0.0
+                                    ? atmosphere::dust_for_visibility(c.sky.visibility)
+                                    : atmosphere::dust_for_turbidity(c.sky.turbidity);
+    }
+  }
   atmosphere.ozone_density = c.sky.ozone_density;
   atmosphere.altitude = c.sky.altitude;
   // [sun] irradiance is the sun's outside the atmosphere (as CIE Y); what reaches the ground is

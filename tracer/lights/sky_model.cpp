@@ -21,6 +21,8 @@ SkyMap make_sky_map(const SkyContext& context) {
     case formats::SkyModel::Constant: return constant_sky_map(context);
     case formats::SkyModel::Envmap: return envmap_sky_map(context);
     case formats::SkyModel::Nishita: return cached_sky_map(context, "nishita", nishita_sky_map);
+    case formats::SkyModel::Atmosphere:
+      return cached_sky_map(context, "atmosphere", nishita_sky_map);
     case formats::SkyModel::None: break;
   }
   throw std::logic_error("make_sky_map: no map for this sky model");
