@@ -6,7 +6,9 @@
 //   40,000 paths a direction, errors 0.6–2.3 %) in 7 directions — the zenith, the horizon at 5°
 //   towards, across and away from the sun, 30° up at 45° and 135° from it, 15° above the sun —
 //   counters d0 … d6 (each direction's ratio, in that order), ratio_min, ratio_max and worst (the
-//   largest |ratio − 1|).
+//   largest |ratio − 1|);
+// - aerial/sun:E: the aerial perspective table (tracer/lights/aerial.h) of the atmosphere model at
+//   Linke turbidity 3 (the model built outside the timing).
 //   build/sky_bench --benchmark_out=sky.json --benchmark_out_format=json
 #include <algorithm>
 #include <cmath>
@@ -17,6 +19,7 @@
 #include <benchmark/benchmark.h>
 
 #include "common/math.h"
+#include "tracer/lights/aerial.h"
 #include "tracer/lights/nishita.h"
 #include "tracer/lights/sky_monte_carlo.h"
 
@@ -71,8 +74,20 @@ void accuracy(benchmark::State& state) {
   state.counters["worst"] = std::max(1.0 - lo, hi - 1.0);
 }
 
+void aerial(benchmark::State& state) {
+  Atmosphere a = air(true);
+  a.dust_density = atmosphere::dust_for_turbidity(3.0);
+  const NishitaSky model(a, direction(static_cast<double>(state.range(0)), 0.0), 1.0);
+  const auto xyz = [](const glm::dvec3& v) { return glm::vec3(v); };
+  for (auto _ : state) {
+    const AerialPerspective table(model, xyz, model.extraterrestrial_xyz().y);
+    benchmark::DoNotOptimize(table.at(glm::vec3(1.0f, 0.0f, 0.0f), 5000.0f));
+  }
+}
+
 }  // namespace
 
+BENCHMARK(aerial)->ArgName("sun")->Arg(40)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(build)
     ->ArgNames({"model", "sun"})
     ->ArgsProduct({{0, 1}, {10, 40, 60}})

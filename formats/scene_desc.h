@@ -42,6 +42,9 @@ struct RenderSettings {
   double noise_threshold = 0.0;  // adaptive sampling: relative standard error to stop at; 0: off
   int min_spp = 16;  // adaptive sampling: samples before a pixel may stop (and 2 passes)
   int threads = 0;   // 0: all cores (command line only)
+  // The air between the camera and what it sees (the nishita and atmosphere skies' atmosphere,
+  // the path integrator): off for references
+  bool aerial_perspective = false;
 };
 
 struct CameraDesc {

@@ -63,6 +63,8 @@ class SceneReader : TomlReader {
     }
     check_camera(s.camera);
     if (s.sky.ground_albedo < 0.0) s.sky.ground_albedo = mean_albedo(s.ground);
+    if (s.render.aerial_perspective)
+      check_aerial(*root.at_path("render.aerial_perspective").node(), s);
     if (s.camera.focus_distance == 0.0) {
       const double dx = s.camera.look_at[0] - s.camera.position[0];
       const double dy = s.camera.look_at[1] - s.camera.position[1];
@@ -133,9 +135,21 @@ class SceneReader : TomlReader {
         r.noise_threshold = number(n, "render.noise_threshold", 0.0, 1.0);
       else if (k == "min_spp")
         r.min_spp = static_cast<int>(integer(n, "render.min_spp", 0, 1 << 20));
+      else if (k == "aerial_perspective")
+        r.aerial_perspective = boolean(n, "render.aerial_perspective");
       else
         unknown(key, "render");
     }
+  }
+
+  // Aerial perspective is the air of the nishita or atmosphere sky, seen by the path integrator.
+  void check_aerial(const toml::node& n, const SceneDesc& s) const {
+    if (s.sky.model != SkyModel::Nishita && s.sky.model != SkyModel::Atmosphere)
+      fail(n,
+           "render.aerial_perspective needs sky.model = \"atmosphere\" or \"nishita\" (the "
+           "air it models)");
+    if (s.render.integrator != Integrator::Path)
+      fail(n, "render.aerial_perspective needs render.integrator = \"path\"");
   }
 
   void camera(const toml::table& t, CameraDesc& c) const {

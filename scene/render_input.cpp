@@ -58,6 +58,7 @@ RenderInput render_input(const formats::SceneDesc& d) {
   in.camera = camera_spec(d.camera);
   in.sun = sun_spec(d.sun);
   in.sky = sky_spec(d.sky);
+  in.sky.aerial_perspective = r.aerial_perspective;
   in.output = d.output;
   return in;
 }

@@ -56,8 +56,9 @@ struct SkySpec {
   double visibility = 0.0;
   bool turbidity_given = false, dust_given = false;
   double ground_albedo = 0.0;
-  glm::dvec3 color{1.0};               // constant
-  std::string path;                    // envmap
+  bool aerial_perspective = false;  // [render]'s: the Sky builds the table (tracer/lights/aerial.h)
+  glm::dvec3 color{1.0};            // constant
+  std::string path;                 // envmap
   double rotation = 0.0, scale = 1.0;  // envmap
 };
 

@@ -245,4 +245,21 @@ TEST(SceneFile, TheAtmosphereSkysKeys) {
   EXPECT_NO_THROW(parse_scene("[sky]\nturbidity = 2.0\n", "s.toml"));
 }
 
+// Aerial perspective: off unless asked; it needs the air of the atmosphere or nishita sky and the
+// path integrator, refused at the key otherwise.
+TEST(SceneFile, AerialPerspectiveNeedsAnAtmosphereAndThePathIntegrator) {
+  EXPECT_FALSE(parse_scene("", "s.toml").render.aerial_perspective);
+  EXPECT_TRUE(
+      parse_scene("[render]\naerial_perspective = true\n[sky]\nmodel = \"atmosphere\"\n", "s.toml")
+          .render.aerial_perspective);
+  EXPECT_NO_THROW(
+      parse_scene("[sky]\nmodel = \"nishita\"\n[render]\naerial_perspective = true\n", "s.toml"));
+  expect_error("[render]\naerial_perspective = true\n", 2, 22, "needs sky.model = \"atmosphere\"");
+  expect_error(
+      "[render]\naerial_perspective = true\nintegrator = \"treemaker\"\n[sky]\n"
+      "model = \"atmosphere\"\n",
+      2, 22, "needs render.integrator = \"path\"");
+  expect_error("[render]\naerial_perspective = 1\n", 2, 22, "true or false");
+}
+
 }  // namespace arbor::formats

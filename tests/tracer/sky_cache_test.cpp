@@ -103,6 +103,19 @@ TEST(SkyCache, EveryInputOfTheMapChangesTheKey) {
   const imaging::ColorTransform doubled = [](float* rgb) { rgb[0] *= 2.0f; };
   const SkyContext other{f.sky, f.sun, f.context().sun_direction, doubled, 32, 0.25f};
   EXPECT_NE(sky_cache_key(other, "nishita"), base);
+  // The atmosphere's own inputs: its ground and which key gave the aerosols.
+  Fixture a = f;
+  a.sky.model = formats::SkyModel::Atmosphere;
+  const std::uint64_t atmosphere = sky_cache_key(a.context(), "atmosphere");
+  const auto atmosphere_changed = [&](auto&& change) {
+    Fixture g = a;
+    change(g);
+    return sky_cache_key(g.context(), "atmosphere") != atmosphere;
+  };
+  EXPECT_TRUE(atmosphere_changed([](Fixture& g) { g.sky.ground_albedo = 0.3; }));
+  EXPECT_TRUE(atmosphere_changed([](Fixture& g) { g.sky.visibility = 40.0; }));
+  EXPECT_TRUE(atmosphere_changed([](Fixture& g) { g.sky.dust_given = true; }));
+  EXPECT_TRUE(atmosphere_changed([](Fixture& g) { g.sky.turbidity_given = true; }));
 }
 
 TEST(SkyCache, DamagedOrTruncatedFilesAreComputedAgain) {

@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "common/frame.h"
+#include "tracer/lights/aerial.h"
 
 namespace arbor::tracer {
 
@@ -25,6 +26,23 @@ bool picks_sun(const PathIntegrator::LightChoice& c, const PixelSampler& sampler
   if (c.sun >= 1.0f) return true;
   if (c.sun <= 0.0f) return false;
   return sampler.get2d(index, dim).x < c.sun;
+}
+
+// What the camera ray's hit records (the AOVs), and the air before the surface when the sky has
+// aerial perspective: the surface's light dimmed, the air's own light added.
+void first_hit(const WorldHit& hit, const materials::SurfaceBsdf& sh, const Ray& ray,
+               const Sky& sky, PathSample& out, glm::vec3& beta) {
+  out.albedo = sh.albedo;
+  out.normal = sh.normal;
+  out.depth = hit.surface.t;
+  out.hit = true;
+  out.object_id = hit.object_id;
+  out.material_id = hit.material_id;
+  if (const AerialPerspective* air = sky.aerial()) {
+    const AerialPerspective::Sample a = air->at(ray.direction, hit.surface.t);
+    out.radiance += a.inscattered;
+    beta *= a.transmittance;
+  }
 }
 
 }  // namespace
@@ -90,14 +108,7 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
     }
     const SurfaceHit& s = hit.surface;
     const materials::SurfaceBsdf sh = hit.material->bsdf(hit.point());
-    if (depth == 0) {
-      out.albedo = sh.albedo;
-      out.normal = sh.normal;
-      out.depth = s.t;
-      out.hit = true;
-      out.object_id = hit.object_id;
-      out.material_id = hit.material_id;
-    }
+    if (depth == 0) first_hit(hit, sh, ray, sky_, out, beta);
     if (depth >= max_depth_) break;
     const ShadingFrame frame(sh.normal);
     const glm::dvec3 wo = frame.local(-ray.direction);

@@ -218,38 +218,67 @@ glm::dvec3 NishitaSky::radiance_xyz(const glm::dvec3& view, int steps) const {
     const double a = double(i) / steps, b = double(i + 1) / steps;
     const double t = length * 0.25 * (a + b) * (a + b), dt = length * (b * b - a * a);
     const glm::dvec3 p = glm::dvec3(0.0, 0.0, r0_) + d * t;
-    const double r = glm::length(p);
-    const Depth rho = densities(r);
-    // The depth to the midpoint: everything before it and half of this step.
-    const Depth to_point{seen.rayleigh + 0.5 * rho.rayleigh * dt, seen.mie + 0.5 * rho.mie * dt,
-                         seen.ozone + 0.5 * rho.ozone * dt};
-    seen.rayleigh += rho.rayleigh * dt;
-    seen.mie += rho.mie * dt;
-    seen.ozone += rho.ozone * dt;
-    const double mu_sun = glm::dot(p, sun_) / r;
-    if (a_.multiple_scattering) {
-      // Light scattered more than once: σ_s ψ_ms (Hillaire 2020, eq. 11), lit in the shadow too.
-      const Spectrum psi = multiple_scattering(r, mu_sun), ss = scattering(rho),
-                     tau = scaled_depth(to_point);
-      for (int k = 0; k < kWavelengths; ++k) l[k] += ss[k] * psi[k] * dt * std::exp(-tau[k]);
-    }
-    const Depth sun = depth_to_sun(r, mu_sun);
-    if (!std::isfinite(sun.rayleigh)) continue;  // the point is in the Earth's shadow
-    const double mie = kMieScattering * rho.mie * pm * dt;
-    // With multiple scattering, δ-M scaled towards the observer (nishita_multiple.cpp) and true
-    // towards the sun; without, Nishita's.
-    const double mie_depth = a_.multiple_scattering
-                                 ? mie_extinction_ * to_point.mie + kMieExtinction * sun.mie
-                                 : kMieExtinction * (to_point.mie + sun.mie);
-    for (int k = 0; k < kWavelengths; ++k) {
-      const double tau = beta_r_[k] * (to_point.rayleigh + sun.rayleigh) + mie_depth +
-                         sigma_o_[k] * (to_point.ozone + sun.ozone);
-      l[k] += (beta_r_[k] * rho.rayleigh * pr * dt + mie) * std::exp(-tau);
-    }
+    scatter_step(p, dt, pr, pm, seen, l);
   }
   glm::dvec3 xyz(0.0);
   for (int k = 0; k < kWavelengths; ++k) xyz += l[k] * solar_[k] * cmf_[k];
   return xyz;
+}
+
+void NishitaSky::scatter_step(const glm::dvec3& p, double dt, double pr, double pm, Depth& seen,
+                              Spectrum& l) const {
+  const double r = glm::length(p);
+  const Depth rho = densities(r);
+  // The depth to the midpoint: everything before it and half of this step.
+  const Depth to_point{seen.rayleigh + 0.5 * rho.rayleigh * dt, seen.mie + 0.5 * rho.mie * dt,
+                       seen.ozone + 0.5 * rho.ozone * dt};
+  seen.rayleigh += rho.rayleigh * dt;
+  seen.mie += rho.mie * dt;
+  seen.ozone += rho.ozone * dt;
+  const double mu_sun = glm::dot(p, sun_) / r;
+  if (a_.multiple_scattering) {
+    // Light scattered more than once: σ_s ψ_ms (Hillaire 2020, eq. 11), lit in the shadow too.
+    const Spectrum psi = multiple_scattering(r, mu_sun), ss = scattering(rho),
+                   tau = scaled_depth(to_point);
+    for (int k = 0; k < kWavelengths; ++k) l[k] += ss[k] * psi[k] * dt * std::exp(-tau[k]);
+  }
+  const Depth sun = depth_to_sun(r, mu_sun);
+  if (!std::isfinite(sun.rayleigh)) return;  // the point is in the Earth's shadow
+  const double mie = kMieScattering * rho.mie * pm * dt;
+  // With multiple scattering, δ-M scaled towards the observer (nishita_multiple.cpp) and true
+  // towards the sun; without, Nishita's.
+  const double mie_depth = a_.multiple_scattering
+                               ? mie_extinction_ * to_point.mie + kMieExtinction * sun.mie
+                               : kMieExtinction * (to_point.mie + sun.mie);
+  for (int k = 0; k < kWavelengths; ++k) {
+    const double tau = beta_r_[k] * (to_point.rayleigh + sun.rayleigh) + mie_depth +
+                       sigma_o_[k] * (to_point.ozone + sun.ozone);
+    l[k] += (beta_r_[k] * rho.rayleigh * pr * dt + mie) * std::exp(-tau);
+  }
+}
+
+std::vector<NishitaSky::Segment> NishitaSky::segments(const glm::dvec3& view,
+                                                      const std::vector<double>& at,
+                                                      int steps) const {
+  const glm::dvec3 d = glm::normalize(view), origin(0.0, 0.0, r0_);
+  const double cos_scatter = glm::dot(d, sun_);
+  const double pr = rayleigh_phase(cos_scatter), pm = mie_phase(cos_scatter);
+  std::vector<Segment> out(at.size());
+  Spectrum l{};
+  Depth seen;
+  double start = 0.0;
+  for (std::size_t n = 0; n < at.size(); ++n) {
+    const double dt = (at[n] - start) / steps;
+    for (int i = 0; i < steps; ++i)
+      scatter_step(origin + d * (start + (i + 0.5) * dt), dt, pr, pm, seen, l);
+    start = at[n];
+    const Spectrum tau = a_.multiple_scattering ? scaled_depth(seen) : optical_depth(seen);
+    for (int k = 0; k < kWavelengths; ++k) {
+      out[n].inscattered += l[k] * solar_[k] * cmf_[k];
+      out[n].transmitted += std::exp(-tau[k]) * solar_[k] * cmf_[k];
+    }
+  }
+  return out;
 }
 
 }  // namespace arbor::tracer

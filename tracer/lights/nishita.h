@@ -98,6 +98,16 @@ class NishitaSky {
   glm::dvec3 sun_irradiance_xyz() const { return sun_xyz_; }
   // The sun's irradiance outside the atmosphere, CIE XYZ (Y is the irradiance given).
   glm::dvec3 extraterrestrial_xyz() const { return space_xyz_; }
+  // Along `view` (unit) from the observer, at each of the ascending distances `at` (metres): the
+  // light the air before it scatters towards the observer (CIE XYZ, in radiance_xyz's units) and
+  // the extraterrestrial sun's XYZ after the path's transmittance (δ-M scaled with multiple
+  // scattering, as the view ray's way back is; nishita_multiple.cpp) — aerial perspective's
+  // inputs (aerial.h). `steps` midpoint steps between consecutive distances.
+  struct Segment {
+    glm::dvec3 inscattered{0.0}, transmitted{0.0};
+  };
+  std::vector<Segment> segments(const glm::dvec3& view, const std::vector<double>& at,
+                                int steps) const;
   // Transmittance of the atmosphere from the observer towards `direction`, at wavelength index k.
   double transmittance(const glm::dvec3& direction, int k) const;
   // What wavelength k adds to XYZ per unit of radiance relative to the extraterrestrial sun
@@ -129,8 +139,14 @@ class NishitaSky {
   };
   static TableCell table_cell(double r, double mu, int rows, int cols);
   Depth integrate_to_space(double r, double mu, int steps) const;
-  std::array<double, kWavelengths> optical_depth(const Depth& d) const;
   using Spectrum = std::array<double, kWavelengths>;
+  // One quadrature step of a view ray, of length dt at the point p (from the Earth's centre): adds
+  // the light it scatters towards the observer (per wavelength, relative to the extraterrestrial
+  // sun) to l and its column densities to `seen`; pr and pm, the phase functions at the angle
+  // between the ray and the sun.
+  void scatter_step(const glm::dvec3& p, double dt, double pr, double pm, Depth& seen,
+                    Spectrum& l) const;
+  std::array<double, kWavelengths> optical_depth(const Depth& d) const;
   // Multiple scattering (nishita_multiple.cpp): the table ψ_ms over altitude and the sun's cos
   // zenith, and its bilinear lookup at radius r.
   void build_multiple_scattering();

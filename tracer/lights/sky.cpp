@@ -40,6 +40,7 @@ Sky::Sky(const scene::SkySpec& sky, const scene::SunSpec& sun,
   width_ = map.width;
   height_ = map.height;
   map_ = std::move(map.texels);
+  aerial_ = std::move(map.aerial);
   if (map.sun_irradiance && sun_present_) {
     // The atmosphere's sun: coloured and dimmed on its way to the ground.
     const glm::vec3 e = *map.sun_irradiance;

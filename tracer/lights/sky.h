@@ -4,6 +4,7 @@
 // and coloured by the same atmosphere).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,9 @@ class Sky {
   LightSample sample_sun(glm::vec2 u) const;
   float sun_pdf() const;  // uniform over the disk's cone
   bool in_sun(const glm::vec3& direction) const;
+  // The air between the camera and a surface (`[render] aerial_perspective` with the nishita or
+  // atmosphere sky), else null.
+  const AerialPerspective* aerial() const { return aerial_.get(); }
 
  private:
   glm::vec2 to_map(const glm::vec3& d) const;
@@ -76,6 +80,7 @@ class Sky {
   glm::vec3 sun_irradiance_color_{0.0f};
   double sun_one_minus_cos_ = 0.0;  // 1 - cos α, the cone's solid angle / 2π
   glm::dvec3 sun_direction_d_{0.0, 0.0, 1.0};
+  std::shared_ptr<const AerialPerspective> aerial_;
 };
 
 }  // namespace arbor::tracer

@@ -14,15 +14,27 @@ SkyMap preetham_sky_map(const SkyContext& context);
 SkyMap constant_sky_map(const SkyContext& context);
 SkyMap envmap_sky_map(const SkyContext& context);
 SkyMap nishita_sky_map(const SkyContext& context);
+std::shared_ptr<const AerialPerspective> nishita_aerial(const SkyContext& context);
+
+namespace {
+
+// The Nishita or atmosphere map from the cache, with its aerial perspective when asked for (a
+// map read back has none: it is made from the model again).
+SkyMap atmosphere_map(const SkyContext& context, const char* model) {
+  SkyMap map = cached_sky_map(context, model, nishita_sky_map);
+  if (context.sky.aerial_perspective && !map.aerial) map.aerial = nishita_aerial(context);
+  return map;
+}
+
+}  // namespace
 
 SkyMap make_sky_map(const SkyContext& context) {
   switch (context.sky.model) {
     case formats::SkyModel::Preetham: return preetham_sky_map(context);
     case formats::SkyModel::Constant: return constant_sky_map(context);
     case formats::SkyModel::Envmap: return envmap_sky_map(context);
-    case formats::SkyModel::Nishita: return cached_sky_map(context, "nishita", nishita_sky_map);
-    case formats::SkyModel::Atmosphere:
-      return cached_sky_map(context, "atmosphere", nishita_sky_map);
+    case formats::SkyModel::Nishita: return atmosphere_map(context, "nishita");
+    case formats::SkyModel::Atmosphere: return atmosphere_map(context, "atmosphere");
     case formats::SkyModel::None: break;
   }
   throw std::logic_error("make_sky_map: no map for this sky model");

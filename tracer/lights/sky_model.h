@@ -5,6 +5,7 @@
 // formats/scene_desc.h, its source in tracer/CMakeLists.txt.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -15,6 +16,8 @@
 #include "scene/render_input.h"
 
 namespace arbor::tracer {
+
+class AerialPerspective;
 
 // What a model is made from.
 struct SkyContext {
@@ -32,6 +35,8 @@ struct SkyMap {
   int width = 0, height = 0;
   std::vector<glm::vec3> texels;
   std::optional<glm::vec3> sun_irradiance;  // at the ground, when the model's atmosphere colours it
+  // The atmosphere's aerial perspective, when the sky spec asks for it (never cached on disk)
+  std::shared_ptr<const AerialPerspective> aerial;
 };
 
 // The map of `context.sky.model` (not SkyModel::None). InputError for an unreadable envmap.
