@@ -55,6 +55,7 @@ struct CameraDesc {
   double aperture_radius = 0.0;            // metres
   double focus_distance = 0.0;             // metres; 0: distance to look_at
   double exposure = 0.0;                   // stops
+  bool auto_exposure = false;              // exposure = "auto": metered (tracer/exposure.h)
   SourceLocation look_at_where, up_where;  // the keys' positions, for errors (else the file's)
 };
 

@@ -174,7 +174,11 @@ class SceneReader : TomlReader {
         c.aperture_radius = number(n, "camera.aperture_radius", 0.0, 100.0);
       else if (k == "focus_distance")
         c.focus_distance = number(n, "camera.focus_distance", 1e-4, 1e7);
-      else if (k == "exposure")
+      else if (k == "exposure" && n.is_string()) {
+        if (text(n, "camera.exposure") != "auto")
+          fail(n, "camera.exposure must be a number of stops or \"auto\"");
+        c.auto_exposure = true;
+      } else if (k == "exposure")
         c.exposure = number(n, "camera.exposure", -64.0, 64.0);
       else
         unknown(key, "camera");

@@ -9,8 +9,8 @@ glm::dvec3 vec(const formats::Vec3d& v) { return {v[0], v[1], v[2]}; }
 }  // namespace
 
 CameraSpec camera_spec(const formats::CameraDesc& c) {
-  return {vec(c.position),   vec(c.look_at),   vec(c.up), c.fov,
-          c.aperture_radius, c.focus_distance, c.exposure};
+  return {vec(c.position),   vec(c.look_at),   vec(c.up),  c.fov,
+          c.aperture_radius, c.focus_distance, c.exposure, c.auto_exposure};
 }
 
 SunSpec sun_spec(const formats::SunDesc& s) {

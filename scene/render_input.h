@@ -39,6 +39,7 @@ struct CameraSpec {
   double aperture_radius = 0.0;  // metres
   double focus_distance = 0.0;   // metres; 0: distance to look_at
   double exposure = 0.0;         // stops
+  bool auto_exposure = false;    // metered before rendering (tracer/exposure.h)
 };
 
 struct SunSpec {

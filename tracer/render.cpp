@@ -2,6 +2,8 @@
 // either integrator.
 #include "tracer/render.h"
 
+#include "tracer/exposure.h"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -197,8 +199,9 @@ PassPlan pass_plan_for(const scene::RenderSpec& r) {
   return {r.samples(), r.pass_spp, r.independent_passes};
 }
 
-imaging::Image render_image(const scene::RenderInput& input, const World& world, const Sky& sky,
+imaging::Image render_image(const scene::RenderInput& asked, const World& world, const Sky& sky,
                             const imaging::ColorTransform& to_output, imaging::RenderStats& stats) {
+  const scene::RenderInput input = with_exposure(asked, world, sky);
   const scene::RenderSpec& r = input.render;
   const bool treemaker = r.integrator == formats::Integrator::Treemaker;
   RenderJob job;

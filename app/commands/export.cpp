@@ -15,6 +15,10 @@
 #include "scene/frame.h"
 #include "scene/render_input.h"
 #include "scene/scene.h"
+#include "tracer/embree/embree_device.h"
+#include "tracer/embree/world.h"
+#include "tracer/exposure.h"
+#include "tracer/lights/sky.h"
 #include "tracer/pbrt_scene.h"
 
 namespace arbor::app {
@@ -70,8 +74,16 @@ int export_command(const ExportRequest& a) {
   const std::unique_ptr<const scene::Scene> built =
       scene::build_scene(scene, color.config_path(), &build_progress);
   build_progress.finish();
-  const PbrtExport result =
-      write_pbrt_scene(*built, scene::render_input(scene), color, a.out, a.sky_resolution);
+  scene::RenderInput input = scene::render_input(scene);
+  if (input.camera.auto_exposure) {
+    // pbrt has no meter: the exposure arbor's render meters, written as a fixed scale.
+    const EmbreeDevice device("");
+    const World world(*built, device);
+    const Sky sky(input.sky, input.sun, color.xyz_to_scene_linear());
+    input = with_exposure(input, world, sky);
+    std::fprintf(stderr, "arbor: metered exposure %+.2f stops\n", input.camera.exposure);
+  }
+  const PbrtExport result = write_pbrt_scene(*built, input, color, a.out, a.sky_resolution);
   for (const std::string& c : result.clamped) {
     std::fprintf(stderr, "arbor: warning: %s is outside [0, 1] in pbrt's %s space; clamped\n",
                  c.c_str(), result.space.c_str());

@@ -32,6 +32,7 @@
 #include "scene/scene.h"
 #include "tracer/embree/embree_device.h"
 #include "tracer/embree/world.h"
+#include "tracer/exposure.h"
 #include "tracer/film_file.h"
 #include "tracer/lights/sky.h"
 #include "tracer/render.h"
@@ -322,6 +323,10 @@ RunResult build_and_render(const formats::SceneDesc& scene, const scene::RenderI
   header.object_names = built->object_names;
   header.material_names = built->material_names;
   const Sky sky(input.sky, input.sun, color.xyz_to_scene_linear());
+  // [camera] exposure = "auto": metered from a preview, the same for every unit and resume.
+  const scene::RenderInput metered = with_exposure(input, world, sky);
+  if (input.camera.auto_exposure)
+    std::fprintf(stderr, "arbor: metered exposure %+.2f stops\n", metered.camera.exposure);
 
   RunResult result;
   result.instances = built->stats.instances;
@@ -348,8 +353,9 @@ RunResult build_and_render(const formats::SceneDesc& scene, const scene::RenderI
   stop_gracefully_on_signal(true);
   const imaging::ColorTransform to_output = color.to_output(scene.output.colorspace);
   result.outcome =
-      treemaker ? render_treemaker(input, world, sky, to_output, job, film, &progress, result.stats)
-                : render_path(input, world, sky, to_output, job, film, &progress, result.stats);
+      treemaker
+          ? render_treemaker(metered, world, sky, to_output, job, film, &progress, result.stats)
+          : render_path(metered, world, sky, to_output, job, film, &progress, result.stats);
   progress.finish();
   header.seconds = seconds_before + result.stats.seconds;
   header.nonfinite += result.stats.nonfinite;

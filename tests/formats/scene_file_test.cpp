@@ -262,4 +262,13 @@ TEST(SceneFile, AerialPerspectiveNeedsAnAtmosphereAndThePathIntegrator) {
   expect_error("[render]\naerial_perspective = 1\n", 2, 22, "true or false");
 }
 
+TEST(SceneFile, ExposureIsStopsOrAuto) {
+  EXPECT_TRUE(parse_scene("[camera]\nexposure = \"auto\"\n", "s.toml").camera.auto_exposure);
+  const SceneDesc fixed = parse_scene("[camera]\nexposure = 1.5\n", "s.toml");
+  EXPECT_FALSE(fixed.camera.auto_exposure);
+  EXPECT_DOUBLE_EQ(fixed.camera.exposure, 1.5);
+  expect_error("[camera]\nexposure = \"bright\"\n", 2, 12, "a number of stops or \"auto\"");
+  expect_error("[camera]\nexposure = true\n", 2, 12, "camera.exposure");
+}
+
 }  // namespace arbor::formats
