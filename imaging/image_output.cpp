@@ -235,6 +235,7 @@ void add_render_attributes(Imf::Header& header, const Image& img, const OutputSp
   if (meta.incomplete) integer("arbor:incomplete", 1);
   if (!meta.stopped.empty()) text("arbor:stopped", meta.stopped);
   if (!meta.treemaker_weights.empty()) text("arbor:treemaker_weights", meta.treemaker_weights);
+  if (!meta.exposure.empty()) text("arbor:exposure", meta.exposure);
 }
 
 // The colour space, stated as readers look for it: OIIO (and what is built on it) takes

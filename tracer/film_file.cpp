@@ -146,6 +146,7 @@ void write_film_state(const std::string& path, const FilmHeader& h, const Film& 
        << "transparent_sky " << (h.output.transparent_sky ? 1 : 0) << "\n"
        << "aovs " << h.output.aovs.text() << "\n"
        << "treemaker_weights " << h.treemaker_weights << "\n"
+       << "exposure " << h.exposure << "\n"
        << "object_names " << joined(h.object_names) << "\n"
        << "material_names " << joined(h.material_names) << "\n"
        << "end\n";
@@ -210,6 +211,7 @@ FilmFile read_film_state(const std::string& path) {
   h.output.pixel_type = *pixel_type;
   h.output.transparent_sky = keys["transparent_sky"] == "1";
   h.treemaker_weights = keys["treemaker_weights"];
+  h.exposure = keys["exposure"];
   h.object_names = split_tabs(keys["object_names"]);
   h.material_names = split_tabs(keys["material_names"]);
   {

@@ -31,6 +31,9 @@ struct FilmHeader {
   std::uint64_t seed = 0;
   imaging::OutputSpec output;
   std::string treemaker_weights;
+  // The stops the samples were exposed by, as arbor:exposure says them ("1.5", or "1.390625
+  // (metered)" for exposure = "auto"); empty in a state file written before it was kept.
+  std::string exposure;
   // The compositing ids' names (Scene::object_names, material_names).
   std::vector<std::string> object_names, material_names;
 };

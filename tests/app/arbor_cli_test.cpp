@@ -489,3 +489,31 @@ TEST(ArborCli, OcioNamesTheConfigOfTheRun) {
       std::string::npos)
       << refused.err;
 }
+
+// exposure = "auto": the render says the metered stops in arbor:exposure with every digit, and a
+// render given those stops as its exposure makes the same pixels; a fixed exposure is recorded
+// as given.
+TEST(ArborCli, AMeteredExposureIsRecordedAndReproducible) {
+  const std::string dir = ::testing::TempDir();
+  const std::string body = "[render]\nwidth = 40\nheight = 30\nspp = 4\n[[tree]]\nspecies = \"" +
+                           std::string(ARBOR_SOURCE_DIR) +
+                           "/species/black_tupelo.toml\"\n[output]\npixel_type = \"float\"\n";
+  const std::string metered = write_temp("metered.toml", "[camera]\nexposure = \"auto\"\n" + body);
+  const CliRun m = run_arbor("render " + metered + " -o " + dir + "metered.exr");
+  ASSERT_EQ(m.code, 0) << m.err;
+  EXPECT_NE(m.err.find("arbor: metered exposure"), std::string::npos) << m.err;
+  OIIO::ImageBuf a(dir + "metered.exr");
+  ASSERT_TRUE(a.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+  const std::string said = a.spec().get_string_attribute("arbor:exposure");
+  ASSERT_NE(said.find(" (metered)"), std::string::npos) << said;
+  const std::string stops = said.substr(0, said.find(' '));
+  const std::string fixed = write_temp("fixed.toml", "[camera]\nexposure = " + stops + "\n" + body);
+  ASSERT_EQ(run_arbor("render " + fixed + " -o " + dir + "fixed.exr").code, 0);
+  OIIO::ImageBuf b(dir + "fixed.exr");
+  ASSERT_TRUE(b.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+  EXPECT_EQ(b.spec().get_string_attribute("arbor:exposure"), stops);
+  std::vector<float> pa(40 * 30 * 4), pb(pa.size());
+  a.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, pa.data());
+  b.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, pb.data());
+  EXPECT_EQ(std::memcmp(pa.data(), pb.data(), pa.size() * sizeof(float)), 0);
+}
