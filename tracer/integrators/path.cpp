@@ -102,7 +102,11 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
       if (sky_.in_sun(ray.direction)) {
         const float w_sun =
             bsdf_pdf > 0.0f ? power_heuristic(bsdf_pdf, choice_.sun * sky_.sun_pdf()) : 1.0f;
-        out.radiance += beta * sky_.sun_radiance() * w_sun;
+        // Seen by the camera, the disk with its limb darkening; as a light, the uniform disk of the
+        // same irradiance, as next-event estimation samples it (sky.h).
+        out.radiance += beta *
+                        (bsdf_pdf > 0.0f ? sky_.sun_radiance() : sky_.sun_radiance(ray.direction)) *
+                        w_sun;
       }
       break;
     }

@@ -86,7 +86,7 @@ TreemakerSample TreemakerIntegrator::trace(const Ray& ray) const {
   ++shade.rays;
   if (!world_.intersect(ray, hit)) {
     shade.radiance = sky_.radiance(ray.direction);
-    if (sky_.in_sun(ray.direction)) shade.radiance += sky_.sun_radiance();
+    if (sky_.in_sun(ray.direction)) shade.radiance += sky_.sun_radiance(ray.direction);
     out.rest = shade.radiance;
     return out;
   }

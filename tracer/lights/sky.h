@@ -50,7 +50,14 @@ class Sky {
   // The sun: a disk of half-angle `sun_half_angle` around `sun_direction`.
   bool has_sun() const { return sun_present_; }
   glm::vec3 sun_direction() const { return sun_direction_; }
-  glm::vec3 sun_radiance() const { return sun_radiance_; }
+  glm::vec3 sun_radiance() const { return sun_radiance_; }  // the disk's mean
+  // The radiance of the disk along `direction` (inside it) as a camera sees it: the mean × the
+  // limb darkening there, per channel (limb_darkening.h), with the same irradiance as the uniform
+  // disk. As a light (sample_sun, and paths that hit the disk after a bounce) the sun is the
+  // uniform disk: the light it casts is the same except inside penumbrae and in glossy images of
+  // the disk, and its shadow rays carry no noise from the profile (Blender's Nishita sky shows
+  // its limb darkening the same way, in the disk seen).
+  glm::vec3 sun_radiance(const glm::vec3& direction) const;
   // On a plane facing it, at the ground (after the atmosphere, for Nishita's sky): the mean of
   // its colour's channels, and the colour; 0 without a sun.
   float sun_irradiance() const { return sun_irradiance_; }
@@ -79,6 +86,8 @@ class Sky {
   float sun_irradiance_ = 0.0f;
   glm::vec3 sun_irradiance_color_{0.0f};
   double sun_one_minus_cos_ = 0.0;  // 1 - cos α, the cone's solid angle / 2π
+  std::vector<glm::vec3> limb_;     // the limb darkening over s = θ / α from 0 to 1
+  glm::vec3 limb_at(double one_minus_cos) const;
   glm::dvec3 sun_direction_d_{0.0, 0.0, 1.0};
   std::shared_ptr<const AerialPerspective> aerial_;
 };
