@@ -17,6 +17,23 @@ namespace arbor::tracer {
 namespace {
 constexpr float kPif = static_cast<float>(kPi);
 constexpr int kLimbSteps = 33;  // the limb darkening's table over the disk's radius
+
+// The limb darkening's table, scaled so that as Sky::limb_at interpolates it its area mean is
+// exactly 1 (the irradiance E, not 0.3 % less): ∫ 2s p(s) ds of each linear piece a + b s.
+std::vector<glm::vec3> limb_table(const imaging::ColorTransform& xyz_to_linear) {
+  std::vector<glm::vec3> limb = solar_limb_profile(xyz_to_linear, kLimbSteps);
+  glm::dvec3 mean(0.0);
+  for (int i = 0; i + 1 < kLimbSteps; ++i) {
+    const double s0 = double(i) / (kLimbSteps - 1), s1 = double(i + 1) / (kLimbSteps - 1);
+    const glm::dvec3 p0(limb[static_cast<std::size_t>(i)]),
+        p1(limb[static_cast<std::size_t>(i) + 1]);
+    const glm::dvec3 b = (p1 - p0) / (s1 - s0), a = p0 - b * s0;
+    mean += a * (s1 * s1 - s0 * s0) + b * (2.0 / 3.0) * (s1 * s1 * s1 - s0 * s0 * s0);
+  }
+  for (glm::vec3& v : limb) v = glm::vec3(glm::dvec3(v) / mean);
+  return limb;
+}
+
 }  // namespace
 
 Sky::Sky(const scene::SkySpec& sky, const scene::SunSpec& sun,
@@ -36,18 +53,7 @@ Sky::Sky(const scene::SkySpec& sky, const scene::SunSpec& sun,
     sun_irradiance_ = static_cast<float>(sun.irradiance);
     sun_irradiance_color_ = glm::vec3(sun_irradiance_);
     sun_present_ = true;
-    limb_ = solar_limb_profile(xyz_to_linear, kLimbSteps);
-    // Scaled so that the table as limb_at() interpolates it has an area mean of exactly 1 (the
-    // irradiance E, not 0.3 % less): ∫ 2s p(s) ds of each linear piece a + b s, in closed form.
-    glm::dvec3 mean(0.0);
-    for (int i = 0; i + 1 < kLimbSteps; ++i) {
-      const double s0 = double(i) / (kLimbSteps - 1), s1 = double(i + 1) / (kLimbSteps - 1);
-      const glm::dvec3 p0(limb_[static_cast<std::size_t>(i)]),
-          p1(limb_[static_cast<std::size_t>(i) + 1]);
-      const glm::dvec3 b = (p1 - p0) / (s1 - s0), a = p0 - b * s0;
-      mean += a * (s1 * s1 - s0 * s0) + b * (2.0 / 3.0) * (s1 * s1 * s1 - s0 * s0 * s0);
-    }
-    for (glm::vec3& v : limb_) v = glm::vec3(glm::dvec3(v) / mean);
+    limb_ = limb_table(xyz_to_linear);
   }
   if (sky.model == formats::SkyModel::None) return;
   rotation_ = static_cast<float>(sky.rotation * kPi / 180.0);
