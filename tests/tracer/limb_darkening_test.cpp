@@ -14,6 +14,7 @@
 #include "formats/scene_desc.h"
 #include "scene/render_input.h"
 #include "test_world.h"
+#include "tracer/lights/nishita.h"
 #include "tracer/lights/sky.h"
 
 namespace arbor::tracer {
@@ -88,6 +89,33 @@ TEST(LimbDarkening, TheSunKeepsItsIrradiance) {
   std::printf("  irradiance %.5f %.5f %.5f of 3\n", e.x, e.y, e.z);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(e[c], 3.0, 0.001 * 3.0) << c;
   EXPECT_GT(sky.sun_radiance(w).y, 1.1f * sky.sun_radiance().y);
+}
+
+}  // namespace arbor::tracer
+
+namespace arbor::tracer {
+
+// The tabulated solar spectrum: the table's values at its nodes (Preetham et al. 1999's 380, 550
+// and 750 nm), linear between them, its last slope continued to 780 nm; and the sun's colour
+// near a 5800 K black body's (CIE 1931 x, y within 0.01), as the measured sun is.
+TEST(SolarSpectrum, IsTheTableAndLooksLikeTheSun) {
+  EXPECT_DOUBLE_EQ(atmosphere::solar_spectrum(380.0), 165.5);
+  EXPECT_DOUBLE_EQ(atmosphere::solar_spectrum(550.0), 255.0);
+  EXPECT_DOUBLE_EQ(atmosphere::solar_spectrum(750.0), 182.6);
+  EXPECT_NEAR(atmosphere::solar_spectrum(555.0), 0.5 * (255.0 + 250.6), 1e-9);
+  EXPECT_NEAR(atmosphere::solar_spectrum(780.0), 182.6 - 3.0 * (186.3 - 182.6), 1e-9);
+  glm::dvec3 sun(0.0), body(0.0);
+  for (int nm = 380; nm <= 780; ++nm) {
+    const double l = nm * 1e-9;
+    sun += atmosphere::solar_spectrum(nm) * NishitaSky::cie_xyz_bar(nm);
+    body += NishitaSky::cie_xyz_bar(nm) /
+            (l * l * l * l * l * (std::exp(1.4387769e-2 / (l * 5800.0)) - 1.0));
+  }
+  const double sx = sun.x / (sun.x + sun.y + sun.z), sy = sun.y / (sun.x + sun.y + sun.z);
+  const double bx = body.x / (body.x + body.y + body.z), by = body.y / (body.x + body.y + body.z);
+  std::printf("  sun (%.4f, %.4f), 5800 K (%.4f, %.4f)\n", sx, sy, bx, by);
+  EXPECT_NEAR(sx, bx, 0.01);
+  EXPECT_NEAR(sy, by, 0.01);
 }
 
 }  // namespace arbor::tracer

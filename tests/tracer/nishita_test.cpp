@@ -80,16 +80,15 @@ TEST(Nishita, ThinAirScattersAndAttenuatesAsTheClosedForms) {
   const NishitaSky model(air, {0.0, 0.0, 1.0}, 3.0);
   const double h = 8000.0, column = 0.01 * h * (1.0 - std::exp(-60e3 / h));
   glm::dvec3 expected(0.0), space(0.0);
-  // The extraterrestrial spectrum the model uses is a black body scaled to Y = 3.
+  // The extraterrestrial spectrum the model uses is the tabulated solar one scaled to Y = 3.
   double y = 0.0;
   for (int k = 0; k < NishitaSky::kWavelengths; ++k) {
     const double nm = NishitaSky::wavelength(k);
-    y += NishitaSky::cie_xyz_bar(nm).y /
-         (std::pow(nm, 5.0) * (std::exp(1.4387769e7 / (nm * 5778.0)) - 1.0));
+    y += NishitaSky::cie_xyz_bar(nm).y * atmosphere::solar_spectrum(nm);
   }
   for (int k = 0; k < NishitaSky::kWavelengths; ++k) {
     const double nm = NishitaSky::wavelength(k);
-    const double s = 3.0 / y / (std::pow(nm, 5.0) * (std::exp(1.4387769e7 / (nm * 5778.0)) - 1.0));
+    const double s = 3.0 / y * atmosphere::solar_spectrum(nm);
     const double beta = NishitaSky::rayleigh_scattering(nm), tau = beta * column;
     expected +=
         s * beta * column * 3.0 / (8.0 * kPi) * std::exp(-tau) * NishitaSky::cie_xyz_bar(nm);

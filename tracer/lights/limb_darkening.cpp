@@ -35,13 +35,6 @@ std::array<double, 6> coefficients(double nm) {
   return a;
 }
 
-// The black-body spectral radiance shape at `nm` (any scale), the sun's 5778 K.
-double planck(double nm) {
-  const double l = nm * 1e-9;
-  return 1.0 /
-         (l * l * l * l * l * (std::exp(1.4387769e-2 / (l * atmosphere::kSunTemperature)) - 1.0));
-}
-
 }  // namespace
 
 double solar_limb_darkening(double nm, double mu) {
@@ -72,7 +65,7 @@ std::vector<glm::vec3> solar_limb_profile(const imaging::ColorTransform& xyz_to_
   glm::dvec3 mean_xyz(0.0);
   for (int b = 0; b < kBands; ++b) {
     const double nm = 380.0 + 5.0 * b;
-    mean_xyz += planck(nm) * NishitaSky::cie_xyz_bar(nm);
+    mean_xyz += atmosphere::solar_spectrum(nm) * NishitaSky::cie_xyz_bar(nm);
   }
   const glm::dvec3 mean = to_rgb(mean_xyz);
   std::vector<glm::vec3> profile(static_cast<std::size_t>(steps));
@@ -81,7 +74,7 @@ std::vector<glm::vec3> solar_limb_profile(const imaging::ColorTransform& xyz_to_
     glm::dvec3 xyz(0.0);
     for (int b = 0; b < kBands; ++b) {
       const double nm = 380.0 + 5.0 * b;
-      xyz += planck(nm) * solar_limb_darkening(nm, mu) / solar_limb_mean(nm) *
+      xyz += atmosphere::solar_spectrum(nm) * solar_limb_darkening(nm, mu) / solar_limb_mean(nm) *
              NishitaSky::cie_xyz_bar(nm);
     }
     const glm::dvec3 rgb = to_rgb(xyz);

@@ -22,8 +22,9 @@ double solar_limb_darkening(double nm, double mu);
 double solar_limb_mean(double nm);
 
 // The disk's radiance relative to its mean in the rendering space, per channel, at `steps`
-// points s = θ / α from the centre (0) to the limb (1), for a 5778 K sun seen through the CIE
-// 1931 observer: what multiplies the uniform disk's radiance so that its irradiance is kept.
+// points s = θ / α from the centre (0) to the limb (1), for the sun's spectrum (nishita.h) seen
+// through the CIE 1931 observer: what multiplies the uniform disk's radiance so that its irradiance
+// is kept.
 std::vector<glm::vec3> solar_limb_profile(const imaging::ColorTransform& xyz_to_linear, int steps);
 
 }  // namespace arbor::tracer

@@ -20,11 +20,11 @@ namespace {
 
 using namespace atmosphere;
 
-// The black-body spectral radiance shape at `nm` (any scale).
-double planck(double nm) {
-  const double l = nm * 1e-9;
-  return 1.0 / (l * l * l * l * l * (std::exp(1.4387769e-2 / (l * kSunTemperature)) - 1.0));
-}
+// Preetham, Shirley & Smits 1999's extraterrestrial solar spectral radiance, 380 … 750 nm.
+constexpr std::array<double, 38> kSolar = {
+    165.5, 162.3, 211.2, 258.8, 258.2, 242.3, 267.6, 296.6, 305.4, 300.6, 306.6, 288.3, 287.1,
+    278.2, 271.0, 272.3, 263.6, 255.0, 250.6, 253.1, 253.5, 251.3, 246.3, 241.7, 236.8, 232.1,
+    228.2, 223.4, 219.7, 215.3, 211.0, 207.3, 202.4, 198.7, 194.3, 190.7, 186.3, 182.6};
 
 // One lobe of Wyman, Sloan & Shirley's fit: a Gaussian with different widths on either side.
 double lobe(double x, double mu, double s1, double s2) {
@@ -33,6 +33,14 @@ double lobe(double x, double mu, double s1, double s2) {
 }
 
 }  // namespace
+
+double atmosphere::solar_spectrum(double nm) {
+  const double x = (nm - 380.0) / 10.0;
+  const int i = std::clamp(static_cast<int>(std::floor(x)), 0, static_cast<int>(kSolar.size()) - 2);
+  const double f = x - i;  // beyond 750 nm, > 1: the last segment's slope continued
+  return std::max(0.0, (1.0 - f) * kSolar[static_cast<std::size_t>(i)] +
+                           f * kSolar[static_cast<std::size_t>(i) + 1]);
+}
 
 double atmosphere::mie_forward_fraction() {
   static const double f = [] {
@@ -102,7 +110,7 @@ NishitaSky::NishitaSky(const Atmosphere& atmosphere, const glm::dvec3& sun_direc
     beta_r_[k] = rayleigh_scattering(nm);
     sigma_o_[k] = ozone_cross_section(nm) * kOzonePeakDensity;
     cmf_[k] = cie_xyz_bar(nm) * dl;
-    solar_[k] = planck(nm);
+    solar_[k] = solar_spectrum(nm);
     y += solar_[k] * cmf_[k].y;
   }
   // Scaled so that the sun outside the atmosphere has CIE Y = its irradiance.

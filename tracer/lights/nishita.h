@@ -30,7 +30,10 @@ constexpr double kMieScattering = 2.0e-5, kMieExtinction = kMieScattering / 0.9,
 // Ozone: a layer between 10 and 40 km peaking at 25 km (a tent of unit peak), holding 300 Dobson
 // units (1 DU = 2.687e20 molecules m⁻²) in all: peak number density 300 × 2.687e20 / 15 km.
 constexpr double kOzonePeakDensity = 300.0 * 2.687e20 / 15e3;  // molecules m⁻³
-constexpr double kSunTemperature = 5778.0;  // K: the extraterrestrial sun as a black body
+// The extraterrestrial sun's spectral radiance at `nm` nanometres (any scale): the table of
+// Preetham, Shirley & Smits 1999 (380–750 nm every 10 nm, from Iqbal 1983), linear between its
+// points and continued along its last slope to 780 nm.
+double solar_spectrum(double nm);
 
 // The Rayleigh phase function, 3/(16π) (1 + cos² θ).
 inline double rayleigh_phase(double c) { return 3.0 / (16.0 * kPi) * (1.0 + c * c); }
