@@ -35,6 +35,7 @@ formats::SceneDesc view(int spp, int threads) {
   s.render.height = 90;
   s.render.spp = spp;
   s.render.threads = threads;
+  s.camera.auto_exposure = false;  // a fixed exposure: the renders compare sampling, not the meter
   return s;
 }
 

@@ -1,7 +1,9 @@
 // Renderer benchmarks on the default scene (scenes/default.toml), one thread each:
 // - raw_embree_rays: incoherent random rays (origins in the tree's box, uniform directions)
 //   through rtcIntersect1 on the world's Embree scene — the ceiling for the path tracer;
-// - path_tracer: the default scene rendered at 160×120, 16 spp; rays/s and samples/s counters;
+// - path_tracer: the default scene rendered at 160×120, 16 spp; rays/s and samples/s counters
+//   (the scene's metered exposure replaced by a fixed one in every render here);
+// - meter: the auto-exposure meter's preview of the default scene (tracer/exposure.h);
 // - frame/path_64spp and frame/treemaker: the default scene's frame (its camera, 160×120) by the
 //   path integrator at 64 spp and by the treemaker integrator at its default treemaker_spp —
 //   bench/run.sh prints their ratio (issue 6's target: treemaker ≥ 50× faster);
@@ -18,11 +20,13 @@
 #include <string>
 
 #include <benchmark/benchmark.h>
+#include <tbb/task_arena.h>
 #include <embree3/rtcore.h>
 
 #include "common/math.h"
 #include "common/rng.h"
 #include "tracer/film.h"
+#include "tracer/exposure.h"
 #include "tracer/render.h"
 #include "formats/scene_desc.h"
 #include "tracer/lights/sky.h"
@@ -49,6 +53,8 @@ formats::SceneDesc default_scene() {
   formats::SceneDesc s =
       formats::load_scene(std::string(ARBOR_SOURCE_DIR) + "/scenes/default.toml");
   s.render.threads = 1;
+  // A fixed exposure: the renders measure the path tracer, not the meter (`meter` does).
+  s.camera.auto_exposure = false;
   return s;
 }
 
@@ -118,6 +124,21 @@ void render_frames(benchmark::State& state, int spp, bool treemaker) {
 }
 
 void path_tracer(benchmark::State& state) { render_frames(state, 16, false); }
+
+// `[camera] exposure = "auto"`'s meter (tracer/exposure.h) on the default scene at its size.
+void meter(benchmark::State& state) {
+  const formats::SceneDesc scene = default_scene();
+  const tracer::EmbreeDevice device("threads=1");
+  const BuiltWorld built(scene, device);
+  const tracer::Sky sky(scene::sky_spec(scene.sky), scene::sun_spec(scene.sun),
+                        imaging::ColorPipeline(kOcioConfig).xyz_to_scene_linear());
+  const scene::RenderInput input = scene::render_input(scene);
+  tbb::task_arena one(1);  // its rows run on one thread, so CPU time is all of it
+  for (auto _ : state) {
+    one.execute(
+        [&] { benchmark::DoNotOptimize(tracer::metered_exposure(input, built.world, sky)); });
+  }
+}
 
 void frame(benchmark::State& state, bool treemaker) { render_frames(state, 64, treemaker); }
 
@@ -213,6 +234,7 @@ void forest_1000(benchmark::State& state) {
 
 BENCHMARK(raw_embree_rays)->Unit(benchmark::kMillisecond);
 BENCHMARK(path_tracer)->Unit(benchmark::kMillisecond);
+BENCHMARK(meter)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(frame, path_64spp, false)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK_CAPTURE(frame, treemaker, true)->Unit(benchmark::kMillisecond);
 BENCHMARK(ray_replay)->Unit(benchmark::kMillisecond)->Iterations(3);

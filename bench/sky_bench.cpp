@@ -8,18 +8,24 @@
 //   counters d0 … d6 (each direction's ratio, in that order), ratio_min, ratio_max and worst (the
 //   largest |ratio − 1|);
 // - aerial/sun:E: the aerial perspective table (tracer/lights/aerial.h) of the atmosphere model at
-//   Linke turbidity 3 (the model built outside the timing).
+//   Linke turbidity 3 (the model built outside the timing);
+// - map/model:M: the whole 512 × 256 sky map a render makes (M = 0 nishita, 1 atmosphere; sun 40°,
+//   dust 3 / turbidity 3, the disk cache off), on one thread.
 //   build/sky_bench --benchmark_out=sky.json --benchmark_out_format=json
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <benchmark/benchmark.h>
+#include <tbb/task_arena.h>
 
 #include "common/math.h"
+#include "formats/scene_desc.h"
 #include "tracer/lights/aerial.h"
+#include "tracer/lights/sky_model.h"
 #include "tracer/lights/nishita.h"
 #include "tracer/lights/sky_monte_carlo.h"
 
@@ -85,8 +91,27 @@ void aerial(benchmark::State& state) {
   }
 }
 
+void map(benchmark::State& state) {
+  setenv("ARBOR_CACHE_DIR", "off", 1);
+  scene::SkySpec sky;
+  sky.model = state.range(0) ? formats::SkyModel::Atmosphere : formats::SkyModel::Nishita;
+  sky.dust_density = 3.0;
+  sky.turbidity = 3.0;
+  sky.ground_albedo = formats::mean_albedo({});
+  const scene::SunSpec sun{true, 40.0, 0.0, 3.0, 0.53};
+  const imaging::ColorTransform identity = [](float*) {};
+  tbb::task_arena one(1);
+  for (auto _ : state) {
+    one.execute([&] {
+      benchmark::DoNotOptimize(
+          make_sky_map({sky, sun, direction(40.0, 0.0), identity, 512, 0.0f}).texels.data());
+    });
+  }
+}
+
 }  // namespace
 
+BENCHMARK(map)->ArgName("model")->DenseRange(0, 1)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(aerial)->ArgName("sun")->Arg(40)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(build)
     ->ArgNames({"model", "sun"})

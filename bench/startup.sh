@@ -22,14 +22,4 @@ for r in $(seq "$rounds"); do
   echo "off $(run off)" >> "$tmp/runs"
   echo "cached $(run "$tmp/cache")" >> "$tmp/runs"
 done
-python3 - "$tmp/runs" "$out" "$(uname -n)" "$(nproc)" <<'PY'
-import json, statistics, sys
-runs = {}
-for line in open(sys.argv[1]):
-    k, v = line.split()
-    runs.setdefault(k, []).append(float(v))
-json.dump({"machine": sys.argv[3], "cores": int(sys.argv[4]), "unit": "CPU s", "runs": runs},
-          open(sys.argv[2], "w"), indent=1)
-for k, v in runs.items():
-    print(f"{k:7s} {min(v):.2f}-{max(v):.2f} CPU s, median {statistics.median(v):.2f}")
-PY
+python3 "$root/bench/cpu_runs.py" "$tmp/runs" "$out"

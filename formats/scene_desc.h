@@ -100,7 +100,7 @@ struct GroundDesc {
 // The ground's albedo as one number, what the atmosphere's sky sees: the luminance (Rec. 709) of
 // its albedo and its patches' by the share each covers.
 inline double mean_albedo(const GroundDesc& g) {
-  auto y = [](const Rgb& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; };
+  auto y = [](const Rgb& c) { return luminance(c[0], c[1], c[2]); };
   return (1.0 - g.patch_cover) * y(g.albedo) + g.patch_cover * y(g.patch_albedo);
 }
 

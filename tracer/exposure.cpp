@@ -9,6 +9,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "common/math.h"
 #include "tracer/camera.h"
 #include "tracer/embree/world.h"
 #include "tracer/integrators/path.h"
@@ -50,7 +51,7 @@ double metered_exposure(const scene::RenderInput& input, const World& world, con
           const Ray ray = camera.generate({i + u.x, j + u.y}, sampler.get2d(s, 1));
           const PathSample p = treemaker ? tm.trace(ray).shade : path.trace(ray, sampler, s);
           if (transparent && !p.hit) continue;
-          const double l = 0.2126 * p.radiance.x + 0.7152 * p.radiance.y + 0.0722 * p.radiance.z;
+          const double l = luminance<double>(p.radiance.x, p.radiance.y, p.radiance.z);
           if (!std::isfinite(l)) continue;
           sum += l;
           ++seen;

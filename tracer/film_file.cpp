@@ -64,13 +64,13 @@ struct Checksum {
   }
 };
 
+}  // namespace
+
 std::string number_text(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.17g", v);
   return buf;
 }
-
-}  // namespace
 
 std::string state_path(const std::string& exr) { return exr + ".state"; }
 

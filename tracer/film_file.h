@@ -62,4 +62,8 @@ std::string settings_difference(const std::string& a, const std::string& b, cons
 std::uint64_t fnv1a(const std::string& text, std::uint64_t hash = 0xcbf29ce484222325ull);
 std::string fingerprint_hex(std::uint64_t hash);
 
+// A double with every digit it needs to read back the same (%.17g): the state file's numbers, the
+// EXR's arbor:exposure.
+std::string number_text(double v);
+
 }  // namespace arbor::tracer

@@ -325,9 +325,9 @@ RunResult build_and_render(const formats::SceneDesc& scene, const scene::RenderI
   const Sky sky(input.sky, input.sun, color.xyz_to_scene_linear());
   // [camera] exposure = "auto": metered from a preview, the same for every unit and resume.
   const scene::RenderInput metered = with_exposure(input, world, sky);
-  char stops[40];  // every digit: `exposure = <it>` renders the same pixels
-  std::snprintf(stops, sizeof stops, "%.17g", metered.camera.exposure);
-  header.exposure = std::string(stops) + (input.camera.auto_exposure ? " (metered)" : "");
+  // Every digit: `exposure = <it>` renders the same pixels.
+  header.exposure =
+      number_text(metered.camera.exposure) + (input.camera.auto_exposure ? " (metered)" : "");
   if (input.camera.auto_exposure)
     std::fprintf(stderr, "arbor: metered exposure %+.2f stops\n", metered.camera.exposure);
 
