@@ -1,5 +1,6 @@
-// A disk cache of computed sky maps (the Nishita sky takes about 0.5 CPU-s to compute and is the
-// same for every render, farm unit and frame with the same sky and sun). A map is stored under a
+// A disk cache of computed sky maps (the Nishita sky takes about 1 CPU-s to compute, the
+// atmosphere's about 3 — bench/sky_bench map — and each is the same for every render, farm unit
+// and frame with the same sky and sun). A map is stored under a
 // key over everything it depends on — the model's parameters, the sun, the map's width and
 // rotation, the colour transform's values, and the executable itself (its size, time and inode,
 // so a rebuilt arbor never reads an older build's maps) — and read back bit for bit, so a cached
