@@ -18,6 +18,9 @@ using Vec3 = glm::dvec3;
 inline Vec3 rotate(const Vec3& v, const Vec3& axis, double c, double s) {
   return v * c + glm::cross(axis, v) * s + axis * glm::dot(axis, v) * (1.0 - c);
 }
+inline glm::vec3 rotate(const glm::vec3& v, const glm::vec3& axis, float c, float s) {
+  return v * c + glm::cross(axis, v) * s + axis * glm::dot(axis, v) * (1.0f - c);
+}
 // Rotates v about the unit axis by angle.
 inline Vec3 rotate(const Vec3& v, const Vec3& axis, double angle) {
   return rotate(v, axis, std::cos(angle), std::sin(angle));

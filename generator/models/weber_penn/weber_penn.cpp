@@ -4,6 +4,8 @@
 #include "generator/models/weber_penn/weber_penn.h"
 
 #include <algorithm>
+#include <array>
+#include <deque>
 #include <cmath>
 #include <string>
 #include <unordered_map>
@@ -14,6 +16,7 @@
 #include "common/progress.h"
 #include "common/rng.h"
 #include "generator/models/weber_penn/weber_penn_formulas.h"
+#include "generator/models/weber_penn/weber_penn_leaves.h"
 
 namespace arbor::generator {
 
@@ -38,6 +41,24 @@ enum Stream : std::uint64_t {
 
 constexpr double kMinLength = 1e-4;  // metres; shorter stems are not grown
 const Vec3 kUp{0.0, 0.0, 1.0};
+
+// An angle (radians) less the nearest whole number of turns: within [−π, π] to a few ulp, for
+// angles accumulated over many placements before they go to single precision.
+inline double turns_reduced(double angle) {
+  const double turns = angle / (2.0 * kPi);
+  return angle -
+         2.0 * kPi *
+             static_cast<double>(static_cast<std::int64_t>(turns + std::copysign(0.5, turns)));
+}
+
+// Counts a level of recursion for as long as it lives.
+struct DepthGuard {
+  explicit DepthGuard(std::size_t& depth) : depth_(depth) { ++depth_; }
+  ~DepthGuard() { --depth_; }
+  DepthGuard(const DepthGuard&) = delete;
+  DepthGuard& operator=(const DepthGuard&) = delete;
+  std::size_t& depth_;
+};
 
 // Azimuth state for placing children or leaves about a stem (§4.3 nRotate).
 struct Placement {
@@ -88,6 +109,7 @@ class Grower {
   }
 
   void grow() {
+    pending_.reserve(out_.leaves.capacity());
     const WeberPennLevel& l0 = p_.level[0];
     Rng trunk(derive_key(o_.seed, kTrunk));
     StemSpec s;
@@ -101,6 +123,8 @@ class Grower {
     s.child_place.azimuth = Rng(derive_key(s.key, kChildPlacement)).uniform() * 360.0;
     s.leaf_place.azimuth = Rng(derive_key(s.key, kLeafPlacement)).uniform() * 360.0;
     grow_stem(s);
+    wp::orient_leaves(pending_, static_cast<float>(p_.leaf_bend), out_.leaves);
+    pending_.clear();
     apply_z_scale();
     out_.trunk.flare = static_cast<float>(p_.flare);
     out_.trunk.lobes = p_.lobes;
@@ -162,7 +186,7 @@ class Grower {
     for (int iteration = 0; iteration < 64 && length > kMinLength; ++iteration) {
       StemSpec probe = s;
       probe.length = length;
-      const std::vector<wp::SplitDiffusion> saved = split_error_;
+      const SplitErrors saved = split_error_;
       fits = trace(probe, true);
       split_error_ = saved;
       if (fits) break;
@@ -265,42 +289,23 @@ class Grower {
     grow_stem(c);
   }
 
-  void add_leaf(const StemSpec& s, int stem_index, double offset, const Vec3& at,
-                const Frame& turned, Rng& rng) {
+  // A leaf at `at`, turned by `azimuth` (radians) about the frame's z axis and then by its down
+  // angle about the turned x axis (§4.5), oriented toward the light (§4.9) by wp::orient_leaves
+  // once the tree has grown.
+  void add_leaf(const StemSpec& s, int stem_index, double offset, const Vec3& at, const Frame& base,
+                double azimuth, Rng& rng) {
     const WeberPennLevel& lv = p_.at(p_.levels);
-    const Frame f = turned.rotated_x(radians(down_angle(lv, rng, s, offset)));
-    Vec3 axis = f.z, normal = f.y;
-    orient_toward_light(at, axis, normal);
+    const double down = radians(down_angle(lv, rng, s, offset));
+    pending_.push_back({glm::vec3(base.x), glm::vec3(base.y), glm::vec3(base.z),
+                        static_cast<float>(turns_reduced(azimuth)),
+                        static_cast<float>(turns_reduced(down))});
     Leaf leaf;
     leaf.position = glm::vec3(at);
-    leaf.axis = glm::vec3(axis);
-    leaf.normal = glm::vec3(normal);
     leaf.length = static_cast<float>(p_.leaf_scale * leaf_scale_);
     leaf.width = static_cast<float>(p_.leaf_scale * p_.leaf_scale_x * leaf_scale_);
     leaf.stem = stem_index;
     leaf.shape = p_.leaf_shape;
     out_.leaves.push_back(leaf);
-  }
-
-  // §4.9, read geometrically: first turn the leaf about the vertical through its position by
-  // bend·θ_bend (so its normal's azimuth moves toward the leaf's own azimuth: facing outward),
-  // then tilt it about the horizontal axis across its normal by bend·φ_bend (toward facing up).
-  void orient_toward_light(const Vec3& at, Vec3& axis, Vec3& normal) const {
-    const double bend = p_.leaf_bend;
-    if (bend == 0.0) return;
-    if (at.x != 0.0 || at.y != 0.0) {
-      const double theta_position = std::atan2(at.y, at.x);
-      double theta_bend = theta_position - std::atan2(normal.y, normal.x);
-      theta_bend = std::remainder(theta_bend, 2.0 * kPi);
-      axis = rotate(axis, kUp, bend * theta_bend);
-      normal = rotate(normal, kUp, bend * theta_bend);
-    }
-    const double horizontal = std::sqrt(normal.x * normal.x + normal.y * normal.y);
-    if (horizontal < 1e-12) return;
-    const double phi_bend = std::atan2(horizontal, normal.z);
-    const Vec3 across = glm::normalize(glm::cross(normal, kUp));
-    axis = rotate(axis, across, bend * phi_bend);
-    normal = rotate(normal, across, bend * phi_bend);
   }
 
   // Grows one stem segment by segment. In probe mode nothing is written and children are not
@@ -322,7 +327,10 @@ class Grower {
     const bool helix = lv.curve_v < 0.0;
 
     int stem_index = -1;
-    std::vector<SkeletonPoint> points;
+    if (point_buffers_.size() <= depth_) point_buffers_.emplace_back();
+    std::vector<SkeletonPoint>& points = point_buffers_[depth_];
+    points.clear();
+    const DepthGuard guard(depth_);
     if (!probe) {
       stem_index = static_cast<int>(out_.stems.size());
       Stem st;
@@ -388,8 +396,7 @@ class Grower {
         for (int k = 0; k < count; ++k) {
           const double off = lo + usable * (k + 0.5) / count;
           const double azimuth = next_azimuth(s.leaf_place, p_.at(p_.levels), leaf_rng);
-          add_leaf(s, stem_index, off, pos + seg.z * (off - a), seg.rotated_z(radians(azimuth)),
-                   leaf_rng);
+          add_leaf(s, stem_index, off, pos + seg.z * (off - a), seg, radians(azimuth), leaf_rng);
         }
       }
       pos = end;
@@ -406,7 +413,7 @@ class Grower {
       const double spread = p_.at(p_.levels).rotate;
       for (int k = 0; k < count; ++k) {
         const double angle = -0.5 * spread + spread * (k + 0.5) / count;
-        add_leaf(s, stem_index, s.length, pos, axis.rotated_y(radians(angle)), leaf_rng);
+        add_leaf(s, stem_index, s.length, pos, axis.rotated_y(radians(angle)), 0.0, leaf_rng);
       }
     }
     if (grows_children && fan_children) {
@@ -437,9 +444,6 @@ class Grower {
     if (s.level == 0 && i == 0 && !s.is_clone && lv.base_splits > 0) {
       clones = lv.base_splits;  // 0BaseSplits replaces nSegSplits after the trunk's first segment
     } else if (lv.seg_splits > 0.0) {
-      if (split_error_.size() <= static_cast<size_t>(s.level)) {
-        split_error_.resize(static_cast<size_t>(s.level) + 1);
-      }
       clones = split_error_[static_cast<size_t>(s.level)].next(lv.seg_splits);
     }
     if (clones == 0) return true;
@@ -504,7 +508,16 @@ class Grower {
   double scale_tree_ = 0.0, z_scale_ = 1.0, base_length_ = 0.0, trunk_length_ = 0.0;
   double leaf_scale_ = 1.0;
   bool wind_ = false;
-  std::vector<wp::SplitDiffusion> split_error_;
+  // The split error diffusion per level (Levels ≤ 9), copied for every pruning probe.
+  using SplitErrors = std::array<wp::SplitDiffusion, 10>;
+  SplitErrors split_error_{};
+  // Point buffers for the stems being traced, one per depth of trace's recursion (a stem's
+  // points are appended to the skeleton only when its children are done): reused, not allocated
+  // for each of the willow's 50,000 stems.
+  std::deque<std::vector<SkeletonPoint>> point_buffers_;
+  std::size_t depth_ = 0;
+  // A leaf's frame and turns until wp::orient_leaves, one per entry of out_.leaves.
+  std::vector<wp::PendingLeaf> pending_;
 
  public:
   // Pruned lengths by stem key: recorded from a growth at rest (stems only), replayed in one
@@ -549,6 +562,7 @@ Skeleton grow_weber_penn(const WeberPennParams& params, const GrowOptions& optio
   // first and give the swaying tree the same lengths (§4.7: "the same basic geometry, perturbed
   // only by the wind").
   std::unordered_map<std::uint64_t, double> pruned;
+  pruned.reserve(skeleton.stems.capacity());
   const bool sway_pruned =
       params.prune_ratio > 0.0 && (params.wind_speed != 0.0 || params.wind_gust != 0.0);
   if (sway_pruned) {
