@@ -15,6 +15,7 @@
 #include "generator/export/export_pbrt.h"
 #include "generator/export/skeleton_file.h"
 #include "generator/export/tree_stats.h"
+#include "generator/geometry/geometry_plan.h"
 #include "generator/geometry/tree_geometry.h"
 #include "generator/geometry/tree_mesh.h"
 #include "generator/grow.h"
@@ -52,7 +53,8 @@ CLI::App* add_grow_command(CLI::App& app, GrowRequest& grow) {
       ->capture_default_str();
   cmd->add_flag("--stats", grow.stats,
                 "print statistics of the tree (height and crown width are its envelope's: an upper "
-                "bound within a few cm)");
+                "bound within a few cm) and its render geometry's counts, counted without "
+                "building it; with -o to a mesh or .pbrt also the geometry's size in bytes");
   cmd->add_flag("--json", grow.json, "print the statistics as one JSON object");
   cmd->add_flag("--force", grow.force,
                 "grow even a tree estimated at over 10 million stems or 100 million leaves");
@@ -117,13 +119,21 @@ int grow_command(const GrowRequest& a) {
   long long mesh_triangles = -1;
   // A skeleton file needs only the skeleton; the statistics and the meshes need the geometry.
   if (ends_with(a.out, ".skel")) generator::write_skeleton_file(skeleton, a.out);
-  if (a.stats || a.json || (!a.out.empty() && !ends_with(a.out, ".skel"))) {
-    const auto geometry_start = std::chrono::steady_clock::now();
+  const bool exports_geometry = !a.out.empty() && !ends_with(a.out, ".skel");
+  const auto geometry_start = std::chrono::steady_clock::now();
+  auto geometry_seconds = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - geometry_start).count();
+  };
+  if ((a.stats || a.json) && !exports_geometry) {
+    // The statistics alone: the geometry's counts, without building it (issue 31).
+    const generator::GeometryStats counts =
+        generator::count_tree_geometry(skeleton, generator::geometry_options_for(species));
+    generator::add_geometry_stats(stats, counts, geometry_seconds());
+  }
+  if (exports_geometry) {
     const generator::TreeGeometry geometry =
         generator::build_tree_geometry(skeleton, generator::geometry_options_for(species));
-    generator::add_geometry_stats(
-        stats, geometry.stats,
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - geometry_start).count());
+    generator::add_geometry_stats(stats, geometry.stats, geometry_seconds());
     if (ends_with(a.out, ".pbrt")) {
       generator::write_pbrt(geometry, species.bark, species.leaf, a.out, up);
     } else if (!a.out.empty()) {

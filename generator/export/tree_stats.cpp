@@ -87,8 +87,11 @@ std::string stats_json(const TreeStats& st, const std::string& species, unsigned
     size("grid_triangles", g.grid_triangles);
     size("leaf_cards", g.leaf_cards);
     size("tension_raised_limbs", g.tension_raised_limbs);
-    size("radius_adjusted_segments", g.radius_adjusted_segments);
-    size("geometry_bytes", g.bytes);
+    // Only a build knows these (a count for --stats alone does not build, issue 31).
+    if (g.built) {
+      size("radius_adjusted_segments", g.radius_adjusted_segments);
+      size("geometry_bytes", g.bytes);
+    }
     j.number("geometry_seconds", st.geometry_seconds, 6);
   }
   if (mesh_triangles >= 0) j.integer("mesh_triangles", mesh_triangles);
@@ -110,12 +113,21 @@ std::string stats_text(const TreeStats& st) {
   std::string out = buf;
   if (st.has_geometry) {
     const GeometryStats& g = st.geometry;
-    std::snprintf(buf, sizeof buf,
-                  "limbs          %zu (tension raised on %zu; radius reduced on %zu curve "
-                  "segments)\ntrunk grids    %zu (%zu vertices, %zu triangles)\n"
-                  "geometry       %.1f MB, built in %.3f s\n",
-                  g.limbs, g.tension_raised_limbs, g.radius_adjusted_segments, g.grids,
-                  g.grid_vertices, g.grid_triangles, g.bytes / 1e6, st.geometry_seconds);
+    if (g.built) {
+      std::snprintf(buf, sizeof buf,
+                    "limbs          %zu (tension raised on %zu; radius reduced on %zu curve "
+                    "segments)\ntrunk grids    %zu (%zu vertices, %zu triangles)\n"
+                    "geometry       %.1f MB, built in %.3f s\n",
+                    g.limbs, g.tension_raised_limbs, g.radius_adjusted_segments, g.grids,
+                    g.grid_vertices, g.grid_triangles, g.bytes / 1e6, st.geometry_seconds);
+    } else {
+      std::snprintf(buf, sizeof buf,
+                    "limbs          %zu (tension raised on %zu)\n"
+                    "trunk grids    %zu (%zu vertices, %zu triangles)\n"
+                    "geometry       counted in %.3f s (not built; -o builds it)\n",
+                    g.limbs, g.tension_raised_limbs, g.grids, g.grid_vertices, g.grid_triangles,
+                    st.geometry_seconds);
+    }
     out += buf;
   }
   return out;

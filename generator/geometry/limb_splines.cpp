@@ -80,10 +80,23 @@ DVec3 CubicSpline::second_derivative_at_knot(std::size_t i, int side) const {
   return segment_of(*this, i).d2(0.0) / (h * h);
 }
 
+std::size_t CubicSpline::locate_from(std::size_t hint, double t, double& u) const {
+  const std::size_t n = segment_count();
+  // The conditions under which locate's search ends at `hint` (its clamping included).
+  if (hint >= n || (hint > 0 && !(params[hint] <= t)) || (hint + 1 < n && !(t < params[hint + 1])))
+    return locate(t, u);
+  u = std::clamp((t - params[hint]) / (params[hint + 1] - params[hint]), 0.0, 1.0);
+  return hint;
+}
+
 double CubicSpline::curvature(double t) const {
   // derivative(t) and second_derivative(t), sharing one search and one segment.
   double u = 0.0;
-  const std::size_t i = locate(t, u);
+  const std::size_t i = locate(t, u);  // before u is read: argument order is unspecified
+  return curvature_in(i, u);
+}
+
+double CubicSpline::curvature_in(std::size_t i, double u) const {
   const Hermite segment = segment_of(*this, i);
   const double h = params[i + 1] - params[i];
   const DVec3 d1 = segment.d1(u) / h, d2 = segment.d2(u) / (h * h);

@@ -20,11 +20,15 @@ struct CubicSpline {
   std::size_t segment_count() const { return points.empty() ? 0 : points.size() - 1; }
   // The segment containing t (clamped to the ends) and the local u in [0, 1].
   std::size_t locate(double t, double& u) const;
+  // locate's answer, found without a search when t lies in segment `hint` (as the samples of one
+  // piece do): the same segment and u, bit for bit.
+  std::size_t locate_from(std::size_t hint, double t, double& u) const;
   DVec3 position(double t) const;
   DVec3 derivative(double t) const;         // dP/dt
   DVec3 second_derivative(double t) const;  // d²P/dt²
   // Curvature |P' × P''| / |P'|³ at t (0 where the speed vanishes).
   double curvature(double t) const;
+  double curvature_in(std::size_t segment, double u) const;  // at u of a segment locate gave
   // Values on one side of knot i (side -1: end of segment i-1, +1: start of segment i), for
   // continuity checks at interior knots.
   DVec3 second_derivative_at_knot(std::size_t i, int side) const;

@@ -171,6 +171,10 @@ double start_bend_ratio(const Skeleton& sk, const Limb& limb) {
 double Limb::z_at(const Skeleton& sk, double t) const {
   double u = 0.0;
   const std::size_t i = spline.locate(t, u);
+  return z_in(sk, i, u);
+}
+
+double Limb::z_in(const Skeleton& sk, std::size_t i, double u) const {
   const Stem& s = sk.stems[static_cast<size_t>(segment_stem(i))];
   // The segment's start knot may belong to the parent (where a clone takes over): there the
   // clone's own z starts.
@@ -182,7 +186,11 @@ double Limb::z_at(const Skeleton& sk, double t) const {
 double Limb::radius_at(const Skeleton& sk, double t) const {
   double u = 0.0;
   const std::size_t i = spline.locate(t, u);
-  return sk.radius_at(sk.stems[static_cast<size_t>(segment_stem(i))], z_at(sk, t));
+  return radius_in(sk, i, u);
+}
+
+double Limb::radius_in(const Skeleton& sk, std::size_t i, double u) const {
+  return sk.radius_at(sk.stems[static_cast<size_t>(segment_stem(i))], z_in(sk, i, u));
 }
 
 double Limb::arc_at(double t) const {

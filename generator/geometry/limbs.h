@@ -34,6 +34,9 @@ struct Limb {
   double z_at(const Skeleton& sk, double t) const;
   // Limb radius at parameter t, from the stems' taper laws (or their point radii).
   double radius_at(const Skeleton& sk, double t) const;
+  // z_at and radius_at at u of a segment that spline.locate gave.
+  double z_in(const Skeleton& sk, std::size_t segment, double u) const;
+  double radius_in(const Skeleton& sk, std::size_t segment, double u) const;
   // Bark arc length at parameter t (interpolated between knots).
   double arc_at(double t) const;
   // Frame normal at t, transported from the previous knot (rotation-minimising).

@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "generator/geometry/geometry_plan.h"
 #include "generator/geometry/leaf_shapes.h"
 #include "generator/geometry/limbs.h"
 #include "generator/species.h"
@@ -21,15 +22,6 @@ namespace {
 template <typename T>
 std::size_t bytes_of(const std::vector<T>& v) {
   return v.size() * sizeof(T);
-}
-
-// Sub-pieces per spline segment: radius laws that are not linear in z need more.
-int pieces_for(const Skeleton& sk, const Limb& limb, std::size_t segment) {
-  const Stem& s = sk.stems[static_cast<size_t>(limb.segment_stem(segment))];
-  // Periodic taper (Weber & Penn §4.3, nTaper in (2, 3]) swells the limb between joins where the
-  // radius has unbounded slope: enough pieces to follow each swelling.
-  if (s.taper > 2.0f) return 32;
-  return s.taper > 1.0f ? 8 : 1;
 }
 
 // A Hermite end slope for the radius limited so that the piece's cubic radius stays between its
@@ -66,36 +58,12 @@ double allowed_radius(const Skeleton& sk, const Limb& limb, double t) {
   return k > 0.0 ? std::min(r, 0.9 / k) : r;
 }
 
-bool curvature_limits(const Skeleton& sk, const Limb& limb, double a, double b) {
-  for (int k = 0; k <= 32; ++k) {
-    const double t = a + (b - a) * 0.5 * (1.0 - std::cos(kPi * k / 32.0));
-    if (limb.radius_at(sk, t) * limb.spline.curvature(t) >= 0.9) return true;
-  }
-  return false;
-}
-
 void add_limb_curves(const Skeleton& sk, const Limb& limb, std::int32_t limb_index,
                      TreeGeometry& g) {
   const CubicSpline& spline = limb.spline;
-  // Piece boundaries: per spline segment 1 piece, 8 where the taper law is not linear in z, and
-  // 8 more inside any piece where the radius of curvature limits the radius (so the cubic radius
-  // follows the limit closely). Pieces are exact sub-segments of the spline.
   std::vector<double> ts;
   std::vector<bool> limited;
-  for (std::size_t k = 0; k < spline.segment_count(); ++k) {
-    const int m = pieces_for(sk, limb, k);
-    for (int j = 0; j < m; ++j) {
-      const double a = spline.params[k] + (spline.params[k + 1] - spline.params[k]) * j / m;
-      const double b = spline.params[k] + (spline.params[k + 1] - spline.params[k]) * (j + 1) / m;
-      const bool limit = curvature_limits(sk, limb, a, b);
-      const int sub = limit ? 8 : 1;
-      for (int q = 0; q < sub; ++q) {
-        ts.push_back(a + (b - a) * q / sub);
-        limited.push_back(limit);
-      }
-    }
-  }
-  ts.push_back(spline.params.back());
+  limb_pieces(sk, limb, ts, limited);
   const std::vector<FrameSample> frames =
       rotation_minimizing_frames(spline, ts, limb.knot_normals.front());
   CurveSet& c = g.curves;
@@ -138,12 +106,6 @@ void add_limb_curves(const Skeleton& sk, const Limb& limb, std::int32_t limb_ind
       ++g.stats.radius_adjusted_segments;
     }
   }
-}
-
-bool displaced(const Skeleton& sk, const Limb& limb, const GeometryOptions& o) {
-  return o.displace_trunk && limb.level == 0 &&
-         (sk.trunk.flare > 0.0f || (sk.trunk.lobes > 0 && sk.trunk.lobe_depth > 0.0f) ||
-          o.buttresses > 0);
 }
 
 // Root buttresses (Bloomenthal 1985, the base of a tree: "planar blobby" contours, after Blinn,
@@ -204,20 +166,9 @@ double buttress_contour(const GeometryOptions& o, double base_radius, double h, 
 void add_trunk_grid(const Skeleton& sk, const Limb& limb, std::int32_t limb_index,
                     const GeometryOptions& o, TreeGeometry& g) {
   const CubicSpline& spline = limb.spline;
-  const double total = spline.params.back();
   const double base_radius = limb.radius_at(sk, 0.0);
-  std::vector<double> ts{0.0};
-  while (ts.back() < total && ts.size() < 32000) {
-    const double t = ts.back();
-    const double z = limb.z_at(sk, t);
-    const double r =
-        std::max(limb.radius_at(sk, t), 0.25 * base_radius) * wp::flare_scale(sk.trunk.flare, z);
-    const double step = o.grid_step * r * (z < 0.125 ? 0.5 : 1.0);
-    ts.push_back(std::min(total, t + std::max(step, total * 1e-4)));
-  }
-  const int sides = std::clamp(
-      o.grid_sides > 0 ? o.grid_sides : std::max({64, 16 * sk.trunk.lobes, 32 * o.buttresses}), 8,
-      4096);
+  const std::vector<double> ts = grid_rings(sk, limb, o);
+  const int sides = grid_sides(sk, o);
   const std::vector<FrameSample> frames =
       rotation_minimizing_frames(spline, ts, limb.knot_normals.front());
   GridSet& gs = g.grids;
@@ -346,16 +297,8 @@ void add_leaves(const Skeleton& sk, const GeometryOptions& o, TreeGeometry& g) {
       return leaf.position + leaf.axis * (y * leaf.length) + across * (x * leaf.width) +
              leaf.normal * (lift * leaf.width);
     };
-    // The card's edges across the leaf: its outline's, and the hinges inside it (at most 4; on
-    // the stack, not a vector per leaf — half a million allocations for the willow).
-    float bounds[4] = {outline.lo.x};
-    std::size_t edges = 1;
-    if (hinged) {
-      for (float x : {-hinge, hinge}) {
-        if (x > outline.lo.x && x < outline.hi.x) bounds[edges++] = x;
-      }
-    }
-    bounds[edges++] = outline.hi.x;
+    float bounds[4] = {};
+    const std::size_t edges = leaf_card_edges(outline, o, bounds);
     for (std::size_t k = 0; k + 1 < edges; ++k) {
       LeafCard c;
       c.leaf = static_cast<std::int32_t>(li);
@@ -390,7 +333,7 @@ void add_free_leaves(const Skeleton& sk, TreeGeometry& g) {
 void add_leaf_lines(const Skeleton& sk, TreeGeometry& g) {
   for (const LeafLine& l : sk.leaf_lines) {
     const glm::vec3 d = l.b - l.a;
-    if (glm::length(d) <= 2.0f * l.radius) continue;  // too short to be a line
+    if (!kept_as_line(l)) continue;
     CurveSet& c = g.curves;
     c.points.emplace_back(l.a, l.radius);
     c.points.emplace_back(l.b, l.radius);

@@ -99,6 +99,7 @@ struct GeometryStats {
   std::size_t leaf_triangles = 0;  // free-form (TREE-MAKER) leaf triangles
   std::size_t leaf_cards = 0;
   std::size_t bytes = 0;  // of all the arrays above
+  bool built = true;      // false: counted by count_tree_geometry (bytes and adjustments unknown)
 };
 
 struct TreeGeometry {

@@ -8,7 +8,10 @@
 #include <gtest/gtest.h>
 
 #include "common/rng.h"
+#include "generator/geometry/geometry_plan.h"
 #include "generator/geometry/leaf_shapes.h"
+#include "generator/geometry/limbs.h"
+#include "generator/grow.h"
 #include "generator/geometry/tree_mesh.h"
 #include "generator/species.h"
 #include "generator/models/weber_penn/weber_penn.h"
@@ -361,6 +364,67 @@ TEST(TreeGeometry, RootButtressesWidenTheTrunksBaseAndMergeIntoIt) {
         0.0f)
         << j;
   }
+}
+
+// `grow --stats` counts the geometry without building it (issue 31): every count equals the
+// build's, over curvature-limited pieces, periodic taper (the saguaro), a displaced lobed trunk
+// (the aspen, the willow), hinged leaves and TREE-MAKER leaf lines (the dogwood). Power: counting
+// a grid's triangles over its rings rather than the gaps between them fails it on the displaced
+// trunks.
+TEST(TreeGeometry, CountingWithoutBuildingGivesTheBuildsCounts) {
+  for (const char* file : {"quaking_aspen.toml", "weeping_willow.toml", "saguaro_cactus.toml",
+                           "dogwood.tmpl", "lsystem_bush.lsys", "young_pine.tmpl"}) {
+    const Species species =
+        formats::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + file);
+    GrowOptions o;
+    o.seed = 4;
+    o.quality = 0.2;
+    const Skeleton sk = grow_tree(species, o);
+    const GeometryOptions options = geometry_options_for(species);
+    const GeometryStats built = build_tree_geometry(sk, options).stats;
+    const GeometryStats counted = count_tree_geometry(sk, options);
+    EXPECT_TRUE(built.built);
+    EXPECT_FALSE(counted.built);
+    EXPECT_GT(counted.curve_segments, 0u) << file;
+    EXPECT_EQ(counted.limbs, built.limbs) << file;
+    EXPECT_EQ(counted.curve_segments, built.curve_segments) << file;
+    EXPECT_EQ(counted.tension_raised_limbs, built.tension_raised_limbs) << file;
+    EXPECT_EQ(counted.grids, built.grids) << file;
+    EXPECT_EQ(counted.grid_vertices, built.grid_vertices) << file;
+    EXPECT_EQ(counted.grid_triangles, built.grid_triangles) << file;
+    EXPECT_EQ(counted.leaf_cards, built.leaf_cards) << file;
+    EXPECT_EQ(counted.leaf_triangles, built.leaf_triangles) << file;
+  }
+}
+
+// The located variants give locate's segment and u, and the values computed from them are the
+// same bits as from the parameter (a segment hint that is wrong falls back to the search). Power:
+// taking the hint for t equal to its segment's end knot (<= for <) fails it.
+TEST(TreeGeometry, LocatingFromASegmentAgreesWithTheSearch) {
+  const Skeleton sk = grow_species("black_tupelo", 3);
+  const std::vector<Limb> limbs = fit_limbs(sk);
+  Rng rng(11);
+  int checked = 0;
+  for (const Limb& limb : limbs) {
+    const CubicSpline& s = limb.spline;
+    const double total = s.params.back();
+    for (int k = 0; k < 8; ++k) {
+      // Inside, at knots, beyond the ends.
+      const double t = k < 2 ? s.params[static_cast<size_t>(k) % s.params.size()]
+                             : (rng.uniform() * 1.2 - 0.1) * total;
+      double u0 = 0.0;
+      const std::size_t i0 = s.locate(t, u0);
+      for (std::size_t hint = 0; hint < s.segment_count(); ++hint) {
+        double u1 = -1.0;
+        ASSERT_EQ(s.locate_from(hint, t, u1), i0) << "t " << t << " hint " << hint;
+        ASSERT_EQ(u1, u0);
+      }
+      EXPECT_EQ(limb.radius_in(sk, i0, u0), limb.radius_at(sk, t));
+      EXPECT_EQ(s.curvature_in(i0, u0), s.curvature(t));
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 1000);
 }
 
 }  // namespace arbor::generator
