@@ -416,6 +416,33 @@ TEST(WeberPenn, WindSwayPerturbsOnlyTheGeometry) {
   EXPECT_LT(moved, 0.5 * compute_stats(a).height);
 }
 
+// With wind and pruning the envelope prunes the tree at rest, walked beside the swaying one in the
+// same growth (issue 31: it was grown twice): at any time the swaying willow has the calm willow's
+// stems with their lengths, bit for bit. Power: probing from the swayed pose instead of the pose at
+// rest changes the lengths of hundreds of stems.
+TEST(WeberPenn, PruningWithWindKeepsTheCalmTreesStems) {
+  WeberPennParams p = paper_species("weeping_willow");
+  p.levels = 3;  // the branches that the envelope prunes, without the twigs
+  ASSERT_GT(p.prune_ratio, 0.0);
+  ASSERT_TRUE(p.wind_speed != 0.0 || p.wind_gust != 0.0);
+  WeberPennParams calm = p;
+  calm.wind_speed = calm.wind_gust = 0.0;
+  const Skeleton rest = grow(calm, 6, 0.0);
+  for (const double time : {0.0, 2.5, 40.0}) {
+    const Skeleton swaying = grow(p, 6, time);
+    ASSERT_EQ(swaying.stems.size(), rest.stems.size()) << time;
+    double moved = 0.0;
+    for (std::size_t i = 0; i < rest.stems.size(); ++i) {
+      ASSERT_EQ(swaying.stems[i].length, rest.stems[i].length) << "stem " << i << " t " << time;
+      ASSERT_EQ(swaying.stems[i].point_count, rest.stems[i].point_count);
+    }
+    for (std::size_t i = 0; i < rest.points.size(); ++i)
+      moved = std::max(moved,
+                       double(glm::length(swaying.points[i].position - rest.points[i].position)));
+    EXPECT_GT(moved, 1e-3) << time;
+  }
+}
+
 TEST(WeberPenn, IndependentStreamsKeepUnrelatedPartsFixed) {
   // Changing the number of sub-branches leaves the trunk and main branches where they were.
   WeberPennParams p = paper_species("quaking_aspen");

@@ -8,7 +8,6 @@
 #include <deque>
 #include <cmath>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "common/error.h"
@@ -60,11 +59,25 @@ struct DepthGuard {
   std::size_t& depth_;
 };
 
+// Where a child starts on its parent and the parent's frame there, turned to the child's azimuth.
+struct Place {
+  Vec3 at;
+  Frame turned;
+};
+
 // Azimuth state for placing children or leaves about a stem (§4.3 nRotate).
 struct Placement {
   double azimuth = 0.0;  // degrees, accumulated for the helical mode
   double side = 1.0;     // alternating mode: which side the next child goes
   double carry = 0.0;    // error diffusion of fractional counts per segment
+};
+
+// Where a stem starts, which way it grows, and the §4.2 back-rotation it carries.
+struct Pose {
+  Frame frame;
+  Vec3 position{0.0};
+  double split_correction = 0.0;    // radians per remaining segment (§4.2 back-rotation)
+  double pending_correction = 0.0;  // joins split_correction after the next segment
 };
 
 // Everything needed to grow one stem (or clone).
@@ -73,18 +86,18 @@ struct StemSpec {
   int parent = -1;
   bool is_clone = false;
   double parent_offset = 0.0;
-  Frame frame;
-  Vec3 position{0.0};
+  Pose pose;
+  // With wind and pruning, the pose of the same stem in the tree at rest, which the pruning
+  // envelope is tested against (§4.7: "the same basic geometry, perturbed only by the wind").
+  Pose rest;
   double length = 0.0;
   double base_radius = 0.0;
   int first_segment = 0;
   int parent_first_segment = 0;  // for clones: the first segment of the stem they split from
   std::uint64_t key = 0;
-  double split_correction = 0.0;    // radians per remaining segment (§4.2 back-rotation)
-  double pending_correction = 0.0;  // joins split_correction after the next segment
-  double share = 1.0;               // fraction of the children/leaves this clone carries
-  double children = 0.0;            // children over the whole stem (before sharing)
-  double leaves = 0.0;              // leaves over the whole stem (before sharing)
+  double share = 1.0;     // fraction of the children/leaves this clone carries
+  double children = 0.0;  // children over the whole stem (before sharing)
+  double leaves = 0.0;    // leaves over the whole stem (before sharing)
   Placement child_place;
   Placement leaf_place;
   // Where the stem grows from, to recompute radius and counts when pruning shortens it.
@@ -106,6 +119,7 @@ class Grower {
     base_length_ = p.base_size * scale_tree_;
     leaf_scale_ = 1.0 / std::sqrt(o.quality);
     wind_ = p.wind_speed != 0.0 || p.wind_gust != 0.0;
+    at_rest_too_ = wind_ && p.prune_ratio > 0.0;
   }
 
   void grow() {
@@ -164,27 +178,15 @@ class Grower {
   }
 
   // §4.6: probe the stem and its clones; shorten until inside, then blend by PruneRatio. With
-  // wind, the lengths found for the tree at rest are replayed (grow_weber_penn), so that the sway
-  // bends the same branches at every time instead of pruning different ones.
+  // wind the probe grows from the stem's pose at rest, so that the sway bends the same branches at
+  // every time instead of pruning different ones.
   void prune(StemSpec& s) {
-    if (replay_) {
-      const auto it = replay_->find(s.key);
-      if (it != replay_->end()) {
-        s.length = it->second;
-        size_stem(s);
-        return;
-      }
-    }
-    prune_probe(s);
-    if (record_) (*record_)[s.key] = s.length;
-  }
-
-  void prune_probe(StemSpec& s) {
     const double original = s.length;
     double length = original;
     bool fits = false;
     for (int iteration = 0; iteration < 64 && length > kMinLength; ++iteration) {
       StemSpec probe = s;
+      if (at_rest_too_) probe.pose = s.rest;
       probe.length = length;
       const SplitErrors saved = split_error_;
       fits = trace(probe, true);
@@ -203,11 +205,8 @@ class Grower {
     trace(s, false);
   }
 
-  // Frame of segment i: curvature (§4.1), attraction (§4.8), split back-rotation (§4.2) and
-  // sway (§4.7) turn the previous segment's frame. The first segment keeps the stem's frame.
-  Frame bend(const StemSpec& s, Frame f, int i, Rng& curve_rng, const double sway_offset[2],
-             bool probe) const {
-    const WeberPennLevel& lv = p_.at(s.level);
+  // §4.1 curvature of segment i (degrees), its random part drawn from curve_rng.
+  double curvature_step(const WeberPennLevel& lv, int i, Rng& curve_rng) const {
     const int n = lv.curve_res;
     double delta = 0.0;
     if (lv.curve_back == 0.0) {
@@ -217,14 +216,23 @@ class Grower {
       delta = (i < n / 2.0 ? lv.curve : lv.curve_back) / (n / 2.0);
     }
     if (lv.curve_v > 0.0) delta += lv.curve_v / n * curve_rng.symmetric();
+    return delta;
+  }
+
+  // Frame of segment i: curvature `delta` (§4.1), attraction (§4.8), split back-rotation (§4.2)
+  // and, when `sway`, the wind (§4.7) turn the previous segment's frame. The first segment keeps
+  // the stem's frame.
+  Frame bend(const StemSpec& s, Frame f, int i, double delta, double split_correction,
+             const double sway_offset[2], bool sway) const {
+    const int n = p_.at(s.level).curve_res;
     f = f.rotated_x(radians(delta));
     if (s.level >= 2 && p_.attraction_up != 0.0) {
       // §4.8; the rotation sign is chosen so that positive AttractionUp curves stems upward,
       // as the text describes (a positive x-rotation turns z toward -y, i.e. down).
       f = f.rotated_x(-wp::attraction_up(p_.attraction_up, f.z.z, f.y.z, n));
     }
-    if (s.split_correction != 0.0) f = f.rotated_x(-s.split_correction);
-    if (wind_ && !probe) {
+    if (split_correction != 0.0) f = f.rotated_x(-split_correction);
+    if (sway) {
       const double z = static_cast<double>(i) / n;
       const wp::Sway sw =
           wp::sway_angles(p_.wind_speed, p_.wind_gust, s.length, s.base_radius, radius_at(s, z), z,
@@ -259,18 +267,17 @@ class Grower {
     return std::max(0, count);
   }
 
-  // Grows a child of `parent` at `offset` metres along it. `turned` is the parent's frame there,
-  // already turned about the parent's axis (azimuth) or across it (fan); the child's own down
-  // angle is applied here.
-  void spawn_child(const StemSpec& parent, int stem_index, double offset, const Vec3& at,
-                   const Frame& turned, std::uint64_t ordinal) {
+  // Grows a child of `parent` at `offset` metres along it. `here.turned` is the parent's frame
+  // there, already turned about the parent's axis (azimuth) or across it (fan); the child's own
+  // down angle is applied here. `at_rest` is the same place in the tree at rest (see prune).
+  void spawn_child(const StemSpec& parent, int stem_index, double offset, const Place& here,
+                   const Place& at_rest, std::uint64_t ordinal) {
     const int level = parent.level + 1;
     const WeberPennLevel& lv = p_.at(level);
     StemSpec c;
     c.level = level;
     c.parent = stem_index;
     c.parent_offset = offset;
-    c.position = at;
     c.key = derive_key(parent.key, kChildBase + ordinal);
     Rng own_length(derive_key(c.key, kLength));
     Rng own_down(derive_key(c.key, kDown));
@@ -282,7 +289,13 @@ class Grower {
     c.parent_length = parent.length;
     c.parent_base_radius = parent.base_radius;
     c.parent_radius_here = radius_at(parent, offset / parent.length);
-    c.frame = turned.rotated_x(radians(down_angle(lv, own_down, parent, offset)));
+    const double down = down_angle(lv, own_down, parent, offset);
+    c.pose.frame = here.turned.rotated_x(radians(down));
+    c.pose.position = here.at;
+    if (at_rest_too_) {
+      c.rest.frame = at_rest.turned.rotated_x(radians(down));
+      c.rest.position = at_rest.at;
+    }
     size_stem(c);
     c.child_place.azimuth = Rng(derive_key(c.key, kChildPlacement)).uniform() * 360.0;
     c.leaf_place.azimuth = Rng(derive_key(c.key, kLeafPlacement)).uniform() * 360.0;
@@ -318,9 +331,7 @@ class Grower {
     Rng split_rng(derive_key(s.key, kSplit));
     Rng sway_rng(derive_key(s.key, kSway));
     const double sway_offset[2] = {sway_rng.uniform() * 2.0 * kPi, sway_rng.uniform() * 2.0 * kPi};
-    // A growth that only records pruned lengths (record_) needs no leaves: they place nothing
-    // that a stem depends on (their random numbers are their own stream).
-    const bool grows_leaves = !probe && !record_ && s.level + 1 == p_.levels && p_.leaves != 0.0;
+    const bool grows_leaves = !probe && s.level + 1 == p_.levels && p_.leaves != 0.0;
     const bool grows_children = !probe && s.level + 1 < p_.levels;
     const bool fan_children = p_.levels > s.level + 1 && p_.at(s.level + 1).branches < 0.0;
     const bool fan_leaves = p_.leaves < 0.0;
@@ -348,7 +359,7 @@ class Grower {
       st.taper = static_cast<float>(lv.taper);
       out_.stems.push_back(st);
       points.reserve(static_cast<size_t>(n - s.first_segment + 1));
-      points.push_back({glm::vec3(s.position), static_cast<float>(radius_at(s, st.z_start))});
+      points.push_back({glm::vec3(s.pose.position), static_cast<float>(radius_at(s, st.z_start))});
       if (o_.progress && (out_.stems.size() & 1023u) == 0) o_.progress->update(out_.stems.size());
       refuse_growth(o_.force, static_cast<double>(out_.stems.size()), o_.max_stems,
                     "the tree grew past", "stems");
@@ -357,19 +368,31 @@ class Grower {
     Rng leaf_rng(derive_key(s.key, kLeafPlacement + 7));
     std::uint64_t child_ordinal = static_cast<std::uint64_t>(s.first_segment) << 16;
 
-    Frame axis = s.frame;
-    Vec3 pos = s.position;
+    // With wind and pruning the tree at rest is walked beside the swaying one (`rest_*`): its
+    // children and clones start where the tree at rest has them, for their pruning probes.
+    const bool at_rest_too = at_rest_too_ && !probe;
+    Frame axis = s.pose.frame, rest_axis = s.rest.frame;
+    Vec3 pos = s.pose.position, rest_pos = s.rest.position;
     for (int i = s.first_segment; i < n; ++i) {
-      if (i > 0) axis = bend(s, axis, i, curve_rng, sway_offset, probe);
+      if (i > 0) {
+        const double delta = curvature_step(lv, i, curve_rng);
+        axis = bend(s, axis, i, delta, s.pose.split_correction, sway_offset, wind_ && !probe);
+        if (at_rest_too)
+          rest_axis = bend(s, rest_axis, i, delta, s.rest.split_correction, sway_offset, false);
+      }
       // The segment right after a split keeps the full split angle; the back-rotation starts
       // on the segment after it.
-      s.split_correction += s.pending_correction;
-      s.pending_correction = 0.0;
-      Frame seg = axis;
+      for (Pose* pose : {&s.pose, &s.rest}) {
+        pose->split_correction += pose->pending_correction;
+        pose->pending_correction = 0.0;
+      }
+      Frame seg = axis, rest_seg = rest_axis;
       if (helix) {
         // §4.1 negative nCurveV: the segments wind about the stem's axis at |nCurveV| degrees,
         // one full turn over the stem (arbor's choice; the paper gives only the angle).
         seg = axis.rotated_z(2.0 * kPi * i / n).rotated_x(radians(-lv.curve_v));
+        if (at_rest_too)
+          rest_seg = rest_axis.rotated_z(2.0 * kPi * i / n).rotated_x(radians(-lv.curve_v));
       }
       const Vec3 end = pos + seg.z * seg_len;
       if (probe && !wp::inside_envelope(end.x, end.y, end.z, scale_tree_, p_.base_size,
@@ -387,8 +410,11 @@ class Grower {
         for (int k = 0; k < count; ++k) {
           const double off = lo + usable * (k + 0.5) / count;
           const double azimuth = next_azimuth(s.child_place, child_level, child_rng);
-          spawn_child(s, stem_index, off, pos + seg.z * (off - a), seg.rotated_z(radians(azimuth)),
-                      child_ordinal++);
+          const Place here{pos + seg.z * (off - a), seg.rotated_z(radians(azimuth))};
+          const Place at_rest = at_rest_too ? Place{rest_pos + rest_seg.z * (off - a),
+                                                    rest_seg.rotated_z(radians(azimuth))}
+                                            : here;
+          spawn_child(s, stem_index, off, here, at_rest, child_ordinal++);
         }
       }
       if (grows_leaves && !fan_leaves && usable > 0.0 && span > 0.0) {
@@ -400,11 +426,13 @@ class Grower {
         }
       }
       pos = end;
+      if (at_rest_too) rest_pos = rest_pos + rest_seg.z * seg_len;
       if (!probe) {
         points.push_back({glm::vec3(pos), static_cast<float>(radius_at(s, double(i + 1) / n))});
       }
       if (i + 1 < n) {
-        if (!split(s, stem_index, i, axis, pos, split_rng, probe)) return false;
+        if (!split(s, stem_index, i, axis, pos, rest_axis, rest_pos, split_rng, probe))
+          return false;
       }
     }
     // Fans at the tip (§4.5 negative Leaves; negative nBranches likewise).
@@ -421,7 +449,10 @@ class Grower {
       const double spread = p_.at(s.level + 1).rotate;
       for (int k = 0; k < count; ++k) {
         const double angle = -0.5 * spread + spread * (k + 0.5) / count;
-        spawn_child(s, stem_index, s.length, pos, axis.rotated_y(radians(angle)), child_ordinal++);
+        const Place here{pos, axis.rotated_y(radians(angle))};
+        const Place at_rest =
+            at_rest_too ? Place{rest_pos, rest_axis.rotated_y(radians(angle))} : here;
+        spawn_child(s, stem_index, s.length, here, at_rest, child_ordinal++);
       }
     }
     if (!probe) {
@@ -436,8 +467,8 @@ class Grower {
   // §4.2 splits at the end of segment i: the stem and its clones turn away by angle_split and
   // spread about the tree-parallel axis. Clones are grown at once. Returns false when a probed
   // clone leaves the envelope.
-  bool split(StemSpec& s, int stem_index, int i, Frame& axis, const Vec3& pos, Rng& split_rng,
-             bool probe) {
+  bool split(StemSpec& s, int stem_index, int i, Frame& axis, const Vec3& pos, Frame& rest_axis,
+             const Vec3& rest_pos, Rng& split_rng, bool probe) {
     const WeberPennLevel& lv = p_.at(s.level);
     const int n = lv.curve_res;
     int clones = 0;
@@ -448,45 +479,60 @@ class Grower {
     }
     if (clones == 0) return true;
 
-    const double declination = degrees(std::acos(std::clamp(axis.z.z, -1.0, 1.0)));
-    const double angle =
-        wp::split_angle(split_rng.vary(lv.split_angle, lv.split_angle_v), declination);
-    const double spread = wp::split_spread(declination, split_rng.uniform());
+    const double sampled_angle = split_rng.vary(lv.split_angle, lv.split_angle_v);
+    const double spread_draw = split_rng.uniform();
     const double sign = split_rng.uniform() < 0.5 ? -1.0 : 1.0;
     const int remaining = n - (i + 2);  // segments after the first one past the split
-    const double correction = remaining > 0 ? radians(angle) / remaining : 0.0;
     const double share = s.share / (clones + 1);
-
+    // The split turns a stem by an angle that depends on its declination: the tree at rest's
+    // stems turn by their own.
+    struct Turn {
+      double angle, spread, correction;
+    };
+    auto turn_of = [&](const Frame& f) {
+      const double declination = degrees(std::acos(std::clamp(f.z.z, -1.0, 1.0)));
+      const double angle = wp::split_angle(sampled_angle, declination);
+      return Turn{angle, wp::split_spread(declination, spread_draw),
+                  remaining > 0 ? radians(angle) / remaining : 0.0};
+    };
+    const bool at_rest_too = at_rest_too_ && !probe;
+    const Turn turn = turn_of(axis), rest_turn = at_rest_too ? turn_of(rest_axis) : turn;
+    // One clone: the paper rotates only the original (by ±spread). Several clones (the paper is
+    // silent): all stems are set evenly around the axis, the original at ±spread.
+    auto clone_frame = [&](const Frame& f, const Turn& t, int j) {
+      const double azimuth = clones == 1 ? 0.0 : sign * t.spread + j * 360.0 / (clones + 1);
+      return f.rotated_x(radians(t.angle)).rotated_about(kUp, radians(azimuth));
+    };
     for (int j = 1; j <= clones; ++j) {
-      // One clone: the paper rotates only the original (by ±spread). Several clones (the paper is
-      // silent): all stems are set evenly around the axis, the original at ±spread.
-      const double azimuth = clones == 1 ? 0.0 : sign * spread + j * 360.0 / (clones + 1);
       StemSpec c = s;
       c.is_clone = true;
       c.parent = stem_index;
       c.parent_offset = (i + 1) * (s.length / n);
-      c.position = pos;
       c.first_segment = i + 1;
       c.parent_first_segment = s.first_segment;
       c.key = derive_key(s.key, kCloneBase + static_cast<std::uint64_t>(i + 1) * 64 + j);
-      c.frame = axis.rotated_x(radians(angle)).rotated_about(kUp, radians(azimuth));
-      c.pending_correction = correction;
-      c.share = share;
-      if (probe) {
-        if (!trace(c, true)) return false;
-      } else {
-        grow_stem_clone(c);
+      c.pose.position = pos;
+      c.pose.frame = clone_frame(axis, turn, j);
+      c.pose.pending_correction = turn.correction;
+      if (at_rest_too) {
+        c.rest.position = rest_pos;
+        c.rest.frame = clone_frame(rest_axis, rest_turn, j);
+        c.rest.pending_correction = rest_turn.correction;
       }
+      c.share = share;
+      // Clones share their twin's length: not pruned separately (the twin's probe covered them).
+      if (!trace(c, probe) && probe) return false;
     }
-    axis = axis.rotated_x(radians(angle)).rotated_about(kUp, radians(sign * spread));
-    s.pending_correction = correction;
+    axis = axis.rotated_x(radians(turn.angle)).rotated_about(kUp, radians(sign * turn.spread));
+    s.pose.pending_correction = turn.correction;
+    if (at_rest_too) {
+      rest_axis = rest_axis.rotated_x(radians(rest_turn.angle))
+                      .rotated_about(kUp, radians(sign * rest_turn.spread));
+      s.rest.pending_correction = rest_turn.correction;
+    }
     s.share = share;
     return true;
   }
-
-  // Clones share their twin's length: they are not pruned separately (the probe of the original
-  // covered them).
-  void grow_stem_clone(const StemSpec& c) { trace(c, false); }
 
   void apply_z_scale() {
     if (z_scale_ == 1.0) return;
@@ -508,6 +554,7 @@ class Grower {
   double scale_tree_ = 0.0, z_scale_ = 1.0, base_length_ = 0.0, trunk_length_ = 0.0;
   double leaf_scale_ = 1.0;
   bool wind_ = false;
+  bool at_rest_too_ = false;  // wind and pruning: the tree at rest is walked too (prune)
   // The split error diffusion per level (Levels ≤ 9), copied for every pruning probe.
   using SplitErrors = std::array<wp::SplitDiffusion, 10>;
   SplitErrors split_error_{};
@@ -520,27 +567,9 @@ class Grower {
   std::vector<wp::PendingLeaf> pending_;
 
  public:
-  // Pruned lengths by stem key: recorded from a growth at rest (stems only), replayed in one
-  // with wind.
-  std::unordered_map<std::uint64_t, double>* record_ = nullptr;
-  const std::unordered_map<std::uint64_t, double>* replay_ = nullptr;
 };
 
 }  // namespace
-
-SizeEstimate estimate_size(const WeberPennParams& p, double quality) {
-  SizeEstimate e;
-  double families = 1.0;  // stems at this level not counting clones (clones share children)
-  for (int level = 0; level < p.levels; ++level) {
-    const WeberPennLevel& lv = p.at(level);
-    if (level > 0) families *= std::fabs(lv.branches);
-    double clone_growth = std::pow(1.0 + lv.seg_splits, std::max(0, lv.curve_res - 1));
-    if (level == 0) clone_growth *= 1.0 + lv.base_splits;
-    e.stems += families * clone_growth;
-  }
-  e.leaves = families * std::fabs(p.leaves) * quality;
-  return e;
-}
 
 Skeleton grow_weber_penn(const WeberPennParams& params, const GrowOptions& options) {
   const SizeEstimate estimate = estimate_size(params, options.quality);
@@ -557,26 +586,7 @@ Skeleton grow_weber_penn(const WeberPennParams& params, const GrowOptions& optio
   skeleton.stems.reserve(static_cast<size_t>(std::min(estimate.stems, 1e6)));
   skeleton.leaves.reserve(static_cast<size_t>(std::min(estimate.leaves, 4e6)));
   if (options.progress) options.progress->set_total(static_cast<std::uint64_t>(estimate.stems));
-  // Pruning probes the stems without sway, but a child starts where its swayed parent put it, so
-  // with wind the envelope would cut different branches at different times. Prune the tree at rest
-  // first and give the swaying tree the same lengths (§4.7: "the same basic geometry, perturbed
-  // only by the wind").
-  std::unordered_map<std::uint64_t, double> pruned;
-  pruned.reserve(skeleton.stems.capacity());
-  const bool sway_pruned =
-      params.prune_ratio > 0.0 && (params.wind_speed != 0.0 || params.wind_gust != 0.0);
-  if (sway_pruned) {
-    WeberPennParams calm = params;
-    calm.wind_speed = calm.wind_gust = 0.0;
-    GrowOptions quiet = options;
-    quiet.progress = nullptr;
-    Skeleton at_rest;
-    Grower rest(calm, quiet, at_rest);
-    rest.record_ = &pruned;
-    rest.grow();
-  }
   Grower grower(params, options, skeleton);
-  if (sway_pruned) grower.replay_ = &pruned;
   grower.grow();
   int max_level = 0;
   for (const Stem& s : skeleton.stems) max_level = std::max(max_level, s.level);

@@ -1,6 +1,8 @@
 // The Weber & Penn parameter table: names as in the paper's appendix, bounds, and storage.
 #include "generator/models/weber_penn/weber_penn_params.h"
 
+#include "generator/models/weber_penn/weber_penn.h"
+
 #include <cmath>
 #include <cstdio>
 
@@ -186,6 +188,20 @@ std::string check_consistency(const WeberPennParams& p, std::string& key) {
     return "LeafShape must be below " + std::to_string(leaf_shape_count());
   }
   return "";
+}
+
+SizeEstimate estimate_size(const WeberPennParams& p, double quality) {
+  SizeEstimate e;
+  double families = 1.0;  // stems at this level not counting clones (clones share children)
+  for (int level = 0; level < p.levels; ++level) {
+    const WeberPennLevel& lv = p.at(level);
+    if (level > 0) families *= std::fabs(lv.branches);
+    double clone_growth = std::pow(1.0 + lv.seg_splits, std::max(0, lv.curve_res - 1));
+    if (level == 0) clone_growth *= 1.0 + lv.base_splits;
+    e.stems += families * clone_growth;
+  }
+  e.leaves = families * std::fabs(p.leaves) * quality;
+  return e;
 }
 
 }  // namespace arbor::generator
