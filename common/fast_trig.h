@@ -18,8 +18,8 @@ namespace arbor {
 inline float fast_atan2(float y, float x) {
   const float ax = std::fabs(x), ay = std::fabs(y);
   const float hi = std::max(ax, ay), lo = std::min(ax, ay);
-  if (!(hi > 0.0f)) return 0.0f;
-  const float t = lo / hi, u = t * t, u2 = u * u, u4 = u2 * u2;
+  // No branch (a loop of these vectorises): (0, 0) gives t = 0 and so ±0.
+  const float t = lo / (hi > 0.0f ? hi : 1.0f), u = t * t, u2 = u * u, u4 = u2 * u2;
   // P(u) of degree 7 by Estrin's scheme: four short chains instead of one of eight steps.
   const float p01 = 0.99999934f - 0.33329859f * u, p23 = 0.19946566f - 0.13908629f * u;
   const float p45 = 0.096421972f - 0.055912327f * u, p67 = 0.021862958f - 0.0040545668f * u;

@@ -15,6 +15,10 @@
 #include "generator/species.h"
 #include "generator/export/tree_stats.h"
 #include "generator/models/weber_penn/weber_penn_formulas.h"
+#include "generator/models/weber_penn/weber_penn_leaves.h"
+#include "common/fast_trig.h"
+#include "common/frame.h"
+#include "common/rng.h"
 #include "formats/species_file.h"
 #include "common/math.h"
 
@@ -440,6 +444,50 @@ TEST(WeberPenn, PruningWithWindKeepsTheCalmTreesStems) {
       moved = std::max(moved,
                        double(glm::length(swaying.points[i].position - rest.points[i].position)));
     EXPECT_GT(moved, 1e-3) << time;
+  }
+}
+
+// The leaves are oriented in blocks by a vectorised loop; each leaf's axis and normal must be the
+// bits that the readable per-leaf code gives: the frame turned by Frame::rotated_z then rotated_x,
+// then wp::orient_toward_light. Random frames and angles, plus the special cases: a leaf on the
+// trunk's axis, a vertical normal (after the first turn), a level leaf, no bend. 1000 leaves: three
+// blocks and a partial one. Power: evaluating the vertical case's θ from the normal fails it.
+TEST(WeberPenn, VectorisedLeafOrientationIsTheScalarOneBitForBit) {
+  Rng rng(5);
+  std::vector<wp::PendingLeaf> pending;
+  std::vector<Leaf> leaves;
+  for (int i = 0; i < 1000; ++i) {
+    arbor::Frame f;
+    f = f.rotated_x(rng.uniform() * 6.0).rotated_z(rng.uniform() * 6.0).rotated_y(rng.uniform());
+    wp::PendingLeaf pl{glm::vec3(f.x), glm::vec3(f.y), glm::vec3(f.z),
+                       static_cast<float>(rng.symmetric() * kPi),
+                       static_cast<float>(rng.symmetric() * kPi)};
+    Leaf leaf;
+    leaf.position = glm::vec3(rng.symmetric() * 3.0, rng.symmetric() * 3.0, rng.uniform() * 9.0);
+    if (i % 7 == 0) leaf.position.x = leaf.position.y = 0.0f;  // on the axis
+    if (i % 11 == 0) {  // the normal vertical after the turns: frame y up, no turn, no down
+      pl.x = {1, 0, 0}, pl.y = {0, 0, 1}, pl.z = {0, -1, 0}, pl.turn = pl.down = 0.0f;
+    }
+    if (i % 13 == 0) {  // a level leaf that stays level: its normal up, turned about it
+      pl.x = {1, 0, 0}, pl.y = {0, 0, 1}, pl.z = {0, -1, 0}, pl.down = 0.0f;
+    }
+    pending.push_back(pl);
+    leaves.push_back(leaf);
+  }
+  for (const float bend : {0.0f, 0.3f, 1.0f}) {
+    std::vector<Leaf> vectorised = leaves;
+    wp::orient_leaves(pending, bend, vectorised);
+    for (std::size_t i = 0; i < pending.size(); ++i) {
+      const wp::PendingLeaf& pl = pending[i];
+      float st = 0.0f, ct = 1.0f, sd = 0.0f, cd = 1.0f;
+      fast_sincos(pl.turn, st, ct);
+      fast_sincos(pl.down, sd, cd);
+      const glm::vec3 turned_y = ct * pl.y - st * pl.x;
+      glm::vec3 axis = cd * pl.z - sd * turned_y, normal = cd * turned_y + sd * pl.z;
+      wp::orient_toward_light(bend, leaves[i].position.x, leaves[i].position.y, axis, normal);
+      ASSERT_EQ(std::memcmp(&vectorised[i].axis, &axis, sizeof axis), 0) << "leaf " << i;
+      ASSERT_EQ(std::memcmp(&vectorised[i].normal, &normal, sizeof normal), 0) << "leaf " << i;
+    }
   }
 }
 
