@@ -44,6 +44,7 @@ const Vec3 kUp{0.0, 0.0, 1.0};
 // An angle (radians) less the nearest whole number of turns: within [−π, π] to a few ulp, for
 // angles accumulated over many placements before they go to single precision.
 inline double turns_reduced(double angle) {
+  if (std::fabs(angle) < kPi) return angle;  // what the reduction below gives, without a division
   const double turns = angle / (2.0 * kPi);
   return angle -
          2.0 * kPi *
@@ -123,7 +124,6 @@ class Grower {
   }
 
   void grow() {
-    pending_.reserve(out_.leaves.capacity());
     const WeberPennLevel& l0 = p_.level[0];
     Rng trunk(derive_key(o_.seed, kTrunk));
     StemSpec s;
@@ -137,8 +137,7 @@ class Grower {
     s.child_place.azimuth = Rng(derive_key(s.key, kChildPlacement)).uniform() * 360.0;
     s.leaf_place.azimuth = Rng(derive_key(s.key, kLeafPlacement)).uniform() * 360.0;
     grow_stem(s);
-    wp::orient_leaves(pending_, static_cast<float>(p_.leaf_bend), out_.leaves);
-    pending_.clear();
+    orienter_.flush();
     apply_z_scale();
     out_.trunk.flare = static_cast<float>(p_.flare);
     out_.trunk.lobes = p_.lobes;
@@ -303,15 +302,11 @@ class Grower {
   }
 
   // A leaf at `at`, turned by `azimuth` (radians) about the frame's z axis and then by its down
-  // angle about the turned x axis (§4.5), oriented toward the light (§4.9) by wp::orient_leaves
-  // once the tree has grown.
+  // angle about the turned x axis (§4.5), oriented toward the light (§4.9) by orienter_.
   void add_leaf(const StemSpec& s, int stem_index, double offset, const Vec3& at, const Frame& base,
                 double azimuth, Rng& rng) {
     const WeberPennLevel& lv = p_.at(p_.levels);
     const double down = radians(down_angle(lv, rng, s, offset));
-    pending_.push_back({glm::vec3(base.x), glm::vec3(base.y), glm::vec3(base.z),
-                        static_cast<float>(turns_reduced(azimuth)),
-                        static_cast<float>(turns_reduced(down))});
     Leaf leaf;
     leaf.position = glm::vec3(at);
     leaf.length = static_cast<float>(p_.leaf_scale * leaf_scale_);
@@ -319,6 +314,9 @@ class Grower {
     leaf.stem = stem_index;
     leaf.shape = p_.leaf_shape;
     out_.leaves.push_back(leaf);
+    orienter_.add(glm::vec3(base.x), glm::vec3(base.y), glm::vec3(base.z),
+                  static_cast<float>(turns_reduced(azimuth)),
+                  static_cast<float>(turns_reduced(down)));
   }
 
   // Grows one stem segment by segment. In probe mode nothing is written and children are not
@@ -563,8 +561,8 @@ class Grower {
   // for each of the willow's 50,000 stems.
   std::deque<std::vector<SkeletonPoint>> point_buffers_;
   std::size_t depth_ = 0;
-  // A leaf's frame and turns until wp::orient_leaves, one per entry of out_.leaves.
-  std::vector<wp::PendingLeaf> pending_;
+  // Orients the leaves a block at a time as they are placed.
+  wp::LeafOrienter orienter_{static_cast<float>(p_.leaf_bend), out_.leaves};
 
  public:
 };

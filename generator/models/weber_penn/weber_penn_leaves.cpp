@@ -33,7 +33,7 @@ void orient_toward_light(float bend, float at_x, float at_y, glm::vec3& axis, gl
 
 namespace {
 
-constexpr std::size_t kBlock = 256;  // leaves oriented together (13 + 6 streams: 19 KiB)
+constexpr std::size_t kBlock = LeafOrienter::kBlock;  // 13 + 6 streams of it: 19 KiB
 
 // orient_leaves on one block in structure-of-arrays form, stream k of `in` at in[k * kBlock]: the
 // frame x, y, z (9 streams), turn, down, the position's x and y; `out`: axis and normal. Without
@@ -97,37 +97,28 @@ void orient_block(const float* __restrict in, float* __restrict out, float bend,
 
 }  // namespace
 
-void orient_leaves(const std::vector<PendingLeaf>& pending, float bend, std::vector<Leaf>& leaves) {
-  std::vector<float> in(13 * kBlock), out(6 * kBlock);
-  for (std::size_t start = 0; start < pending.size(); start += kBlock) {
-    const std::size_t m = std::min(kBlock, pending.size() - start);
-    for (std::size_t j = 0; j < m; ++j) {
-      const PendingLeaf& pl = pending[start + j];
-      const float values[13] = {pl.x.x,
-                                pl.x.y,
-                                pl.x.z,
-                                pl.y.x,
-                                pl.y.y,
-                                pl.y.z,
-                                pl.z.x,
-                                pl.z.y,
-                                pl.z.z,
-                                pl.turn,
-                                pl.down,
-                                leaves[start + j].position.x,
-                                leaves[start + j].position.y};
-      for (std::size_t k = 0; k < 13; ++k) in[k * kBlock + j] = values[k];
-    }
-    if (bend == 0.0f)
-      orient_block<false>(in.data(), out.data(), bend, m);
-    else
-      orient_block<true>(in.data(), out.data(), bend, m);
-    for (std::size_t j = 0; j < m; ++j) {
-      Leaf& leaf = leaves[start + j];
-      leaf.axis = {out[j], out[kBlock + j], out[2 * kBlock + j]};
-      leaf.normal = {out[3 * kBlock + j], out[4 * kBlock + j], out[5 * kBlock + j]};
-    }
+void LeafOrienter::flush() {
+  for (std::size_t j = 0; j < count_; ++j) {
+    in_[11 * kBlock + j] = leaves_[first_ + j].position.x;
+    in_[12 * kBlock + j] = leaves_[first_ + j].position.y;
   }
+  if (bend_ == 0.0f)
+    orient_block<false>(in_.data(), out_.data(), bend_, count_);
+  else
+    orient_block<true>(in_.data(), out_.data(), bend_, count_);
+  for (std::size_t j = 0; j < count_; ++j) {
+    Leaf& leaf = leaves_[first_ + j];
+    leaf.axis = {out_[j], out_[kBlock + j], out_[2 * kBlock + j]};
+    leaf.normal = {out_[3 * kBlock + j], out_[4 * kBlock + j], out_[5 * kBlock + j]};
+  }
+  first_ += count_;
+  count_ = 0;
+}
+
+void orient_leaves(const std::vector<PendingLeaf>& pending, float bend, std::vector<Leaf>& leaves) {
+  LeafOrienter orienter(bend, leaves);
+  for (const PendingLeaf& pl : pending) orienter.add(pl.x, pl.y, pl.z, pl.turn, pl.down);
+  orienter.flush();
 }
 
 }  // namespace arbor::generator::wp
