@@ -89,29 +89,31 @@ std::string validate(const Skeleton& sk) {
   int roots = 0;
   for (size_t i = 0; i < sk.stems.size(); ++i) {
     const Stem& s = sk.stems[i];
-    const std::string name = "stem " + std::to_string(i);
+    // Named only when something is wrong: formatting it for each of the willow's 50,000 valid
+    // stems was a tenth of validating its skeleton.
+    const auto name = [i] { return "stem " + std::to_string(i); };
     if (s.parent < 0) {
       ++roots;
     } else if (static_cast<size_t>(s.parent) >= i) {
-      return name + " has parent " + std::to_string(s.parent) +
+      return name() + " has parent " + std::to_string(s.parent) +
              ", not an earlier stem (a cycle or a forward link)";
     }
-    if (s.point_count < 2) return name + " has fewer than two points";
+    if (s.point_count < 2) return name() + " has fewer than two points";
     if (static_cast<size_t>(s.first_point) + s.point_count > sk.points.size()) {
-      return name + " refers to points past the end";
+      return name() + " refers to points past the end";
     }
     for (std::uint32_t k = 0; k < s.point_count; ++k) {
       const SkeletonPoint& p = sk.points[s.first_point + k];
       if (!std::isfinite(p.position.x) || !std::isfinite(p.position.y) ||
           !std::isfinite(p.position.z) || !std::isfinite(p.radius)) {
-        return name + " has a point that is not finite";
+        return name() + " has a point that is not finite";
       }
-      if (p.radius < 0.0f) return name + " has a negative radius";
+      if (p.radius < 0.0f) return name() + " has a negative radius";
     }
     if (s.parent >= 0) {
       const Stem& parent = sk.stems[static_cast<size_t>(s.parent)];
       if (s.parent_point >= static_cast<std::int32_t>(parent.point_count)) {
-        return name + " starts at point " + std::to_string(s.parent_point) +
+        return name() + " starts at point " + std::to_string(s.parent_point) +
                " of its parent, which has only " + std::to_string(parent.point_count);
       }
       const double z = parent.length > 0.0f ? s.parent_offset / parent.length : 0.0;
@@ -121,7 +123,7 @@ std::string validate(const Skeleton& sk) {
               : sk.radius_at(parent, std::clamp(z, 0.0, 1.0));
       const float own = sk.points[s.first_point].radius;
       if (own > parent_radius * 1.0001f + 1e-7f) {
-        return name + " starts with radius " + std::to_string(own) +
+        return name() + " starts with radius " + std::to_string(own) +
                " thicker than its parent there (" + std::to_string(parent_radius) + ")";
       }
     }
