@@ -342,6 +342,11 @@ class SceneReader : TomlReader {
       else if (k == "cuticle_roughness")
         l.cuticle_roughness =
             number(n, owner + ".leaf.cuticle_roughness", look_range::kCuticleRoughness);
+      else if (k == "variation" || k == "hue_variation")
+        (k == "variation" ? l.variation : l.hue_variation) =
+            number(n, owner + ".leaf." + k, look_range::kLeafVariation);
+      else if (k == "crown_gradient")
+        l.crown_gradient = number(n, owner + ".leaf.crown_gradient", look_range::kCrownGradient);
       else
         unknown(key, owner + ".leaf");
     }

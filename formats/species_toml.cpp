@@ -129,6 +129,12 @@ class TomlSpecies : TomlReader {
             number(node, "leaf.cuticle_roughness", look_range::kCuticleRoughness);
       } else if (k == "hinge_angle") {
         sp.leaf.hinge_angle = number(node, "leaf.hinge_angle", look_range::kHingeAngle);
+      } else if (k == "variation") {
+        sp.leaf.variation = number(node, "leaf.variation", look_range::kLeafVariation);
+      } else if (k == "hue_variation") {
+        sp.leaf.hue_variation = number(node, "leaf.hue_variation", look_range::kLeafVariation);
+      } else if (k == "crown_gradient") {
+        sp.leaf.crown_gradient = number(node, "leaf.crown_gradient", look_range::kCrownGradient);
       } else
         throw InputError(at(key.source()), "unknown key '" + k + "' in [leaf]");
     }

@@ -30,6 +30,8 @@ inline constexpr Range kBarkRoughness{0.0, 90.0, "degrees"};
 inline constexpr Range kCuticleIor{1.0, 3.0, "(1: no cuticle)"};
 inline constexpr Range kCuticleRoughness{0.0, 1.0, ""};
 inline constexpr Range kHingeAngle{0.0, 90.0, "degrees"};
+inline constexpr Range kLeafVariation{0.0, 1.0, "(spread of ln brightness or ln chlorophyll)"};
+inline constexpr Range kCrownGradient{-2.0, 2.0, "(ln brightness, crown top less bottom)"};
 }  // namespace look_range
 
 // A leaf creates no energy: front and back reflectance each plus the transmittance at most 1 in
@@ -61,6 +63,11 @@ struct LeafLook {
   double cuticle_ior = 1.45;       // 1: no cuticle (a matte leaf)
   double cuticle_roughness = 0.5;  // [0, 1]; GGX α = roughness²
   double hinge_angle = 0.0;        // degrees; > 0: Bloomenthal's hinged three-polygon leaf (§10)
+  // Each leaf's own tint (materials/leaf_variation.h): spread of ln brightness, spread along the
+  // chlorophyll axis, ln brightness from the crown's bottom to its top. 0: every leaf alike.
+  double variation = 0.0;
+  double hue_variation = 0.0;
+  double crown_gradient = 0.0;
 };
 
 // Root buttresses at the trunk's base (Bloomenthal 1985, "the base of a tree": planar blobby

@@ -5,13 +5,11 @@ namespace arbor::materials {
 
 glm::vec3 LeafMaterial::tint(const SurfacePoint& p) const {
   const glm::vec3 tex = albedo_map ? albedo_map->sample(p.uv.x, p.uv.y) : glm::vec3(1.0f);
-  return tex * p.color;
+  const glm::vec3 t = tex * p.color;
+  return variation.any() ? t * variation.tint(p.leaf_key, p.crown_height) : t;
 }
 
-glm::vec3 LeafMaterial::albedo_at(const SurfacePoint& p) const {
-  const glm::vec3 side = p.leaf_back ? back : front;
-  return tinted ? side * tint(p) : side;
-}
+glm::vec3 LeafMaterial::albedo_at(const SurfacePoint& p) const { return bsdf(p).albedo; }
 
 SurfaceBsdf LeafMaterial::bsdf(const SurfacePoint& p) const {
   const glm::vec3 t = tinted ? tint(p) : glm::vec3(1.0f);
@@ -19,6 +17,13 @@ SurfaceBsdf LeafMaterial::bsdf(const SurfacePoint& p) const {
   LeafBsdf l;
   l.reflectance = glm::dvec3(tinted ? side * t : side);
   l.transmittance = glm::dvec3(tinted ? transmittance * t : transmittance);
+  for (int c = 0; c < 3; ++c) {
+    const double sum = l.reflectance[c] + l.transmittance[c];
+    if (sum > 1.0) {
+      l.reflectance[c] /= sum;
+      l.transmittance[c] /= sum;
+    }
+  }
   l.coat = cuticle;
   SurfaceBsdf b;
   b.lobes = l;

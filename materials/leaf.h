@@ -1,11 +1,14 @@
 // A thin leaf: diffuse reflection (front and back differ) and diffuse transmission, both
-// multiplied by the leaf's albedo map over its uv and the primitive's colour, under an optional
-// glossy cuticle on both faces (untinted: the wax reflects white).
+// multiplied by the leaf's albedo map over its uv, the primitive's colour and the leaf's own
+// variation, under an optional glossy cuticle on both faces (untinted: the wax reflects white).
+// Where a tint would make reflectance + transmittance exceed 1 in a channel, both are scaled down
+// to sum to 1 there: a leaf never creates energy.
 #pragma once
 
 #include <glm/vec3.hpp>
 
 #include "materials/cuticle.h"
+#include "materials/leaf_variation.h"
 #include "materials/surface.h"
 #include "materials/textures.h"
 
@@ -17,7 +20,8 @@ struct LeafMaterial {
   // The cuticle, owned by the scene like the maps (one coat per ior and roughness, shared by
   // every leaf material that has it); null: no coat.
   const CuticleCoat* cuticle = nullptr;
-  bool tinted = true;  // false: R and T as given (mesh leaves have no uv or colour)
+  bool tinted = true;       // false: R and T as given (mesh leaves have no uv or colour)
+  LeafVariation variation;  // each leaf's own tint (materials/leaf_variation.h); none by default
 
   SurfaceBsdf bsdf(const SurfacePoint& p) const;
   glm::vec3 tint(const SurfacePoint& p) const;

@@ -218,6 +218,9 @@ class SceneBuilder {
     l.transmittance = to_vec3(transmittance);
     l.cuticle = cuticle(leaf.cuticle_ior.value_or(sp.leaf.cuticle_ior),
                         leaf.cuticle_roughness.value_or(sp.leaf.cuticle_roughness));
+    l.variation = {static_cast<float>(leaf.variation.value_or(sp.leaf.variation)),
+                   static_cast<float>(leaf.hue_variation.value_or(sp.leaf.hue_variation)),
+                   static_cast<float>(leaf.crown_gradient.value_or(sp.leaf.crown_gradient))};
     look.leaf = l;
     return look;
   }

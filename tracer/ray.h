@@ -7,6 +7,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "common/rng.h"
 #include "generator/geometry/tree_geometry.h"
 #include "materials/material.h"
 
@@ -36,6 +37,7 @@ struct SurfaceHit {
   std::int32_t leaf = -1;            // Skeleton leaf index for leaf hits
   glm::vec2 uv{0.0f};                // over the unit leaf, for leaf hits
   glm::vec3 color{1.0f};             // the primitive's colour (multiplies its material's albedo)
+  float crown_height = 0.5f;         // leaf hits: height in the prototype's bounds, 0 to 1
 };
 
 // A hit in the world: the surface in world space and what it is made of.
@@ -62,6 +64,12 @@ struct WorldHit {
     p.color = surface.color;
     if (ground) p.ground = glm::vec2(surface.position.x, surface.position.y);
     p.leaf_back = mesh ? !mesh_front : surface.material == generator::kMaterialLeafBack;
+    if (surface.leaf >= 0) {
+      // Each leaf of each tree its own: trees that share a prototype differ too.
+      p.leaf_key = derive_key(static_cast<std::uint64_t>(instance) + 1,
+                              static_cast<std::uint64_t>(surface.leaf));
+      p.crown_height = surface.crown_height;
+    }
     return p;
   }
 };

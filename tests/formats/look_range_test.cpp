@@ -31,6 +31,9 @@ const std::vector<LookValue>& look_values() {
       {"bark", "roughness", nullptr, r::kBarkRoughness},
       {"leaf", "cuticle_ior", "cuticle_ior", r::kCuticleIor},
       {"leaf", "cuticle_roughness", "cuticle_roughness", r::kCuticleRoughness},
+      {"leaf", "variation", nullptr, r::kLeafVariation},
+      {"leaf", "hue_variation", nullptr, r::kLeafVariation},
+      {"leaf", "crown_gradient", nullptr, r::kCrownGradient},
   };
   return values;
 }

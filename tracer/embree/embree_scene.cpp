@@ -137,6 +137,7 @@ void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned prim
     hit.shading_normal = hit.geometric_normal;
     hit.leaf = card.leaf;
     hit.color = glm::vec3(1.0f);
+    hit.crown_height = crown_height(q[0].z);
     const glm::vec2 p = card.leaf_point(u, v);
     hit.uv = {p.x + 0.5f, p.y};
     hit.tangent = glm::normalize(q[1] - q[0]);
@@ -151,6 +152,7 @@ void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned prim
     hit.shading_normal = hit.geometric_normal;
     hit.leaf = lm.leaf[primitive];
     hit.color = lm.color.empty() ? glm::vec3(1.0f) : lm.color[primitive];
+    hit.crown_height = crown_height(a.z);
     hit.uv = lm.uvs[tri[0]] * (1.0f - u - v) + lm.uvs[tri[1]] * u + lm.uvs[tri[2]] * v;
     hit.tangent = glm::normalize(b - a);
   }

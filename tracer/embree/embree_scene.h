@@ -29,6 +29,12 @@ class TreePrototype {
                     const glm::vec3& embree_ng, SurfaceHit& hit) const;
 
  private:
+  // Normalised height of z in the prototype's bounds (0 bottom, 1 top), for a leaf's variation.
+  float crown_height(float z) const {
+    const float span = geometry_.bounds_max.z - geometry_.bounds_min.z;
+    return span > 0.0f ? (z - geometry_.bounds_min.z) / span : 0.5f;
+  }
+
   const generator::TreeGeometry& geometry_;
   SceneHandle scene_;
   unsigned curve_id_ = ~0u, grid_id_ = ~0u, leaf_id_ = ~0u, card_id_ = ~0u;
