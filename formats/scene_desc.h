@@ -122,7 +122,8 @@ struct LeafOverride {
   std::optional<Rgb> reflectance, back_reflectance, transmittance;
   std::optional<double> cuticle_ior, cuticle_roughness;            // 1: no cuticle; [0, 1]
   std::optional<double> variation, hue_variation, crown_gradient;  // each leaf's own tint
-  std::string albedo_map;  // image over the leaf's uv multiplying R, back R and T; empty: none
+  std::optional<double> veins;  // the procedural texture's strength
+  std::string albedo_map;       // image over the leaf's uv multiplying R, back R and T; empty: none
 };
 
 // Overrides of the five TREE-MAKER shading weights (§III); unset ones keep the template's

@@ -347,6 +347,8 @@ class SceneReader : TomlReader {
             number(n, owner + ".leaf." + k, look_range::kLeafVariation);
       else if (k == "crown_gradient")
         l.crown_gradient = number(n, owner + ".leaf.crown_gradient", look_range::kCrownGradient);
+      else if (k == "veins")
+        l.veins = number(n, owner + ".leaf.veins", look_range::kVeins);
       else
         unknown(key, owner + ".leaf");
     }

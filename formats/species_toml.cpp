@@ -135,6 +135,13 @@ class TomlSpecies : TomlReader {
         sp.leaf.hue_variation = number(node, "leaf.hue_variation", look_range::kLeafVariation);
       } else if (k == "crown_gradient") {
         sp.leaf.crown_gradient = number(node, "leaf.crown_gradient", look_range::kCrownGradient);
+      } else if (k == "veins") {
+        sp.leaf.veins = number(node, "leaf.veins", look_range::kVeins);
+      } else if (k == "vein_pairs") {
+        const double n = number(node, "leaf.vein_pairs", {1.0, 30.0, "pairs"});
+        if (n != std::floor(n))
+          throw InputError(at(node.source()), "leaf.vein_pairs must be a whole number in [1, 30]");
+        sp.leaf.vein_pairs = static_cast<int>(n);
       } else
         throw InputError(at(key.source()), "unknown key '" + k + "' in [leaf]");
     }

@@ -32,6 +32,7 @@ inline constexpr Range kCuticleRoughness{0.0, 1.0, ""};
 inline constexpr Range kHingeAngle{0.0, 90.0, "degrees"};
 inline constexpr Range kLeafVariation{0.0, 1.0, "(spread of ln brightness or ln chlorophyll)"};
 inline constexpr Range kCrownGradient{-2.0, 2.0, "(ln brightness, crown top less bottom)"};
+inline constexpr Range kVeins{0.0, 2.0, "(strength of the paler veins and margin)"};
 }  // namespace look_range
 
 // A leaf creates no energy: front and back reflectance each plus the transmittance at most 1 in
@@ -68,6 +69,10 @@ struct LeafLook {
   double variation = 0.0;
   double hue_variation = 0.0;
   double crown_gradient = 0.0;
+  // The procedural texture over the leaf (materials/leaf_texture.h): strength (0: none) and
+  // secondary vein pairs.
+  double veins = 0.0;
+  int vein_pairs = 8;
 };
 
 // Root buttresses at the trunk's base (Bloomenthal 1985, "the base of a tree": planar blobby

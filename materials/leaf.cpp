@@ -5,7 +5,8 @@ namespace arbor::materials {
 
 glm::vec3 LeafMaterial::tint(const SurfacePoint& p) const {
   const glm::vec3 tex = albedo_map ? albedo_map->sample(p.uv.x, p.uv.y) : glm::vec3(1.0f);
-  const glm::vec3 t = tex * p.color;
+  glm::vec3 t = tex * p.color;
+  if (texture.any()) t *= texture.tint(p.uv);
   return variation.any() ? t * variation.tint(p.leaf_key, p.crown_height) : t;
 }
 

@@ -8,6 +8,7 @@
 #include <glm/vec3.hpp>
 
 #include "materials/cuticle.h"
+#include "materials/leaf_texture.h"
 #include "materials/leaf_variation.h"
 #include "materials/surface.h"
 #include "materials/textures.h"
@@ -22,6 +23,7 @@ struct LeafMaterial {
   const CuticleCoat* cuticle = nullptr;
   bool tinted = true;       // false: R and T as given (mesh leaves have no uv or colour)
   LeafVariation variation;  // each leaf's own tint (materials/leaf_variation.h); none by default
+  LeafTexture texture;      // midrib, veins and margin over the uv (materials/leaf_texture.h)
 
   SurfaceBsdf bsdf(const SurfacePoint& p) const;
   glm::vec3 tint(const SurfacePoint& p) const;

@@ -221,6 +221,7 @@ class SceneBuilder {
     l.variation = {static_cast<float>(leaf.variation.value_or(sp.leaf.variation)),
                    static_cast<float>(leaf.hue_variation.value_or(sp.leaf.hue_variation)),
                    static_cast<float>(leaf.crown_gradient.value_or(sp.leaf.crown_gradient))};
+    l.texture = {static_cast<float>(leaf.veins.value_or(sp.leaf.veins)), sp.leaf.vein_pairs};
     look.leaf = l;
     return look;
   }

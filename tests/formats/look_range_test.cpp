@@ -34,6 +34,7 @@ const std::vector<LookValue>& look_values() {
       {"leaf", "variation", nullptr, r::kLeafVariation},
       {"leaf", "hue_variation", nullptr, r::kLeafVariation},
       {"leaf", "crown_gradient", nullptr, r::kCrownGradient},
+      {"leaf", "veins", nullptr, r::kVeins},
   };
   return values;
 }
