@@ -1,5 +1,6 @@
 // Benchmarks of the renderer's tree geometry, per appendix species (seed 1, quality 1, one
-// thread): building TreeGeometry from the skeleton, building Embree's BVH for it, and the bytes
+// thread): building TreeGeometry from the skeleton, counting it without building it (what
+// `grow --stats` does), building Embree's BVH for it, and the bytes
 // of the limbs as exact curves against the same limbs tessellated to triangles (Lane's bound at
 // 5 % of the radius, what `arbor grow -o tree.obj` writes).
 #include <string>
@@ -7,6 +8,7 @@
 #include <benchmark/benchmark.h>
 
 #include "generator/species.h"
+#include "generator/geometry/geometry_plan.h"
 #include "generator/geometry/tree_mesh.h"
 #include "generator/models/weber_penn/weber_penn.h"
 #include "tracer/embree/embree_scene.h"
@@ -32,6 +34,17 @@ void build_geometry(benchmark::State& state, const char* file) {
   }
   state.counters["curve_segments"] = static_cast<double>(stats.curve_segments);
   state.counters["geometry_MB"] = static_cast<double>(stats.bytes) / 1e6;
+}
+
+// What `arbor grow --stats` does instead of building: counting the same geometry (issue 31).
+void count_geometry(benchmark::State& state, const char* file) {
+  const arbor::generator::Skeleton skeleton = grow(file);
+  arbor::generator::GeometryStats stats;
+  for (auto _ : state) {
+    stats = arbor::generator::count_tree_geometry(skeleton, {});
+    benchmark::DoNotOptimize(stats);
+  }
+  state.counters["curve_segments"] = static_cast<double>(stats.curve_segments);
 }
 
 void build_bvh(benchmark::State& state, const char* file) {
@@ -78,6 +91,7 @@ void limb_bytes(benchmark::State& state, const char* file) {
   BENCHMARK_CAPTURE(fn, weeping_willow, "weeping_willow.toml")->Unit(benchmark::kMillisecond)
 
 ARBOR_SPECIES_BENCH(build_geometry);
+ARBOR_SPECIES_BENCH(count_geometry);
 ARBOR_SPECIES_BENCH(build_bvh);
 ARBOR_SPECIES_BENCH(limb_bytes);
 

@@ -453,15 +453,18 @@ TEST(WeberPenn, PruningWithWindKeepsTheCalmTreesStems) {
 // trunk's axis, a vertical normal (after the first turn), a level leaf, no bend. 1000 leaves: three
 // blocks and a partial one. Power: evaluating the vertical case's θ from the normal fails it.
 TEST(WeberPenn, VectorisedLeafOrientationIsTheScalarOneBitForBit) {
+  struct Placed {  // a leaf's segment frame and its turns, as LeafOrienter::add takes them
+    glm::vec3 x, y, z;
+    float turn, down;
+  };
   Rng rng(5);
-  std::vector<wp::PendingLeaf> pending;
+  std::vector<Placed> pending;
   std::vector<Leaf> leaves;
   for (int i = 0; i < 1000; ++i) {
     arbor::Frame f;
     f = f.rotated_x(rng.uniform() * 6.0).rotated_z(rng.uniform() * 6.0).rotated_y(rng.uniform());
-    wp::PendingLeaf pl{glm::vec3(f.x), glm::vec3(f.y), glm::vec3(f.z),
-                       static_cast<float>(rng.symmetric() * kPi),
-                       static_cast<float>(rng.symmetric() * kPi)};
+    Placed pl{glm::vec3(f.x), glm::vec3(f.y), glm::vec3(f.z),
+              static_cast<float>(rng.symmetric() * kPi), static_cast<float>(rng.symmetric() * kPi)};
     Leaf leaf;
     leaf.position = glm::vec3(rng.symmetric() * 3.0, rng.symmetric() * 3.0, rng.uniform() * 9.0);
     if (i % 7 == 0) leaf.position.x = leaf.position.y = 0.0f;  // on the axis
@@ -476,9 +479,11 @@ TEST(WeberPenn, VectorisedLeafOrientationIsTheScalarOneBitForBit) {
   }
   for (const float bend : {0.0f, 0.3f, 1.0f}) {
     std::vector<Leaf> vectorised = leaves;
-    wp::orient_leaves(pending, bend, vectorised);
+    wp::LeafOrienter orienter(bend, vectorised);
+    for (const Placed& pl : pending) orienter.add(pl.x, pl.y, pl.z, pl.turn, pl.down);
+    orienter.flush();
     for (std::size_t i = 0; i < pending.size(); ++i) {
-      const wp::PendingLeaf& pl = pending[i];
+      const Placed& pl = pending[i];
       float st = 0.0f, ct = 1.0f, sd = 0.0f, cd = 1.0f;
       fast_sincos(pl.turn, st, ct);
       fast_sincos(pl.down, sd, cd);

@@ -563,8 +563,6 @@ class Grower {
   std::size_t depth_ = 0;
   // Orients the leaves a block at a time as they are placed.
   wp::LeafOrienter orienter_{static_cast<float>(p_.leaf_bend), out_.leaves};
-
- public:
 };
 
 }  // namespace

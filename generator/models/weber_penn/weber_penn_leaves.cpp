@@ -115,10 +115,4 @@ void LeafOrienter::flush() {
   count_ = 0;
 }
 
-void orient_leaves(const std::vector<PendingLeaf>& pending, float bend, std::vector<Leaf>& leaves) {
-  LeafOrienter orienter(bend, leaves);
-  for (const PendingLeaf& pl : pending) orienter.add(pl.x, pl.y, pl.z, pl.turn, pl.down);
-  orienter.flush();
-}
-
 }  // namespace arbor::generator::wp

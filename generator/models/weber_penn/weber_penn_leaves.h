@@ -11,18 +11,12 @@
 
 namespace arbor::generator::wp {
 
-// A placed leaf before orientation: the frame of the stem segment it grows from, the azimuth
-// `turn` about the segment's z axis and the down angle `down` about the turned x axis (radians,
-// within [−π, π]).
-struct PendingLeaf {
-  glm::vec3 x, y, z;
-  float turn, down;
-};
-
 // §4.9, read geometrically: first turn the leaf about the vertical through its position by
 // bend·θ_bend (so its normal's azimuth moves toward the leaf's own azimuth: facing outward),
 // then tilt it about the horizontal axis across its normal by bend·φ_bend (toward facing up).
 // θ_bend, the position's azimuth less the normal's, is taken as one signed angle in (−π, π].
+// One leaf at a time: the readable statement that LeafOrienter's vectorised block is tested
+// against bit for bit (growth uses LeafOrienter).
 void orient_toward_light(float bend, float at_x, float at_y, glm::vec3& axis, glm::vec3& normal);
 
 // Orients leaves as they are placed, a block at a time: each leaf's axis and normal from its
@@ -52,8 +46,5 @@ class LeafOrienter {
   std::size_t first_ = 0, count_ = 0;  // the block: leaves_[first_, first_ + count_)
   std::vector<float> in_ = std::vector<float>(13 * kBlock), out_ = std::vector<float>(6 * kBlock);
 };
-
-// Sets leaves[i]'s axis and normal from pending[i] with a LeafOrienter.
-void orient_leaves(const std::vector<PendingLeaf>& pending, float bend, std::vector<Leaf>& leaves);
 
 }  // namespace arbor::generator::wp
