@@ -31,23 +31,20 @@ Atmosphere every_order(double dust, double ground) {
   return a;
 }
 
-}  // namespace
-
 // 21 directions (the zenith, the horizon at 5° towards, across and away from the sun, 30° up at
-// 45° and 135° from it, 15° above the sun) at sun 10°, 40° and 60°; dust 3 over a ground of 0.3.
-// The model is within 6.5 % of the simulation at 40° and 60° (measured: 4.5–5.5 %) and within
-// 17 % at 10° (measured 16 %, on the horizon inside the sun's aureole), beyond 3 standard errors
-// of the simulation.
-TEST(AtmosphereSky, AgreesWithTheMonteCarloSimulationOfEveryOrder) {
-  const Atmosphere air = every_order(3.0, 0.3);
+// 45° and 135° from it, 15° above the sun) at sun 10°, 40° and 60°; dust 3 over a ground of 0.3;
+// each direction's Y against the simulation's, `paths` paths, within `tolerance` + 2 standard
+// errors of the simulation. `orders`: 2 compares the first two orders alone, 0 every order.
+void expect_agreement(int orders, int paths, double tolerance, std::uint64_t seed) {
+  Atmosphere air = every_order(3.0, 0.3);
+  air.orders = orders;
   SkyMonteCarloOptions o;
-  o.paths = 40000;
+  o.paths = paths;
   o.ground_albedo = air.ground_albedo;
-  std::uint64_t seed = 100;
+  o.max_orders = orders;
   for (double sun_elevation : {10.0, 40.0, 60.0}) {
     const glm::dvec3 sun = direction(sun_elevation, 0.0);
     const NishitaSky model(air, sun, 1.0);
-    const double tolerance = sun_elevation < 20.0 ? 0.17 : 0.065;
     for (const auto& [e, a] : std::vector<std::pair<double, double>>{
              {90, 0}, {5, 0}, {5, 90}, {5, 180}, {30, 45}, {30, 135}, {sun_elevation + 15, 0}}) {
       const glm::dvec3 view = direction(std::min(e, 90.0), a);
@@ -57,17 +54,34 @@ TEST(AtmosphereSky, AgreesWithTheMonteCarloSimulationOfEveryOrder) {
       std::printf("  sun %2.0f° view %2.0f°/%3.0f°: model / simulated %.4f (± %.4f)\n",
                   sun_elevation, std::min(e, 90.0), a, y / mc.xyz.y,
                   mc.standard_error.y / mc.xyz.y);
-      EXPECT_NEAR(y, mc.xyz.y, tolerance * mc.xyz.y + 3.0 * mc.standard_error.y)
+      EXPECT_NEAR(y, mc.xyz.y, tolerance * mc.xyz.y + 2.0 * mc.standard_error.y)
           << "sun " << sun_elevation << "°, view " << e << "°/" << a << "°";
     }
   }
 }
 
+}  // namespace
+
+// The first two orders — single scattering and the exact second (nishita_second.cpp) — against
+// the simulation's paths of at most two events: within 1.5 % (measured: 0.4 % at sun 40°, 1.4 %
+// at 10°, with 40,000 paths).
+TEST(AtmosphereSky, FirstTwoOrdersAgreeWithTheSimulationsFirstTwo) {
+  expect_agreement(2, 60000, 0.015, 200);
+}
+
+// Every order against the simulation: within 3 % (measured with 200,000 paths: 2.5 % at worst,
+// the horizon away from the sun at sun 10°; 1.9 % at 40° and 60°).
+TEST(AtmosphereSky, AgreesWithTheMonteCarloSimulationOfEveryOrder) {
+  expect_agreement(0, 100000, 0.03, 100);
+}
+
 // Sun 40°, Linke turbidity 3 over the default ground, as ratios to the direct sun's normal
 // irradiance at the ground (per steradian): the horizon 90° and 180° from the sun in the
 // published band 0.04–0.085, the luminous diffuse fraction in 0.14–0.23, the zenith above 0.015
-// (the band's 0.02 is not reached: measured 0.016, docs/rendering.md), and the horizon brighter as
-// the turbidity rises.
+// (the band's 0.02 is not reached: measured 0.016, docs/rendering.md), and the horizon, averaged
+// round it, brighter as the turbidity rises. (Across and away from the sun it is not, in this
+// atmosphere: 0.063, 0.060, 0.063 across at TL 2.5, 3, 4, the simulation agreeing within 1–3 %;
+// docs/rendering.md.)
 TEST(AtmosphereSky, SunAtFortyDegreesIsInThePublishedClearSkyBands) {
   const glm::dvec3 sun = direction(40.0, 0.0);
   const double ground = formats::mean_albedo({});
@@ -107,8 +121,6 @@ TEST(AtmosphereSky, SunAtFortyDegreesIsInThePublishedClearSkyBands) {
   const Sky clearer = measure(2.5), hazier = measure(4.0);
   EXPECT_LT(clearer.horizon, clear.horizon);
   EXPECT_LT(clear.horizon, hazier.horizon);
-  EXPECT_LT(clearer.across, clear.across);
-  EXPECT_LT(clear.across, hazier.across);
 }
 
 }  // namespace arbor::tracer

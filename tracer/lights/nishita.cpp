@@ -131,9 +131,13 @@ NishitaSky::NishitaSky(const Atmosphere& atmosphere, const glm::dvec3& sun_direc
     }
   }
   if (a_.multiple_scattering) {
-    forward_ = mie_forward_fraction();
-    mie_extinction_ = kMieExtinction - forward_ * kMieScattering;
+    sun_transmittance_.resize(sun_table_.size());
+    for (std::size_t c = 0; c < sun_table_.size(); ++c) {
+      const Spectrum tau = optical_depth(sun_table_[c]);
+      for (int k = 0; k < kWavelengths; ++k) sun_transmittance_[c][k] = std::exp(-tau[k]);
+    }
     build_multiple_scattering();
+    build_second_order();
   }
   if (!hits_earth(r0_, sun_.z)) {
     const auto tau = optical_depth(integrate_to_space(r0_, sun_.z, 512));
@@ -201,6 +205,19 @@ NishitaSky::Depth NishitaSky::depth_to_sun(double r, double mu) const {
   return {mix(&Depth::rayleigh), mix(&Depth::mie), mix(&Depth::ozone)};
 }
 
+bool NishitaSky::sun_transmittance(double r, double mu, Spectrum& out) const {
+  if (hits_earth(r, mu)) return false;
+  const TableCell cell = table_cell(r, mu, kRows, kCols);
+  const std::size_t at = static_cast<std::size_t>(cell.i) * kCols + cell.j;
+  const Spectrum &t00 = sun_transmittance_[at], &t01 = sun_transmittance_[at + 1],
+                 &t10 = sun_transmittance_[at + kCols], &t11 = sun_transmittance_[at + kCols + 1];
+  const double w00 = (1.0 - cell.fu) * (1.0 - cell.fv), w01 = (1.0 - cell.fu) * cell.fv,
+               w10 = cell.fu * (1.0 - cell.fv), w11 = cell.fu * cell.fv;
+  for (int k = 0; k < kWavelengths; ++k)
+    out[k] = w00 * t00[k] + w01 * t01[k] + w10 * t10[k] + w11 * t11[k];
+  return true;
+}
+
 std::array<double, NishitaSky::kWavelengths> NishitaSky::optical_depth(const Depth& d) const {
   std::array<double, kWavelengths> tau{};
   for (int k = 0; k < kWavelengths; ++k) {
@@ -226,38 +243,36 @@ glm::dvec3 NishitaSky::radiance_xyz(const glm::dvec3& view, int steps) const {
     const double a = double(i) / steps, b = double(i + 1) / steps;
     const double t = length * 0.25 * (a + b) * (a + b), dt = length * (b * b - a * a);
     const glm::dvec3 p = glm::dvec3(0.0, 0.0, r0_) + d * t;
-    scatter_step(p, dt, pr, pm, seen, l);
+    scatter_step(p, d, dt, pr, pm, seen, l, a_.multiple_scattering);
   }
-  glm::dvec3 xyz(0.0);
+  glm::dvec3 xyz = a_.multiple_scattering && a_.orders != 1 ? second_order(d) : glm::dvec3(0.0);
   for (int k = 0; k < kWavelengths; ++k) xyz += l[k] * solar_[k] * cmf_[k];
   return xyz;
 }
 
-void NishitaSky::scatter_step(const glm::dvec3& p, double dt, double pr, double pm, Depth& seen,
-                              Spectrum& l) const {
+void NishitaSky::scatter_step(const glm::dvec3& p, const glm::dvec3& view, double dt, double pr,
+                              double pm, Depth& seen, Spectrum& l, bool second_exact) const {
   const double r = glm::length(p);
   const Depth rho = densities(r);
   // The depth to the midpoint: everything before it and half of this step.
-  const Depth to_point{seen.rayleigh + 0.5 * rho.rayleigh * dt, seen.mie + 0.5 * rho.mie * dt,
-                       seen.ozone + 0.5 * rho.ozone * dt};
-  seen.rayleigh += rho.rayleigh * dt;
-  seen.mie += rho.mie * dt;
-  seen.ozone += rho.ozone * dt;
+  const Depth to_point = step_depth(seen, rho, dt);
   const double mu_sun = glm::dot(p, sun_) / r;
-  if (a_.multiple_scattering) {
-    // Light scattered more than once: σ_s ψ_ms (Hillaire 2020, eq. 11), lit in the shadow too.
-    const Spectrum psi = multiple_scattering(r, mu_sun), ss = scattering(rho),
-                   tau = scaled_depth(to_point);
-    for (int k = 0; k < kWavelengths; ++k) l[k] += ss[k] * psi[k] * dt * std::exp(-tau[k]);
+  if (a_.multiple_scattering && !(second_exact && a_.orders > 0)) {
+    // Every order from the second, isotropically (σ_s ψ, Hillaire 2020's eq. 11); or, beside the
+    // exact second order, the orders from the third on towards the view.
+    Spectrum source =
+        second_exact ? third_scattering(r, glm::dot(p, view) / r, mu_sun, rho) : scattering(rho);
+    if (!second_exact) {
+      const Spectrum psi = multiple_scattering(r, mu_sun);
+      for (int k = 0; k < kWavelengths; ++k) source[k] *= psi[k];
+    }
+    const Spectrum tau = optical_depth(to_point);
+    for (int k = 0; k < kWavelengths; ++k) l[k] += source[k] * dt * std::exp(-tau[k]);
   }
   const Depth sun = depth_to_sun(r, mu_sun);
   if (!std::isfinite(sun.rayleigh)) return;  // the point is in the Earth's shadow
   const double mie = kMieScattering * rho.mie * pm * dt;
-  // With multiple scattering, δ-M scaled towards the observer (nishita_multiple.cpp) and true
-  // towards the sun; without, Nishita's.
-  const double mie_depth = a_.multiple_scattering
-                               ? mie_extinction_ * to_point.mie + kMieExtinction * sun.mie
-                               : kMieExtinction * (to_point.mie + sun.mie);
+  const double mie_depth = kMieExtinction * (to_point.mie + sun.mie);
   for (int k = 0; k < kWavelengths; ++k) {
     const double tau = beta_r_[k] * (to_point.rayleigh + sun.rayleigh) + mie_depth +
                        sigma_o_[k] * (to_point.ozone + sun.ozone);
@@ -278,9 +293,13 @@ std::vector<NishitaSky::Segment> NishitaSky::segments(const glm::dvec3& view,
   for (std::size_t n = 0; n < at.size(); ++n) {
     const double dt = (at[n] - start) / steps;
     for (int i = 0; i < steps; ++i)
-      scatter_step(origin + d * (start + (i + 0.5) * dt), dt, pr, pm, seen, l);
+      scatter_step(origin + d * (start + (i + 0.5) * dt), d, dt, pr, pm, seen, l, false);
     start = at[n];
-    const Spectrum tau = a_.multiple_scattering ? scaled_depth(seen) : optical_depth(seen);
+    Spectrum tau = optical_depth(seen);
+    if (a_.multiple_scattering) {
+      const double forward = mie_forward_fraction() * kMieScattering * seen.mie;
+      for (int k = 0; k < kWavelengths; ++k) tau[k] -= forward;
+    }
     for (int k = 0; k < kWavelengths; ++k) {
       out[n].inscattered += l[k] * solar_[k] * cmf_[k];
       out[n].transmitted += std::exp(-tau[k]) * solar_[k] * cmf_[k];

@@ -41,6 +41,7 @@ inline double rayleigh_phase(double c) { return 3.0 / (16.0 * kPi) * (1.0 + c * 
 // The Cornette–Shanks phase function (the one Nishita et al. use for aerosols), normalised over
 // the sphere: 3/(8π) (1 − g²)(1 + cos² θ) / ((2 + g²)(1 + g² − 2g cos θ)^(3/2)).
 inline double mie_phase(double c);
+
 // The δ-M forward fraction of the aerosol phase function (Wiscombe 1977): its second Legendre
 // moment χ₂ = 2π ∫ p(t) P₂(t) dt, 0.656 for g = 0.76.
 double mie_forward_fraction();
@@ -82,6 +83,9 @@ struct Atmosphere {
   // and the light of a Lambertian ground of this albedo; off: Nishita's single scattering.
   bool multiple_scattering = false;
   double ground_albedo = 0.0;
+  // With multiple_scattering, for verification (tests and bench/sky_bench): 1 or 2 keeps only the
+  // first one or two orders of the sky (radiance_xyz); 0, every order.
+  int orders = 0;
 };
 
 class NishitaSky {
@@ -102,10 +106,13 @@ class NishitaSky {
   // The sun's irradiance outside the atmosphere, CIE XYZ (Y is the irradiance given).
   glm::dvec3 extraterrestrial_xyz() const { return space_xyz_; }
   // Along `view` (unit) from the observer, at each of the ascending distances `at` (metres): the
-  // light the air before it scatters towards the observer (CIE XYZ, in radiance_xyz's units) and
-  // the extraterrestrial sun's XYZ after the path's transmittance (δ-M scaled with multiple
-  // scattering, as the view ray's way back is; nishita_multiple.cpp) — aerial perspective's
-  // inputs (aerial.h). `steps` midpoint steps between consecutive distances.
+  // light the air before it scatters towards the observer (CIE XYZ, in radiance_xyz's units; with
+  // multiple scattering, single scattering and σ_s ψ, nishita_multiple.cpp) and the
+  // extraterrestrial sun's XYZ after the path's transmittance — aerial perspective's inputs
+  // (aerial.h). With multiple scattering the transmittance is δ-M scaled (Wiscombe 1977): the
+  // fraction f = χ₂ of the aerosols' scattering in their forward peak counts as not scattered,
+  // because a surface's light scattered a few degrees stays about its pixel, where the air's own
+  // light does not include it. `steps` midpoint steps between consecutive distances.
   struct Segment {
     glm::dvec3 inscattered{0.0}, transmitted{0.0};
   };
@@ -131,7 +138,17 @@ class NishitaSky {
   struct Depth {
     double rayleigh = 0.0, mie = 0.0, ozone = 0.0;  // column densities (density × metres)
   };
-  Depth densities(double r) const;                  // at radius r: the three profiles' densities
+  Depth densities(double r) const;  // at radius r: the three profiles' densities
+  // A midpoint step of dt through densities rho: returns the depth to the step's middle (`seen`
+  // and half the step) and adds the whole step to `seen`.
+  static Depth step_depth(Depth& seen, const Depth& rho, double dt) {
+    const Depth middle{seen.rayleigh + 0.5 * rho.rayleigh * dt, seen.mie + 0.5 * rho.mie * dt,
+                       seen.ozone + 0.5 * rho.ozone * dt};
+    seen.rayleigh += rho.rayleigh * dt;
+    seen.mie += rho.mie * dt;
+    seen.ozone += rho.ozone * dt;
+    return middle;
+  }
   Depth depth_to_space(double r, double mu) const;  // along a ray from radius r at cos zenith μ
   Depth depth_to_sun(double r, double mu) const;    // tabulated depth_to_space towards the sun
   // A table over altitude rows (h = H u²) and cos-zenith columns over [-1, 1]: the cell holding
@@ -147,21 +164,40 @@ class NishitaSky {
   // the light it scatters towards the observer (per wavelength, relative to the extraterrestrial
   // sun) to l and its column densities to `seen`; pr and pm, the phase functions at the angle
   // between the ray and the sun.
-  void scatter_step(const glm::dvec3& p, double dt, double pr, double pm, Depth& seen,
-                    Spectrum& l) const;
+  // `second_exact`: the second order is added apart (second_order), so single scattering keeps
+  // the true extinction on both legs and the table adds the orders from the third on.
+  void scatter_step(const glm::dvec3& p, const glm::dvec3& view, double dt, double pr, double pm,
+                    Depth& seen, Spectrum& l, bool second_exact) const;
   std::array<double, kWavelengths> optical_depth(const Depth& d) const;
-  // Multiple scattering (nishita_multiple.cpp): the table ψ_ms over altitude and the sun's cos
-  // zenith, and its bilinear lookup at radius r.
+  // The orders beyond the second (nishita_multiple.cpp): the table ψ of every order from the
+  // second over altitude and the sun's cos zenith (bilinear at radius r); the skylight on the
+  // ground D₁ by the sun's cos zenith there; and the orders from the third on scattered towards a
+  // view of cos zenith μ_view (there) by the true phase functions.
   void build_multiple_scattering();
   Spectrum multiple_scattering(double r, double mu_sun) const;
-  // The multiple-scattering part is computed in the δ-M scaled atmosphere (nishita_multiple.cpp):
-  // the aerosols' forward peak, a fraction f of their scattering, counted as unscattered.
-  Spectrum scattering(const Depth& rho) const;  // σ_s − f σ_m at densities rho, per wavelength
-  Spectrum scaled_depth(const Depth& d) const;  // optical depth with σ_t − f σ_m for the aerosols
+  Spectrum ground_sky(double mu_sun) const;
+  void build_transfer();
+  Spectrum third_scattering(double r, double mu_view, double mu_sun, const Depth& rho) const;
+  // Along the ray from x (from the Earth's centre) in direction w (unit) to the top or the ground:
+  // adds ∫ T σ_s dt to `transfer` and, given the sun, the sunlight scattered once towards x to
+  // `single`; returns the ray's column densities. 24 steps spaced quadratically from x.
+  Depth march(const glm::dvec3& x, const glm::dvec3& w, const glm::dvec3* sun, Spectrum* single,
+              Spectrum& transfer) const;
+  static double ray_length(double r, double mu);  // to the top or the ground
+  // The transmittance towards the sun from radius r at the sun's cos zenith μ, per wavelength:
+  // depth_to_sun's table exponentiated once (bilinear in transmittance); false in the Earth's
+  // shadow. For the orders beyond the first, where it saves an exponential per wavelength.
+  bool sun_transmittance(double r, double mu, Spectrum& out) const;
+  Spectrum scattering(const Depth& rho) const;  // σ_s at densities rho, per wavelength
+  // The second order exactly (nishita_second.cpp): the single-scattered radiance field, its
+  // moments and the second scattering of it along the observer's view rays, tabulated over the
+  // view's elevation and azimuth from the sun.
+  struct Field;
+  void build_second_order();
+  Spectrum second_source(const Field& field, const glm::dvec3& y, const glm::dvec3& view) const;
+  glm::dvec3 second_order(const glm::dvec3& view) const;
 
   Atmosphere a_;
-  double forward_ = 0.0;                                // f (0 without multiple scattering)
-  double mie_extinction_ = atmosphere::kMieExtinction;  // σ_t − f σ_m at sea level, per dust
   glm::dvec3 sun_{0.0, 0.0, 1.0};
   double r0_ = 0.0;                           // the observer's radius
   std::array<double, kWavelengths> solar_{};  // extraterrestrial spectral irradiance, scaled
@@ -170,11 +206,20 @@ class NishitaSky {
   // depth_to_sun's table: altitude rows (h = H u²) × μ columns over [-1, 1].
   static constexpr int kRows = 64, kCols = 256;
   std::vector<Depth> sun_table_;
+  std::vector<Spectrum> sun_transmittance_;  // exp(−optical_depth) of each sun_table_ cell
   static constexpr int kMsRows = 32, kMsCols = 11;
   static constexpr double kMsSpan = 10.0 * kPi / 180.0;  // radians either side of the sun's
-  // ψ_ms: altitude rows (h = H u²) × columns of the sun's zenith angle over [lo, hi]
+  // ψ: altitude rows (h = H u²) × columns of the sun's zenith angle over [lo, hi]
   std::vector<Spectrum> ms_table_;
   double ms_theta_lo_ = 0.0, ms_theta_hi_ = kPi;
+  std::vector<Spectrum> ground_sky_;  // D₁ per sun column
+  Spectrum ground_transfer_{};        // G
+  // F_R, F_M in the air and from the ground: altitude rows × view cos-zenith columns.
+  static constexpr int kTransferHalf = 32;
+  std::vector<Spectrum> transfer_r_, transfer_m_, ground_r_, ground_m_;
+  // The second order's radiance (XYZ) over view elevation rows × azimuth columns.
+  static constexpr int kSecondRows = 24, kSecondCols = 32;
+  std::vector<glm::dvec3> second_;
   glm::dvec3 sun_xyz_{0.0}, space_xyz_{0.0};
 };
 

@@ -127,6 +127,7 @@ double trace(const Medium& m, glm::dvec3 p, glm::dvec3 d, const glm::dvec3& sun,
       const double cos_sun = glm::dot(n, sun);
       if (cos_sun > 0.0)
         radiance += throughput * o.ground_albedo / kPi * cos_sun * sun_transmittance(m, p, sun);
+      if (events == o.max_orders) return radiance;
       throughput *= o.ground_albedo;
       d = around(n, std::sqrt(rng.uniform()), 2.0 * kPi * rng.uniform());
     } else {
@@ -139,7 +140,7 @@ double trace(const Medium& m, glm::dvec3 p, glm::dvec3 d, const glm::dvec3& sun,
       const double cs = glm::dot(sun, d);
       const double phase = (sr * rayleigh_phase(cs) + sm * mie_phase(cs)) / ss;
       radiance += throughput * phase * sun_transmittance(m, p, sun);
-      if (o.single_scattering) return radiance;
+      if (o.single_scattering || events == o.max_orders) return radiance;
       // The next direction d' (light arriving along −d' leaves along −d: cos θ = d · d').
       const double pick_r = sr / ss;
       glm::dvec3 next;

@@ -19,7 +19,8 @@ namespace arbor::tracer {
 struct SkyMonteCarloOptions {
   int paths = 20000;               // paths traced for the direction
   bool single_scattering = false;  // only the first scattering (and no ground): Nishita's model
-  double ground_albedo = 0.0;      // Lambertian ground reflectance (the same at every wavelength)
+  int max_orders = 0;  // > 0: only light that has met at most this many events (ground included)
+  double ground_albedo = 0.0;  // Lambertian ground reflectance (the same at every wavelength)
   std::uint64_t seed = 1;
 };
 
