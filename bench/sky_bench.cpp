@@ -1,14 +1,19 @@
 // The sky models against the Monte Carlo simulation of their atmosphere (tracer/lights/
 // sky_monte_carlo.h), and what a model costs to build (issue 28). Benchmarks, one iteration each:
 // - build/model:M/sun:E: constructing the model (M = 0 Nishita's single scattering, 1 every
-//   order: the exact second order and the tables of the further ones, ground albedo 0.3) for a sun
-//   at E degrees, dust 3;
+//   order: the exact second order and the tables of the further ones, ground albedo 0.3; 2 the
+//   same for aerial perspective alone, as a render whose map is cached builds it) for a sun at E
+//   degrees, dust 3;
 // - accuracy/model:M/sun:E: the model's Y over the simulation's (the same ground; 40,000 paths a
 //   direction, errors 0.6–2.3 %; M = 2: the atmosphere's first two orders against the
 //   simulation's paths of at most two events) in 7 directions — the zenith, the horizon at 5°
 //   towards, across and away from the sun, 30° up at 45° and 135° from it, 15° above the sun —
 //   counters d0 … d6 (each direction's ratio, in that order), ratio_min, ratio_max and worst (the
 //   largest |ratio − 1|);
+// - shape/model:M/sun:E: at Linke turbidity 3 (Nishita: its dust, 2.65) over the default ground
+//   (albedo 0.14), as ratios to the direct sun's normal irradiance at the ground, per sr: zenith,
+//   horizon (3°) 90° and 180° from the sun, and the diffuse fraction of the horizontal irradiance
+//   (16 bands × 32 azimuths) — docs/rendering.md's table of four sun elevations;
 // - aerial/sun:E: the aerial perspective table (tracer/lights/aerial.h) of the atmosphere model at
 //   Linke turbidity 3 (the model built outside the timing);
 // - map/model:M: the whole 512 × 256 sky map a render makes (M = 0 nishita, 1 atmosphere; sun 40°,
@@ -49,7 +54,8 @@ Atmosphere air(bool multiple) {
 }
 
 void build(benchmark::State& state) {
-  const Atmosphere a = air(state.range(0) != 0);
+  Atmosphere a = air(state.range(0) != 0);
+  a.sky = state.range(0) != 2;
   const glm::dvec3 sun = direction(static_cast<double>(state.range(1)), 0.0);
   for (auto _ : state) benchmark::DoNotOptimize(NishitaSky(a, sun, 1.0).sun_irradiance_xyz());
 }
@@ -84,6 +90,28 @@ void accuracy(benchmark::State& state) {
   state.counters["worst"] = std::max(1.0 - lo, hi - 1.0);
 }
 
+void shape(benchmark::State& state) {
+  Atmosphere a{1.0, atmosphere::dust_for_turbidity(3.0), 1.0, 0.0};
+  a.multiple_scattering = state.range(0) != 0;
+  a.ground_albedo = a.multiple_scattering ? formats::mean_albedo({}) : 0.0;
+  const double elevation = static_cast<double>(state.range(1));
+  for (auto _ : state) {
+    const NishitaSky m(a, direction(elevation, 0.0), 1.0);
+    const double beam = m.sun_irradiance_xyz().y;
+    double e = 0.0;
+    for (int i = 0; i < 16; ++i) {
+      const double mu = (i + 0.5) / 16, el = degrees(std::asin(mu));
+      for (int j = 0; j < 32; ++j)
+        e += m.radiance_xyz(direction(el, 360.0 * (j + 0.5) / 32), 24).y * mu *
+             (2.0 * kPi / (16 * 32));
+    }
+    state.counters["zenith"] = m.radiance_xyz({0, 0, 1}).y / beam;
+    state.counters["horizon90"] = m.radiance_xyz(direction(3, 90)).y / beam;
+    state.counters["horizon180"] = m.radiance_xyz(direction(3, 180)).y / beam;
+    state.counters["diffuse"] = e / (e + beam * std::sin(radians(elevation)));
+  }
+}
+
 void aerial(benchmark::State& state) {
   Atmosphere a = air(true);
   a.dust_density = atmosphere::dust_for_turbidity(3.0);
@@ -116,6 +144,11 @@ void map(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(map)->ArgName("model")->DenseRange(0, 1)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(shape)
+    ->ArgNames({"model", "sun"})
+    ->ArgsProduct({{0, 1}, {10, 25, 40, 60}})
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(aerial)->ArgName("sun")->Arg(40)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(build)
     ->ArgNames({"model", "sun"})

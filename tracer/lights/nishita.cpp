@@ -137,7 +137,10 @@ NishitaSky::NishitaSky(const Atmosphere& atmosphere, const glm::dvec3& sun_direc
       for (int k = 0; k < kWavelengths; ++k) sun_transmittance_[c][k] = std::exp(-tau[k]);
     }
     build_multiple_scattering();
-    build_second_order();
+    if (a_.sky) {
+      build_transfer();
+      build_second_order();
+    }
   }
   if (!hits_earth(r0_, sun_.z)) {
     const auto tau = optical_depth(integrate_to_space(r0_, sun_.z, 512));

@@ -86,6 +86,10 @@ struct Atmosphere {
   // With multiple_scattering, for verification (tests and bench/sky_bench): 1 or 2 keeps only the
   // first one or two orders of the sky (radiance_xyz); 0, every order.
   int orders = 0;
+  // With multiple_scattering: false when the model serves aerial perspective alone (segments),
+  // which needs neither the exact second order nor the anisotropic further orders — a third of
+  // the build.
+  bool sky = true;
 };
 
 class NishitaSky {

@@ -100,7 +100,10 @@ SkyMap nishita_sky_map(const SkyContext& c) {
 }
 
 std::shared_ptr<const AerialPerspective> nishita_aerial(const SkyContext& c) {
-  const NishitaSky model = model_of(c);
+  // The map came from the disk cache: the model only for its path integrals.
+  Atmosphere atmosphere = atmosphere_of(c);
+  atmosphere.sky = false;
+  const NishitaSky model(atmosphere, c.sun_direction, c.sun.irradiance);
   return aerial_of(model, ToLinear(c, model));
 }
 

@@ -176,7 +176,6 @@ void NishitaSky::build_multiple_scattering() {
           }
         }
       });
-  build_transfer();
 }
 
 NishitaSky::Spectrum NishitaSky::ground_sky(double mu_sun) const {
