@@ -13,7 +13,8 @@
 // - shape/model:M/sun:E: at Linke turbidity 3 (Nishita: its dust, 2.65) over the default ground
 //   (albedo 0.14), as ratios to the direct sun's normal irradiance at the ground, per sr: zenith,
 //   horizon (3°) 90° and 180° from the sun, and the diffuse fraction of the horizontal irradiance
-//   (16 bands × 32 azimuths) — docs/rendering.md's table of four sun elevations;
+//   (16 bands × 32 azimuths) — docs/rendering.md's table of four sun elevations; and the zenith's
+//   and that horizon's chromaticity x, y and its distance above the CIE daylight locus;
 // - aerial/sun:E: the aerial perspective table (tracer/lights/aerial.h) of the atmosphere model at
 //   Linke turbidity 3 (the model built outside the timing);
 // - map/model:M: the whole 512 × 256 sky map a render makes (M = 0 nishita, 1 atmosphere; sun 40°,
@@ -109,6 +110,15 @@ void shape(benchmark::State& state) {
     state.counters["horizon90"] = m.radiance_xyz(direction(3, 90)).y / beam;
     state.counters["horizon180"] = m.radiance_xyz(direction(3, 180)).y / beam;
     state.counters["diffuse"] = e / (e + beam * std::sin(radians(elevation)));
+    // Chromaticity, and its distance above the CIE daylight locus y = −3x² + 2.87x − 0.275.
+    for (const auto& [name, v] : {std::pair<const char*, glm::dvec3>{"zenith", {0, 0, 1}},
+                                  {"horizon90", direction(3, 90)}}) {
+      const glm::dvec3 xyz = m.radiance_xyz(v);
+      const double x = xyz.x / (xyz.x + xyz.y + xyz.z), y = xyz.y / (xyz.x + xyz.y + xyz.z);
+      state.counters[std::string(name) + "_x"] = x;
+      state.counters[std::string(name) + "_y"] = y;
+      state.counters[std::string(name) + "_above_locus"] = y - (-3.0 * x * x + 2.87 * x - 0.275);
+    }
   }
 }
 

@@ -79,8 +79,9 @@ struct Atmosphere {
   double dust_density = 1.0;   // × the clear-day aerosol (Mie) profile
   double ozone_density = 1.0;  // × a 300 Dobson-unit ozone layer
   double altitude = 0.0;       // metres above sea level of the observer (the scene's z = 0)
-  // Every order of scattering (nishita_multiple.cpp: Hillaire 2020's multiple-scattering table)
-  // and the light of a Lambertian ground of this albedo; off: Nishita's single scattering.
+  // Every order of scattering — the second exactly (nishita_second.cpp), the further ones after
+  // Hillaire 2020 (nishita_multiple.cpp) — and the light of a Lambertian ground of this albedo;
+  // off: Nishita's single scattering.
   bool multiple_scattering = false;
   double ground_albedo = 0.0;
   // With multiple_scattering, for verification (tests and bench/sky_bench): 1 or 2 keeps only the

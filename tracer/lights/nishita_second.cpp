@@ -17,11 +17,12 @@
 //      ∫ p_R L₁ dω' = 3/(16π) (E + ωᵀ M ω)
 //    — tabulated at the field's altitude and sun nodes from its own nodes (trapezoids). The
 //    aerosols' phase is peaked (g = 0.76): its integral is a quadrature about ω, in 16 bands of
-//    the angle from ω (γ = π x², each weighted by its exact share of the phase) × 16 azimuths.
-// 3. The second order seen by the observer: ∫ T(0, y) J₂(y, ω) dt along the view ray (24 steps,
+//    the angle from ω (γ = π x², each weighted by its exact share of the phase) × 16 azimuths,
+//    left out where the aerosols scatter less than 10⁻⁴ of what the air does.
+// 3. The second order seen by the observer: ∫ T(0, y) J₂(y, ω) dt along the view ray (16 steps,
 //    true extinction), tabulated over the view's elevation (24 rows, e = 90° x²) and azimuth from
 //    the sun (32 columns, φ = π x²), bilinear.
-// The orders from the third on stay Hillaire's (ψ_ms f_ms, nishita_multiple.cpp).
+// The orders from the third on: nishita_multiple.cpp.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
