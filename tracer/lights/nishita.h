@@ -199,6 +199,7 @@ class NishitaSky {
   // view's elevation and azimuth from the sun.
   struct Field;
   void build_second_order();
+  void field_cell(Field& field, int i, int j) const;  // one altitude row and cos-zenith column
   Spectrum second_source(const Field& field, const glm::dvec3& y, const glm::dvec3& view) const;
   glm::dvec3 second_order(const glm::dvec3& view) const;
 

@@ -117,6 +117,27 @@ struct NishitaSky::Field {
 
 namespace {
 
+// The aerosols' bands' and their azimuths' cosines and sines, once.
+struct Rings {
+  std::array<double, kMieBands> cg, sg;
+  std::array<double, kMieAround> cp, sp;
+};
+const Rings& rings() {
+  static const Rings q = [] {
+    Rings r;
+    for (int n = 0; n < kMieBands; ++n) {
+      r.cg[static_cast<std::size_t>(n)] = std::cos(mie_band_angle(n));
+      r.sg[static_cast<std::size_t>(n)] = std::sin(mie_band_angle(n));
+    }
+    for (int n = 0; n < kMieAround; ++n) {
+      r.cp[static_cast<std::size_t>(n)] = std::cos(2.0 * kPi * (n + 0.5) / kMieAround);
+      r.sp[static_cast<std::size_t>(n)] = std::sin(2.0 * kPi * (n + 0.5) / kMieAround);
+    }
+    return r;
+  }();
+  return q;
+}
+
 // The moments E, Mxx, Myy, Mzz, Mxz of one (row, sun) node of the field, by trapezoids over its
 // columns (each half of the sphere apart: the horizon is an edge) and azimuths (doubled: the field
 // is symmetric about the sun's vertical plane).
@@ -146,6 +167,66 @@ std::array<Spectrum, 5> node_moments(const Field& field, int i, int s) {
 
 }  // namespace
 
+void NishitaSky::field_cell(Field& field, int i, int j) const {
+  const double albedo = a_.ground_albedo;
+  const double r = row_radius(i), mu = column_mu(r, j, kFieldHalf);
+  const glm::dvec3 y(0.0, 0.0, r), w(std::sqrt(std::max(0.0, 1.0 - mu * mu)), 0.0, mu);
+  const bool ground = hits_earth(r, mu);
+  const double length =
+      ground ? std::max(0.0, -r * mu - std::sqrt(std::max(0.0, r * r * (mu * mu - 1.0) +
+                                                                   kEarthRadius * kEarthRadius)))
+             : to_top(r, mu);
+  // The view leg is the same for every sun: each step's position and the Rayleigh and
+  // aerosol scattering there times the transmittance back to y and the step's length.
+  struct Step {
+    glm::dvec3 z;
+    double r;
+    Spectrum rayleigh, mie;
+  };
+  std::array<Step, kFieldSteps> steps;
+  Depth seen;
+  for (int t_i = 0; t_i < kFieldSteps; ++t_i) {
+    const double a0 = double(t_i) / kFieldSteps, a1 = double(t_i + 1) / kFieldSteps;
+    const double t = length * 0.25 * (a0 + a1) * (a0 + a1), dt = length * (a1 * a1 - a0 * a0);
+    Step& st = steps[static_cast<std::size_t>(t_i)];
+    st.z = y + w * t;
+    st.r = glm::length(st.z);
+    const Depth rho = densities(st.r);
+    const Spectrum tau = optical_depth(step_depth(seen, rho, dt));
+    for (int k = 0; k < kW; ++k) {
+      const double tv = std::exp(-tau[k]) * dt;
+      st.rayleigh[k] = beta_r_[k] * rho.rayleigh * tv;
+      st.mie[k] = kMieScattering * rho.mie * tv;
+    }
+  }
+  Spectrum to_ground{};
+  if (ground && albedo > 0.0) {
+    const Spectrum tau = optical_depth(seen);
+    for (int k = 0; k < kW; ++k) to_ground[k] = std::exp(-tau[k]) * albedo / kPi;
+  }
+  const glm::dvec3 foot = glm::normalize(y + w * length);
+  for (int s = 0; s < kFieldSuns; ++s) {
+    const double th = field.sun_theta(s);
+    for (int a = 0; a < kFieldAzimuths; ++a) {
+      const double x = double(a) / (kFieldAzimuths - 1), phi = kPi * x * x;
+      const glm::dvec3 sun(std::sin(th) * std::cos(phi), std::sin(th) * std::sin(phi),
+                           std::cos(th));
+      const double cs = glm::dot(w, sun), pr = rayleigh_phase(cs), pm = mie_phase(cs);
+      Spectrum l{}, ts;
+      for (const Step& st : steps) {
+        if (!sun_transmittance(st.r, glm::dot(st.z, sun) / st.r, ts)) continue;
+        for (int k = 0; k < kW; ++k) l[k] += (st.rayleigh[k] * pr + st.mie[k] * pm) * ts[k];
+      }
+      const double mu_ground = glm::dot(foot, sun);
+      if (ground && albedo > 0.0 && sun_transmittance(kEarthRadius, mu_ground, ts)) {
+        for (int k = 0; k < kW; ++k) l[k] += to_ground[k] * mu_ground * ts[k];
+      }
+      float* out = &field.radiance[Field::at(i, j, s, a)];
+      for (int k = 0; k < kW; ++k) out[k] = static_cast<float>(l[k]);
+    }
+  }
+}
+
 void NishitaSky::build_second_order() {
   Field field;
   const double theta_sun =
@@ -153,73 +234,12 @@ void NishitaSky::build_second_order() {
   field.theta_lo = std::max(0.0, theta_sun - kSunSpan);
   field.theta_hi = std::min(kPi, theta_sun + kSunSpan);
   field.radiance.assign(Field::at(kFieldRows, 0, 0, 0), 0.0f);
-  const double albedo = a_.ground_albedo;
   // 1. The single-scattered field, every (row, column) apart.
-  tbb::parallel_for(
-      tbb::blocked_range<int>(0, kFieldRows * kFieldMus),
-      [&](const tbb::blocked_range<int>& cells) {
-        for (int cell = cells.begin(); cell < cells.end(); ++cell) {
-          const int i = cell / kFieldMus, j = cell % kFieldMus;
-          const double r = row_radius(i), mu = column_mu(r, j, kFieldHalf);
-          const glm::dvec3 y(0.0, 0.0, r), w(std::sqrt(std::max(0.0, 1.0 - mu * mu)), 0.0, mu);
-          const bool ground = hits_earth(r, mu);
-          const double length =
-              ground ? std::max(0.0,
-                                -r * mu - std::sqrt(std::max(0.0, r * r * (mu * mu - 1.0) +
-                                                                      kEarthRadius * kEarthRadius)))
-                     : to_top(r, mu);
-          // The view leg is the same for every sun: each step's position and the Rayleigh and
-          // aerosol scattering there times the transmittance back to y and the step's length.
-          struct Step {
-            glm::dvec3 z;
-            double r;
-            Spectrum rayleigh, mie;
-          };
-          std::array<Step, kFieldSteps> steps;
-          Depth seen;
-          for (int t_i = 0; t_i < kFieldSteps; ++t_i) {
-            const double a0 = double(t_i) / kFieldSteps, a1 = double(t_i + 1) / kFieldSteps;
-            const double t = length * 0.25 * (a0 + a1) * (a0 + a1),
-                         dt = length * (a1 * a1 - a0 * a0);
-            Step& st = steps[static_cast<std::size_t>(t_i)];
-            st.z = y + w * t;
-            st.r = glm::length(st.z);
-            const Depth rho = densities(st.r);
-            const Spectrum tau = optical_depth(step_depth(seen, rho, dt));
-            for (int k = 0; k < kW; ++k) {
-              const double tv = std::exp(-tau[k]) * dt;
-              st.rayleigh[k] = beta_r_[k] * rho.rayleigh * tv;
-              st.mie[k] = kMieScattering * rho.mie * tv;
-            }
-          }
-          Spectrum to_ground{};
-          if (ground && albedo > 0.0) {
-            const Spectrum tau = optical_depth(seen);
-            for (int k = 0; k < kW; ++k) to_ground[k] = std::exp(-tau[k]) * albedo / kPi;
-          }
-          const glm::dvec3 foot = glm::normalize(y + w * length);
-          for (int s = 0; s < kFieldSuns; ++s) {
-            const double th = field.sun_theta(s);
-            for (int a = 0; a < kFieldAzimuths; ++a) {
-              const double x = double(a) / (kFieldAzimuths - 1), phi = kPi * x * x;
-              const glm::dvec3 sun(std::sin(th) * std::cos(phi), std::sin(th) * std::sin(phi),
-                                   std::cos(th));
-              const double cs = glm::dot(w, sun), pr = rayleigh_phase(cs), pm = mie_phase(cs);
-              Spectrum l{}, ts;
-              for (const Step& st : steps) {
-                if (!sun_transmittance(st.r, glm::dot(st.z, sun) / st.r, ts)) continue;
-                for (int k = 0; k < kW; ++k) l[k] += (st.rayleigh[k] * pr + st.mie[k] * pm) * ts[k];
-              }
-              const double mu_ground = glm::dot(foot, sun);
-              if (ground && albedo > 0.0 && sun_transmittance(kEarthRadius, mu_ground, ts)) {
-                for (int k = 0; k < kW; ++k) l[k] += to_ground[k] * mu_ground * ts[k];
-              }
-              float* out = &field.radiance[Field::at(i, j, s, a)];
-              for (int k = 0; k < kW; ++k) out[k] = static_cast<float>(l[k]);
-            }
-          }
-        }
-      });
+  tbb::parallel_for(tbb::blocked_range<int>(0, kFieldRows * kFieldMus),
+                    [&](const tbb::blocked_range<int>& cells) {
+                      for (int cell = cells.begin(); cell < cells.end(); ++cell)
+                        field_cell(field, cell / kFieldMus, cell % kFieldMus);
+                    });
   // 2. Its moments for the Rayleigh part.
   field.moments.resize(static_cast<std::size_t>(kFieldRows) * kFieldSuns);
   for (int i = 0; i < kFieldRows; ++i)
@@ -294,23 +314,7 @@ NishitaSky::Spectrum NishitaSky::second_source(const Field& field, const glm::dv
                                          : glm::cross(view, glm::dvec3(1, 0, 0));
   t = glm::normalize(t);
   const glm::dvec3 b = glm::cross(view, t);
-  // The bands' and azimuths' cosines and sines, once.
-  struct Ring {
-    std::array<double, kMieBands> cg, sg;
-    std::array<double, kMieAround> cp, sp;
-  };
-  static const Ring ring_of = [] {
-    Ring q;
-    for (int n = 0; n < kMieBands; ++n) {
-      q.cg[static_cast<std::size_t>(n)] = std::cos(mie_band_angle(n));
-      q.sg[static_cast<std::size_t>(n)] = std::sin(mie_band_angle(n));
-    }
-    for (int n = 0; n < kMieAround; ++n) {
-      q.cp[static_cast<std::size_t>(n)] = std::cos(2.0 * kPi * (n + 0.5) / kMieAround);
-      q.sp[static_cast<std::size_t>(n)] = std::sin(2.0 * kPi * (n + 0.5) / kMieAround);
-    }
-    return q;
-  }();
+  const Rings& ring_of = rings();
   std::array<float, kW> sum{};
   for (int band = 0; band < kMieBands; ++band) {
     const double cg = ring_of.cg[static_cast<std::size_t>(band)],
