@@ -84,6 +84,18 @@ class TomlSpecies : TomlReader {
         sp.bark.bump_height = number(node, "bark.bump_height", look_range::kBumpHeight);
       } else if (k == "roughness") {
         sp.bark.roughness = number(node, "bark.roughness", look_range::kBarkRoughness);
+      } else if (k == "furrow_albedo") {
+        sp.bark.furrow_albedo = colour(node, "bark.furrow_albedo");
+      } else if (k == "lenticels") {
+        sp.bark.lenticels = number(node, "bark.lenticels", look_range::kLenticels);
+      } else if (k == "lenticel_albedo") {
+        sp.bark.lenticel_albedo = colour(node, "bark.lenticel_albedo");
+      } else if (k == "scars") {
+        sp.bark.scars = number(node, "bark.scars", look_range::kScars);
+      } else if (k == "scar_albedo") {
+        sp.bark.scar_albedo = colour(node, "bark.scar_albedo");
+      } else if (k == "base_height") {
+        sp.bark.base_height = number(node, "bark.base_height", look_range::kBaseHeight);
       } else {
         throw InputError(at(key.source()), "unknown key '" + k + "' in [bark]");
       }

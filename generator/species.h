@@ -33,6 +33,9 @@ inline constexpr Range kHingeAngle{0.0, 90.0, "degrees"};
 inline constexpr Range kLeafVariation{0.0, 1.0, "(spread of ln brightness or ln chlorophyll)"};
 inline constexpr Range kCrownGradient{-2.0, 2.0, "(ln brightness, crown top less bottom)"};
 inline constexpr Range kVeins{0.0, 2.0, "(strength of the paler veins and margin)"};
+inline constexpr Range kLenticels{0.0, 20000.0, "per square metre of bark"};
+inline constexpr Range kScars{0.0, 200.0, "per square metre of bark"};
+inline constexpr Range kBaseHeight{0.0, 30.0, "metres"};
 }  // namespace look_range
 
 // A leaf creates no energy: front and back reflectance each plus the transmittance at most 1 in
@@ -52,6 +55,15 @@ struct BarkLook {
   Rgb albedo{0.30, 0.26, 0.22};
   double bump_height = 0.004;  // metres of relief
   double roughness = 0.0;      // degrees: Oren–Nayar slope deviation σ (0: Lambertian)
+  // Its colour by its relief and marks (materials/bark_color.h): the furrows' albedo (none: the
+  // bark's own everywhere), lenticels and scars per m² and their albedos, the height of the
+  // trunk's darker, deeper-furrowed base.
+  std::optional<Rgb> furrow_albedo;
+  double lenticels = 0.0;
+  Rgb lenticel_albedo{0.06, 0.05, 0.045};
+  double scars = 0.0;
+  Rgb scar_albedo{0.05, 0.045, 0.04};
+  double base_height = 0.0;
 };
 
 // Default leaves of the species: front reflectance, the lighter back, diffuse transmittance, and

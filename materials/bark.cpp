@@ -35,8 +35,10 @@ glm::vec3 BarkMaterial::bumped_normal(const SurfacePoint& p) const {
   const double a = p.along, th = p.azimuth, r = p.radius, e = 0.002;
   const double h_along = (height(a + e, th, r) - height(a - e, th, r)) / (2 * e);
   const double h_around = (height(a, th + e / r, r) - height(a, th - e / r, r)) / (2 * e);
-  const glm::vec3 bumped = n - t * static_cast<float>(bump_height * h_along) -
-                           around * static_cast<float>(bump_height * h_around);
+  // The trunk's base is furrowed deeper (up to 3× the relief at the ground).
+  const double relief = bump_height * (1.0 + 2.0 * pattern.base(p.height));
+  const glm::vec3 bumped =
+      n - t * static_cast<float>(relief * h_along) - around * static_cast<float>(relief * h_around);
   return glm::normalize(bumped);
 }
 
@@ -46,6 +48,9 @@ glm::vec3 BarkMaterial::albedo_at(const SurfacePoint& p) const {
     // Tiled like the bump map: whole repeats round the limb, every bump_tile metres along it.
     const double repeats = repeats_round(p.radius, bump_tile);
     a *= albedo_map->sample(p.azimuth / kTwoPi * repeats, p.along / bump_tile);
+  } else if (pattern.any() && p.radius > 0.0f) {
+    a = pattern.albedo(a, height(p.along, p.azimuth, p.radius), p.along, p.azimuth, p.radius,
+                       p.height);
   }
   return a;
 }

@@ -4,6 +4,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "materials/bark_color.h"
 #include "materials/surface.h"
 #include "materials/textures.h"
 
@@ -15,7 +16,8 @@ struct BarkMaterial {
   float bump_height = 0.0f;              // metres of relief
   const HeightMap* bump_map = nullptr;   // null: procedural bark (bark_noise.h)
   float bump_tile = 0.25f;               // metres per repeat of bump_map and albedo_map
-  const ColorMap* albedo_map = nullptr;  // multiplies albedo
+  const ColorMap* albedo_map = nullptr;  // multiplies albedo (and then the pattern is not used)
+  BarkPattern pattern;                   // colour by relief and marks (bark_color.h)
 
   SurfaceBsdf bsdf(const SurfacePoint& p) const;
   glm::vec3 albedo_at(const SurfacePoint& p) const;

@@ -183,6 +183,21 @@ class SceneBuilder {
     return cuticles_.back().second;
   }
 
+  // The species' bark colour by relief and marks (materials/bark_color.h) over `albedo`.
+  static materials::BarkPattern bark_pattern(const generator::BarkLook& own,
+                                             const glm::vec3& albedo) {
+    materials::BarkPattern p;
+    p.furrows = own.furrow_albedo.has_value();
+    // Without furrows of its own, the base darkens towards half the bark's albedo.
+    p.furrow_albedo = own.furrow_albedo ? to_vec3(*own.furrow_albedo) : 0.5f * albedo;
+    p.lenticels = static_cast<float>(own.lenticels);
+    p.lenticel_albedo = to_vec3(own.lenticel_albedo);
+    p.scars = static_cast<float>(own.scars);
+    p.scar_albedo = to_vec3(own.scar_albedo);
+    p.base_height = static_cast<float>(own.base_height);
+    return p;
+  }
+
   TreeLook look_for(const generator::Species& sp, const formats::BarkOverride& bark,
                     const formats::LeafOverride& leaf, const formats::TreemakerOverride& tm,
                     const SourceLocation& where) {
@@ -203,6 +218,7 @@ class SceneBuilder {
     b.bump_tile = static_cast<float>(bark.bump_tile);
     if (!bark.albedo_map.empty()) b.albedo_map = albedo_map(bark.albedo_map);
     if (!bark.bump_map.empty()) b.bump_map = bump_map(bark.bump_map);
+    b.pattern = bark_pattern(sp.bark, b.albedo);
     look.bark = b;
     materials::LeafMaterial l;
     if (!leaf.albedo_map.empty()) l.albedo_map = albedo_map(leaf.albedo_map);

@@ -63,6 +63,7 @@ struct WorldHit {
     p.uv = surface.uv;
     p.color = surface.color;
     if (ground) p.ground = glm::vec2(surface.position.x, surface.position.y);
+    p.height = surface.position.z;
     p.leaf_back = mesh ? !mesh_front : surface.material == generator::kMaterialLeafBack;
     if (surface.leaf >= 0) {
       // Each leaf of each tree its own: trees that share a prototype differ too.
