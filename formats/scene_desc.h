@@ -2,6 +2,7 @@
 // built. Paths are already resolved relative to the scene file.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <map>
@@ -95,13 +96,22 @@ struct GroundDesc {
   // the ground (0: none), blobs about patch_scale metres across.
   Rgb patch_albedo{0.06, 0.11, 0.035};
   double patch_cover = 0.0, patch_scale = 3.0;
+  // Detail at finer scales (materials/ground.h): its strength, small stones per m² of soil, the
+  // fraction under leaf litter; all 0 by default (the ground as before).
+  double detail = 0.0, stones = 0.0, litter = 0.0;
+  Rgb stone_albedo{0.32, 0.31, 0.29};
+  Rgb litter_albedo{0.20, 0.13, 0.07};
 };
 
 // The ground's albedo as one number, what the atmosphere's sky sees: the luminance (Rec. 709) of
 // its albedo and its patches' by the share each covers.
 inline double mean_albedo(const GroundDesc& g) {
   auto y = [](const Rgb& c) { return luminance(c[0], c[1], c[2]); };
-  return (1.0 - g.patch_cover) * y(g.albedo) + g.patch_cover * y(g.patch_albedo);
+  // Stones cover about stones × 8.2 cm² of soil (their mean area, soft edges included).
+  const double stones = std::min(1.0, g.stones * 8.2e-4) * (1.0 - g.patch_cover);
+  const double plain = (1.0 - g.patch_cover - stones) * y(g.albedo) +
+                       g.patch_cover * y(g.patch_albedo) + stones * y(g.stone_albedo);
+  return (1.0 - g.litter) * plain + g.litter * y(g.litter_albedo);
 }
 
 // Linke's turbidity of an atmosphere without aerosols (and 1.5 cm of precipitable water), rounded

@@ -301,6 +301,16 @@ class SceneReader : TomlReader {
         g.patch_cover = number(n, "ground.patch_cover", 0.0, 1.0);
       else if (k == "patch_scale")
         g.patch_scale = number(n, "ground.patch_scale", 0.01, 1e4);
+      else if (k == "detail")
+        g.detail = number(n, "ground.detail", 0.0, 1.0);
+      else if (k == "stones")
+        g.stones = number(n, "ground.stones", 0.0, 1000.0);
+      else if (k == "stone_albedo")
+        g.stone_albedo = triple(n, "ground.stone_albedo", 0.0, 1.0);
+      else if (k == "litter")
+        g.litter = number(n, "ground.litter", 0.0, 1.0);
+      else if (k == "litter_albedo")
+        g.litter_albedo = triple(n, "ground.litter_albedo", 0.0, 1.0);
       else
         unknown(key, "ground");
     }

@@ -24,6 +24,28 @@ float unit(std::uint64_t key) { return static_cast<float>(mix64(key) >> 40) * 0x
 
 }  // namespace
 
+namespace {
+
+// The coverage at (u, v) metres of a grid of cells `cell_u` × `cell_v`, one mark each of half
+// extents up to `width` / 2 × `height` / 2 (0.6–1.4× that, by the cell's hash), placed inside its
+// cell by the hash.
+float cell_mark(double u, double v, double cell_u, double cell_v, std::uint64_t key, float width,
+                float height) {
+  const double iu = std::floor(u / cell_u), iv = std::floor(v / cell_v);
+  key = derive_key(derive_key(key, static_cast<std::uint64_t>(static_cast<std::int64_t>(iv))),
+                   static_cast<std::uint64_t>(static_cast<std::int64_t>(iu)));
+  const double scale = 0.6 + 0.8 * unit(key ^ 1u);
+  const double half_w = std::min(0.5 * width * scale, 0.45 * cell_u),
+               half_h = std::min(0.5 * height * scale, 0.45 * cell_v);
+  const double cu = half_w + (cell_u - 2.0 * half_w) * unit(key ^ 2u);
+  const double cv = half_h + (cell_v - 2.0 * half_h) * unit(key ^ 3u);
+  const double du = (u - iu * cell_u - cu) / half_w, dv = (v - iv * cell_v - cv) / half_h;
+  const double d = du * du + dv * dv;
+  return static_cast<float>(std::clamp((1.0 - d) / 0.35, 0.0, 1.0));
+}
+
+}  // namespace
+
 float mark_coverage(double along, double azimuth, double radius, float density, float width,
                     float height, unsigned salt) {
   if (density <= 0.0f || radius <= 0.0) return 0.0f;
@@ -32,23 +54,16 @@ float mark_coverage(double along, double azimuth, double radius, float density, 
   // share, within a factor of 2 of `cell` except on limbs thinner than a cell.
   const double circumference = kTwoPi * radius;
   const double round_cells = std::max(1.0, std::round(circumference / cell));
-  const double cell_round = circumference / round_cells;
-  const double u = std::fmod(std::fmod(azimuth, kTwoPi) + kTwoPi, kTwoPi) / kTwoPi * round_cells;
-  const double v = along / cell;
-  const double iu = std::floor(u), iv = std::floor(v);
-  const std::uint64_t key =
-      derive_key(derive_key(derive_key(salt, static_cast<std::uint64_t>(static_cast<std::int64_t>(iv))),
-                            static_cast<std::uint64_t>(static_cast<std::int64_t>(iu))),
-                 static_cast<std::uint64_t>(round_cells));
-  // The mark's size (0.6–1.4 × the given) and its centre, kept inside its cell.
-  const double scale = 0.6 + 0.8 * unit(key ^ 1u);
-  const double half_w = std::min(0.5 * width * scale, 0.45 * cell_round),
-               half_h = std::min(0.5 * height * scale, 0.45 * cell);
-  const double cu = half_w + (cell_round - 2.0 * half_w) * unit(key ^ 2u);
-  const double cv = half_h + (cell - 2.0 * half_h) * unit(key ^ 3u);
-  const double du = ((u - iu) * cell_round - cu) / half_w, dv = ((v - iv) * cell - cv) / half_h;
-  const double d = du * du + dv * dv;
-  return static_cast<float>(std::clamp((1.0 - d) / 0.35, 0.0, 1.0));
+  const double around = std::fmod(std::fmod(azimuth, kTwoPi) + kTwoPi, kTwoPi) * radius;
+  return cell_mark(around, along, circumference / round_cells, cell,
+                   derive_key(salt, static_cast<std::uint64_t>(round_cells)), width, height);
+}
+
+float mark_coverage_plane(double x, double y, float density, float width, float height,
+                          unsigned salt) {
+  if (density <= 0.0f) return 0.0f;
+  const double cell = 1.0 / std::sqrt(static_cast<double>(density));
+  return cell_mark(x, y, cell, cell, derive_key(salt, 0x706c616eull), width, height);
 }
 
 float BarkPattern::base(float z) const {
@@ -57,8 +72,8 @@ float BarkPattern::base(float z) const {
   return t * t;
 }
 
-glm::vec3 BarkPattern::albedo(const glm::vec3& ridge, double height, double along,
-                              double azimuth, double radius, float z) const {
+glm::vec3 BarkPattern::albedo(const glm::vec3& ridge, double height, double along, double azimuth,
+                              double radius, float z) const {
   const float b = base(z);
   // The base: the bark darkens towards half the furrows' albedo (without furrows of its own, the
   // scene gives half the bark's albedo for them), and the furrows widen.

@@ -12,7 +12,7 @@ namespace arbor::materials {
 struct BarkPattern {
   bool furrows = false;           // colour the furrows with furrow_albedo
   glm::vec3 furrow_albedo{0.3f};  // albedo where the bark height is low; the base's colour
-  float lenticels = 0.0f;                          // per m² of bark (0: none)
+  float lenticels = 0.0f;         // per m² of bark (0: none)
   glm::vec3 lenticel_albedo{0.06f, 0.05f, 0.045f};
   float scars = 0.0f;  // per m² of bark on limbs thicker than 3 cm (0: none)
   glm::vec3 scar_albedo{0.05f, 0.045f, 0.04f};
@@ -35,5 +35,9 @@ struct BarkPattern {
 // Soft-edged: coverage in [0, 1]. `salt` tells the kinds of mark apart.
 float mark_coverage(double along, double azimuth, double radius, float density, float width,
                     float height, unsigned salt);
+// The same on a plane, at (x, y) metres: marks `width` along x and `height` along y, one per
+// square cell of 1/√density.
+float mark_coverage_plane(double x, double y, float density, float width, float height,
+                          unsigned salt);
 
 }  // namespace arbor::materials

@@ -2,9 +2,13 @@
 #include "materials/ground.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
+#include <glm/common.hpp>
+
+#include "materials/bark_color.h"
 #include "materials/bark_noise.h"
 
 namespace arbor::materials {
@@ -15,9 +19,7 @@ double GroundMaterial::noise(double x, double y) {
          0.1 * gradient_noise(4.11 * x, 4.11 * y, 3.43);
 }
 
-void GroundMaterial::set_cover(float c) {
-  cover = c;
-  if (c <= 0.0f) return;
+void GroundMaterial::quantiles(float c, double& threshold_out, double& edge_out) {
   std::vector<double> v;
   v.reserve(512 * 512);
   for (int i = 0; i < 512; ++i) {
@@ -30,8 +32,55 @@ void GroundMaterial::set_cover(float c) {
     std::nth_element(v.begin(), v.begin() + k, v.end());
     return v[static_cast<size_t>(k)];
   };
-  threshold = c >= 1.0f ? -1e9 : quantile(1.0 - c);
-  edge = 0.25 * (quantile(0.84) - quantile(0.16));  // a quarter of the noise's spread
+  threshold_out = c >= 1.0f ? -1e9 : quantile(1.0 - c);
+  edge_out = 0.25 * (quantile(0.84) - quantile(0.16));  // a quarter of the noise's spread
+}
+
+void GroundMaterial::set_cover(float c) {
+  cover = c;
+  if (c > 0.0f) quantiles(c, threshold, edge);
+}
+
+void GroundMaterial::set_litter(float c) {
+  litter = c;
+  if (c > 0.0f) quantiles(c, litter_threshold, litter_edge);
+}
+
+namespace {
+double smooth(double e) {
+  e = std::clamp(e, 0.0, 1.0);
+  return e * e * (3.0 - 2.0 * e);
+}
+}  // namespace
+
+float GroundMaterial::litter_weight(glm::vec2 xy) const {
+  if (litter <= 0.0f) return 0.0f;
+  // The patches' noise at half their scale, shifted to where it is independent of theirs.
+  const double n = noise(2.0 * xy.x / scale + 57.3, 2.0 * xy.y / scale - 31.9);
+  return static_cast<float>(smooth((n - litter_threshold) / (2.0 * litter_edge) + 0.5));
+}
+
+glm::vec3 GroundMaterial::detailed(glm::vec3 soil, glm::vec3 grass, float w, glm::vec2 xy) const {
+  if (detail > 0.0f) {
+    // Brightness by three finer octaves (about ±0.5 of the noise, mean 0): clods and tufts.
+    const double x = xy.x / scale, y = xy.y / scale;
+    const double n = 0.5 * gradient_noise(4.0 * x, 4.0 * y, 5.17) +
+                     0.3 * gradient_noise(13.0 * x, 13.0 * y, 6.31) +
+                     0.2 * gradient_noise(50.0 * x, 50.0 * y, 7.73);
+    const float m = 1.0f + 0.8f * detail * static_cast<float>(n);
+    soil *= m;
+    grass *= m;
+    // Drier, yellower grass where a coarser noise is high.
+    const float dry = static_cast<float>(smooth(gradient_noise(3.0 * x, 3.0 * y, 8.91) / 0.4));
+    grass = glm::mix(grass, glm::vec3(0.10f, 0.11f, 0.04f) * m, 0.6f * detail * dry);
+  }
+  glm::vec3 a = soil + (grass - soil) * w;
+  if (stones > 0.0f) {
+    // Stones 2–6 cm across (0.6–1.4 × 4 × 3 cm) on the soil.
+    const float s = mark_coverage_plane(xy.x, xy.y, stones, 0.04f, 0.03f, 0x73746fu);
+    a = glm::mix(a, stone_albedo, (1.0f - w) * s);
+  }
+  return litter > 0.0f ? glm::mix(a, litter_albedo, litter_weight(xy)) : a;
 }
 
 float GroundMaterial::patch(glm::vec2 xy) const {
@@ -44,6 +93,8 @@ float GroundMaterial::patch(glm::vec2 xy) const {
 
 glm::vec3 GroundMaterial::albedo_at(const SurfacePoint& p) const {
   const float w = patch(p.ground);
+  if (detail > 0.0f || stones > 0.0f || litter > 0.0f)
+    return detailed(albedo, patch_albedo, w, p.ground);
   return w > 0.0f ? albedo + (patch_albedo - albedo) * w : albedo;
 }
 

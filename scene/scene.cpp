@@ -419,12 +419,18 @@ void check_forest_budget(const formats::ForestDesc& f, std::size_t before, std::
 
 // The ground's material: patched when a cover is given, plain diffuse otherwise.
 materials::Material ground_material(const formats::GroundDesc& d) {
-  if (d.patch_cover <= 0.0) return materials::DiffuseMaterial{to_vec3(d.albedo)};
+  if (d.patch_cover <= 0.0 && d.detail <= 0.0 && d.stones <= 0.0 && d.litter <= 0.0)
+    return materials::DiffuseMaterial{to_vec3(d.albedo)};
   materials::GroundMaterial g;
   g.albedo = to_vec3(d.albedo);
   g.patch_albedo = to_vec3(d.patch_albedo);
   g.set_cover(static_cast<float>(d.patch_cover));
   g.scale = static_cast<float>(d.patch_scale);
+  g.detail = static_cast<float>(d.detail);
+  g.stones = static_cast<float>(d.stones);
+  g.stone_albedo = to_vec3(d.stone_albedo);
+  g.set_litter(static_cast<float>(d.litter));
+  g.litter_albedo = to_vec3(d.litter_albedo);
   return g;
 }
 

@@ -272,3 +272,28 @@ TEST(SceneFile, ExposureIsStopsOrAuto) {
 }
 
 }  // namespace arbor::formats
+
+namespace arbor::formats {
+
+// The ground's detail keys (issue 29): read with their values, refused out of range at the key.
+TEST(SceneFile, GroundDetailKeysAreReadAndCheckedAtTheKey) {
+  const SceneDesc s = parse_scene(
+      "[ground]\ndetail = 0.6\nstones = 8.0\nstone_albedo = [0.3, 0.3, 0.3]\nlitter = 0.2\n"
+      "litter_albedo = [0.2, 0.1, 0.05]\n",
+      "s.toml");
+  EXPECT_EQ(s.ground.detail, 0.6);
+  EXPECT_EQ(s.ground.stones, 8.0);
+  EXPECT_EQ(s.ground.litter, 0.2);
+  EXPECT_EQ(s.ground.litter_albedo[2], 0.05);
+  for (const char* bad :
+       {"detail = 1.01", "stones = -1", "litter = 2", "stone_albedo = [2, 0, 0]"}) {
+    try {
+      parse_scene(std::string("[ground]\n") + bad + "\n", "s.toml");
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("s.toml:2:"), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace arbor::formats
