@@ -218,7 +218,10 @@ class SceneBuilder {
     b.bump_tile = static_cast<float>(bark.bump_tile);
     if (!bark.albedo_map.empty()) b.albedo_map = albedo_map(bark.albedo_map);
     if (!bark.bump_map.empty()) b.bump_map = bump_map(bark.bump_map);
-    b.pattern = bark_pattern(sp.bark, b.albedo);
+    // A scene that sets the bark's albedo or an image replaces the species' bark look, its
+    // pattern included (docs/species-format.md).
+    if (!bark.albedo && bark.albedo_map.empty() && bark.bump_map.empty())
+      b.pattern = bark_pattern(sp.bark, b.albedo);
     look.bark = b;
     materials::LeafMaterial l;
     if (!leaf.albedo_map.empty()) l.albedo_map = albedo_map(leaf.albedo_map);
