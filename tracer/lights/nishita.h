@@ -181,6 +181,7 @@ class NishitaSky {
   void build_multiple_scattering();
   Spectrum multiple_scattering(double r, double mu_sun) const;
   Spectrum ground_sky(double mu_sun) const;
+  double ms_column(double mu_sun) const;  // the sun's continuous column in those tables
   void build_transfer();
   Spectrum third_scattering(double r, double mu_view, double mu_sun, const Depth& rho) const;
   // Along the ray from x (from the Earth's centre) in direction w (unit) to the top or the ground:

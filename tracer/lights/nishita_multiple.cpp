@@ -178,11 +178,15 @@ void NishitaSky::build_multiple_scattering() {
       });
 }
 
+double NishitaSky::ms_column(double mu_sun) const {
+  return std::clamp((std::acos(std::clamp(mu_sun, -1.0, 1.0)) - ms_theta_lo_) /
+                        (ms_theta_hi_ - ms_theta_lo_),
+                    0.0, 1.0) *
+         (kMsCols - 1);
+}
+
 NishitaSky::Spectrum NishitaSky::ground_sky(double mu_sun) const {
-  const double v = std::clamp((std::acos(std::clamp(mu_sun, -1.0, 1.0)) - ms_theta_lo_) /
-                                  (ms_theta_hi_ - ms_theta_lo_),
-                              0.0, 1.0) *
-                   (kMsCols - 1);
+  const double v = ms_column(mu_sun);
   const int j = std::min(kMsCols - 2, static_cast<int>(v));
   const double f = v - j;
   Spectrum out{};
@@ -194,10 +198,7 @@ NishitaSky::Spectrum NishitaSky::ground_sky(double mu_sun) const {
 
 NishitaSky::Spectrum NishitaSky::multiple_scattering(double r, double mu_sun) const {
   const double u = std::sqrt(std::clamp((r - kEarthRadius) / kTop, 0.0, 1.0)) * (kMsRows - 1);
-  const double v = std::clamp((std::acos(std::clamp(mu_sun, -1.0, 1.0)) - ms_theta_lo_) /
-                                  (ms_theta_hi_ - ms_theta_lo_),
-                              0.0, 1.0) *
-                   (kMsCols - 1);
+  const double v = ms_column(mu_sun);
   const int i = std::min(kMsRows - 2, static_cast<int>(u)),
             j = std::min(kMsCols - 2, static_cast<int>(v));
   const double fu = u - i, fv = v - j;

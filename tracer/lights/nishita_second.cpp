@@ -172,10 +172,7 @@ void NishitaSky::field_cell(Field& field, int i, int j) const {
   const double r = row_radius(i), mu = column_mu(r, j, kFieldHalf);
   const glm::dvec3 y(0.0, 0.0, r), w(std::sqrt(std::max(0.0, 1.0 - mu * mu)), 0.0, mu);
   const bool ground = hits_earth(r, mu);
-  const double length =
-      ground ? std::max(0.0, -r * mu - std::sqrt(std::max(0.0, r * r * (mu * mu - 1.0) +
-                                                                   kEarthRadius * kEarthRadius)))
-             : to_top(r, mu);
+  const double length = ray_length(r, mu);
   // The view leg is the same for every sun: each step's position and the Rayleigh and
   // aerosol scattering there times the transmittance back to y and the step's length.
   struct Step {
