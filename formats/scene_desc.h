@@ -103,6 +103,29 @@ struct GroundDesc {
   Rgb litter_albedo{0.20, 0.13, 0.07};
 };
 
+// A meadow of grass blades (scene/meadow.h): `density` blades per m² (0: none) over `area`
+// (x0, y0, x1, y1, rounded out to whole tiles), each a thin two-sided translucent ribbon.
+struct MeadowDesc {
+  double density = 0.0;
+  std::array<double, 4> area{-10.0, -10.0, 10.0, 10.0};
+  double height = 0.25;         // metres, the blades' median height
+  double height_spread = 0.3;   // σ of ln height
+  double width = 0.004;         // metres, a blade's width at its base
+  double clumping = 0.5;        // the share of blades in tufts
+  double lean = 20.0;           // degrees, the blades' typical lean from upright
+  double bend = 0.5;            // how far gravity bends a leaning blade over, [0, 1]
+  double dry = 0.05;            // the share of dead, straw-coloured blades
+  double wind = 0.0;            // m/s, bending the blades downwind (and swaying in [animation])
+  double wind_direction = 0.0;  // degrees about z: the direction the wind blows towards
+  double tile = 1.0;            // metres, the side of a tile of blades
+  int tiles = 4;                // distinct tiles the meadow repeats, turned and shuffled
+  std::uint64_t seed = 1;
+  Rgb reflectance{0.05, 0.13, 0.03}, back_reflectance{0.06, 0.14, 0.035};
+  Rgb transmittance{0.04, 0.12, 0.02};
+  Rgb dry_reflectance{0.30, 0.24, 0.12};
+  SourceLocation where;
+};
+
 // The ground's albedo as one number, what the atmosphere's sky sees: the luminance (Rec. 709) of
 // its albedo and its patches' by the share each covers.
 inline double mean_albedo(const GroundDesc& g) {
@@ -229,6 +252,7 @@ struct SceneDesc {
   SunDesc sun;
   SkyDesc sky;
   GroundDesc ground;
+  MeadowDesc meadow;
   std::vector<TreeDesc> trees;
   std::vector<ForestDesc> forests;
   std::vector<MeshDesc> meshes;

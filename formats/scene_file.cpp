@@ -11,6 +11,7 @@
 #include "formats/toml_reader.h"
 
 #include "formats/scene_desc.h"
+#include "formats/scene_meadow.h"
 #include "formats/species_file.h"
 
 namespace arbor::formats {
@@ -48,6 +49,8 @@ class SceneReader : TomlReader {
         sky(table(node, k), s.sky);
       else if (k == "ground")
         ground(table(node, k), s.ground);
+      else if (k == "meadow")
+        read_meadow(*this, table(node, k), s.meadow);
       else if (k == "tree")
         for_each_table(node, k, [&](const toml::table& t) { s.trees.push_back(tree(t)); });
       else if (k == "forest")
@@ -83,20 +86,6 @@ class SceneReader : TomlReader {
     for (const toml::node& e : *a) f(table(e, name));
   }
 
-  std::array<double, 3> triple(const toml::node& n, const std::string& name,
-                               const Range& range) const {
-    const toml::array* a = n.as_array();
-    if (!a || a->size() != 3) fail(n, name + " must be an array of 3 numbers");
-    return {number(*a->get(0), name, range), number(*a->get(1), name, range),
-            number(*a->get(2), name, range)};
-  }
-  std::array<double, 3> triple(const toml::node& n, const std::string& name, double lo,
-                               double hi) const {
-    const toml::array* a = n.as_array();
-    if (!a || a->size() != 3) fail(n, name + " must be an array of 3 numbers");
-    return {number(*a->get(0), name, lo, hi), number(*a->get(1), name, lo, hi),
-            number(*a->get(2), name, lo, hi)};
-  }
   std::string file(const toml::node& n, const std::string& name) const {
     const std::string v = text(n, name);
     if (v.empty()) fail(n, name + " must not be empty");
@@ -434,20 +423,7 @@ class SceneReader : TomlReader {
       else if (k == "seed")
         d.seed = static_cast<std::uint64_t>(integer(n, "forest.seed", 0, INT64_MAX));
       else if (k == "area") {
-        const toml::array* a = n.as_array();
-        if (!a || a->size() != 2 || !a->get(0)->is_array() || !a->get(1)->is_array() ||
-            a->get(0)->as_array()->size() != 2 || a->get(1)->as_array()->size() != 2) {
-          fail(n, "forest.area must be [[x0, y0], [x1, y1]]");
-        }
-        const toml::array& lo = *a->get(0)->as_array();
-        const toml::array& hi = *a->get(1)->as_array();
-        d.area = {number(*lo.get(0), "forest.area", -1e7, 1e7),
-                  number(*lo.get(1), "forest.area", -1e7, 1e7),
-                  number(*hi.get(0), "forest.area", -1e7, 1e7),
-                  number(*hi.get(1), "forest.area", -1e7, 1e7)};
-        if (!(d.area[2] > d.area[0] && d.area[3] > d.area[1])) {
-          fail(n, "forest.area must go from the smaller corner to the larger one");
-        }
+        d.area = area(n, "forest.area");
       } else if (k == "bark")
         bark(table(n, "forest.bark"), d.bark, "forest");
       else if (k == "leaf")

@@ -166,6 +166,38 @@ class TomlReader {
     fail(n, "'" + std::string(name) + "' must be a table");
   }
 
+  // Three numbers, each in the range.
+  std::array<double, 3> triple(const toml::node& n, const std::string& name,
+                               const Range& range) const {
+    const toml::array* a = n.as_array();
+    if (!a || a->size() != 3) fail(n, name + " must be an array of 3 numbers");
+    return {number(*a->get(0), name, range), number(*a->get(1), name, range),
+            number(*a->get(2), name, range)};
+  }
+  std::array<double, 3> triple(const toml::node& n, const std::string& name, double lo,
+                               double hi) const {
+    const toml::array* a = n.as_array();
+    if (!a || a->size() != 3) fail(n, name + " must be an array of 3 numbers");
+    return {number(*a->get(0), name, lo, hi), number(*a->get(1), name, lo, hi),
+            number(*a->get(2), name, lo, hi)};
+  }
+  // An axis-aligned rectangle [[x0, y0], [x1, y1]] of the ground, as {x0, y0, x1, y1}.
+  std::array<double, 4> area(const toml::node& n, const std::string& name) const {
+    const toml::array* a = n.as_array();
+    if (!a || a->size() != 2 || !a->get(0)->is_array() || !a->get(1)->is_array() ||
+        a->get(0)->as_array()->size() != 2 || a->get(1)->as_array()->size() != 2) {
+      fail(n, name + " must be [[x0, y0], [x1, y1]]");
+    }
+    const toml::array& lo = *a->get(0)->as_array();
+    const toml::array& hi = *a->get(1)->as_array();
+    const std::array<double, 4> r = {
+        number(*lo.get(0), name, -1e7, 1e7), number(*lo.get(1), name, -1e7, 1e7),
+        number(*hi.get(0), name, -1e7, 1e7), number(*hi.get(1), name, -1e7, 1e7)};
+    if (!(r[2] > r[0] && r[3] > r[1]))
+      fail(n, name + " must go from the smaller corner to the larger one");
+    return r;
+  }
+
  private:
   std::string path_;
 };

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -18,6 +19,9 @@ namespace {
 constexpr std::uint64_t kBytesPerPixel = 72;   // image and beauty, PNG included
 constexpr std::uint64_t kBytesPerChannel = 8;  // each EXR channel: its pixels and encoding
 constexpr std::uint64_t kBytesPerInstance = 1024;
+// A distinct grass blade: its arrays (136 bytes), Embree's copy of its normals and its BVH
+// (bench/meadow.sh measures the whole).
+constexpr std::uint64_t kBytesPerBlade = 400;
 constexpr std::uint64_t kBaseline = 256ull << 20;  // libraries, OCIO, Embree's device
 
 double gigabytes(std::uint64_t bytes) { return static_cast<double>(bytes) / double(1ull << 30); }
@@ -50,6 +54,14 @@ MemoryEstimate estimate_render_memory(const formats::SceneDesc& s, const FilmCos
   e.instances = s.trees.size();
   for (const formats::ForestDesc& f : s.forests) e.instances += static_cast<std::uint64_t>(f.count);
   e.instance_bytes = e.instances * kBytesPerInstance;
+  const formats::MeadowDesc& m = s.meadow;
+  if (m.density > 0.0) {
+    const double cells = std::ceil((m.area[2] - m.area[0]) / m.tile + 1.0) *
+                         std::ceil((m.area[3] - m.area[1]) / m.tile + 1.0);
+    const double blades = m.density * m.tile * m.tile * m.tiles;
+    e.meadow_bytes = static_cast<std::uint64_t>(cells) * kBytesPerInstance +
+                     static_cast<std::uint64_t>(blades) * kBytesPerBlade;
+  }
   return e;
 }
 
@@ -81,19 +93,23 @@ void check_render_memory(const formats::SceneDesc& s, const FilmCosts& film, boo
   SourceLocation where{s.path, 0, 0};
   int largest = 0;
   for (const formats::ForestDesc& f : s.forests) {
-    if (f.count > largest && e.instance_bytes > e.image_bytes) {
+    if (f.count > largest && e.instance_bytes > e.image_bytes &&
+        e.instance_bytes > e.meadow_bytes) {
       largest = f.count;
       where = f.where;
     }
   }
-  char buf[400];
+  if (e.meadow_bytes > e.image_bytes && e.meadow_bytes > e.instance_bytes) where = s.meadow.where;
+  char buf[480];
   std::snprintf(
       buf, sizeof buf,
       "the render would need about %.1f GB (a %dx%d image with its outputs: %.1f GB; %llu "
-      "trees: %.1f GB), more than the %.1f GB this process may use; lower the size or the "
+      "trees: %.1f GB; the meadow: %.1f GB), more than the %.1f GB this process may use; lower the "
+      "size or the "
       "count, or use --force to render it anyway",
       gigabytes(e.total() + kBaseline), s.render.width, s.render.height, gigabytes(e.image_bytes),
-      static_cast<unsigned long long>(e.instances), gigabytes(e.instance_bytes), gigabytes(usable));
+      static_cast<unsigned long long>(e.instances), gigabytes(e.instance_bytes),
+      gigabytes(e.meadow_bytes), gigabytes(usable));
   throw InputError(where, buf);
 }
 

@@ -23,7 +23,8 @@ struct MemoryEstimate {
   std::uint64_t image_bytes = 0;     // the film, its AOVs and the encoded outputs
   std::uint64_t instance_bytes = 0;  // one Embree instance and placement per tree
   std::uint64_t instances = 0;
-  std::uint64_t total() const { return image_bytes + instance_bytes; }
+  std::uint64_t meadow_bytes = 0;  // the meadow's distinct blades and its tiles' instances
+  std::uint64_t total() const { return image_bytes + instance_bytes + meadow_bytes; }
 };
 
 // Calibrated on the development machine (peak RSS of renders at growing sizes, /usr/bin/time):

@@ -512,6 +512,14 @@ std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
     scene->ground_material_id = b.material_named("ground");
     scene->ground = ground_material(desc.ground);
   }
+  if (desc.meadow.density > 0.0) {
+    scene->meadow = grow_meadow(desc.meadow, desc.clock);
+    scene->object_names.emplace_back("meadow");
+    scene->meadow.object_id = static_cast<std::uint32_t>(scene->object_names.size());
+    scene->meadow.front_id = b.material_named("meadow/blade front");
+    scene->meadow.back_id = b.material_named("meadow/blade back");
+    scene->stats.geometry_bytes += scene->meadow.bytes();
+  }
   scene->stats.prototypes = scene->prototypes.size();
   scene->stats.instances = scene->instances.size();
   scene->stats.build_seconds =

@@ -17,6 +17,7 @@
 #include "generator/geometry/tree_geometry.h"
 #include "materials/treemaker_weights.h"
 #include "materials/material.h"
+#include "scene/meadow.h"
 
 namespace arbor {
 class Progress;
@@ -82,10 +83,12 @@ struct Scene {
   bool has_ground = false;
   materials::Material ground;
   std::uint32_t ground_object_id = 0, ground_material_id = 0;
+  Meadow meadow;  // empty: none
   // The names of the compositing ids (id k is names[k - 1]; 0 is nothing, the sky): objects are
-  // "<species>.<n>" (the n-th tree of that species in scene order), "<mesh file stem>.<n>" and
-  // "ground"; materials "<species>/bark", "<species>/leaf front", "<species>/leaf back",
-  // "<mesh file stem>/<OBJ material or group>" and "ground". Names are unique; one name, one id.
+  // "<species>.<n>" (the n-th tree of that species in scene order), "<mesh file stem>.<n>",
+  // "ground" and "meadow"; materials "<species>/bark", "<species>/leaf front", "<species>/leaf
+  // back", "<mesh file stem>/<OBJ material or group>", "ground", "meadow/blade front" and
+  // "meadow/blade back". Names are unique; one name, one id.
   std::vector<std::string> object_names, material_names;
   SceneStats stats;
   // The textures the materials point to.

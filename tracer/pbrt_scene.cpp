@@ -253,9 +253,8 @@ std::string camera_text(const scene::RenderInput& input, const PbrtColorSpace& s
       "# Not in pbrt-v4, so not here: the sun's disk (a distant light is a point), the leaves'\n"
       "# two sides (one reflectance, the mean of front and back) and their cuticle, bark\n"
       "# roughness (Oren-Nayar) and relief, albedo maps, the ground's patches beyond 128 m of the\n"
-      "# camera (their mean albedo there; nearer, an image), the transparent sky, the AOVs, "
-      "arbor's\n"
-      "# sampling (pbrt samples its own way).\n";
+      "# camera (their mean albedo there; nearer, an image), the [meadow]'s grass blades, the\n"
+      "# transparent sky, the AOVs, arbor's sampling (pbrt samples its own way).\n";
   text += "ColorSpace \"" + std::string(space.name) + "\"\n";
   // pbrt's camera space is left-handed: mirroring x keeps arbor's right-handed image unmirrored.
   const scene::CameraSpec& cam = input.camera;

@@ -43,7 +43,8 @@ struct SurfaceHit {
 // A hit in the world: the surface in world space and what it is made of.
 struct WorldHit {
   SurfaceHit surface;
-  int instance = -1;  // tree instance; -1 for the ground or a mesh
+  int instance = -1;  // tree instance; -1 for the ground, a mesh or grass
+  int grass = -1;     // meadow placement (scene::Meadow::placements) of a blade; -1 otherwise
   bool ground = false;
   bool mesh = false;       // a [[mesh]] face
   bool mesh_front = true;  // the side a mesh face's counter-clockwise normal faces
@@ -67,8 +68,10 @@ struct WorldHit {
     p.leaf_back = mesh ? !mesh_front : surface.material == generator::kMaterialLeafBack;
     if (surface.leaf >= 0) {
       // Each leaf of each tree its own: trees that share a prototype differ too.
-      p.leaf_key = derive_key(static_cast<std::uint64_t>(instance) + 1,
-                              static_cast<std::uint64_t>(surface.leaf));
+      // A blade's key: its placement's (counted down from 2⁶⁴ − 1, apart from the trees').
+      const std::uint64_t owner = grass >= 0 ? ~static_cast<std::uint64_t>(grass)
+                                             : static_cast<std::uint64_t>(instance) + 1;
+      p.leaf_key = derive_key(owner, static_cast<std::uint64_t>(surface.leaf));
       p.crown_height = surface.crown_height;
     }
     return p;

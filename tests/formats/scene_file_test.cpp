@@ -177,6 +177,28 @@ TEST(SceneFile, ValuesAreRangeAndTypeChecked) {
   expect_error("[output]\naovs = [\"albedo\", \"motion\"]\n", 2, 19, "output.aovs");
 }
 
+// [meadow]: its keys read, each range-checked at its position, a blade that would create light
+// and a meadow too large for memory refused at the table.
+TEST(SceneFile, MeadowKeysAreReadAndChecked) {
+  const SceneDesc s = parse_scene(
+      "[meadow]\ndensity = 800\narea = [[-5.0, -4.0], [6.0, 7.0]]\nheight = 0.4\n"
+      "clumping = 0.2\ndry = 0.1\nwind = 3.0\ntile = 2.0\ntiles = 8\nseed = 9\n",
+      "s.toml");
+  EXPECT_EQ(s.meadow.density, 800.0);
+  EXPECT_EQ(s.meadow.area, (std::array<double, 4>{-5.0, -4.0, 6.0, 7.0}));
+  EXPECT_EQ(s.meadow.height, 0.4);
+  EXPECT_EQ(s.meadow.tiles, 8);
+  EXPECT_EQ(s.meadow.seed, 9u);
+  EXPECT_EQ(parse_scene("", "s.toml").meadow.density, 0.0);  // no [meadow]: no grass
+  expect_error("[meadow]\ndensity = -1\n", 2, 11, "meadow.density");
+  expect_error("[meadow]\nheight = 0\n", 2, 10, "meadow.height");
+  expect_error("[meadow]\nblades = 3\n", 2, 1, "unknown key 'blades' in [meadow]");
+  expect_error("[meadow]\narea = [[1.0, 0.0], [0.0, 1.0]]\n", 2, 8, "smaller corner");
+  expect_error("[meadow]\nreflectance = [0.5, 0.5, 0.5]\ntransmittance = [0.6, 0.1, 0.1]\n", 1, 1,
+               "would create light");
+  expect_error("[meadow]\ndensity = 50000\narea = [[-1e4, -1e4], [1e4, 1e4]]\n", 1, 1, "10⁹");
+}
+
 TEST(SceneFile, StructuralRulesAreChecked) {
   expect_error("[sky]\nmodel = \"envmap\"\n", 1, 1, "needs sky.path");
   expect_error("[[tree]]\nseed = 3\n", 1, 1, "needs a species");

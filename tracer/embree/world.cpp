@@ -10,6 +10,7 @@
 
 #include "tracer/embree/embree_internal.h"
 #include "tracer/embree/embree_scene.h"
+#include "tracer/embree/grass.h"
 
 namespace arbor::tracer {
 
@@ -36,6 +37,15 @@ World::World(const scene::Scene& scene, const EmbreeDevice& device)
     rtcSetGeometryInstancedScene(g, prototypes_[static_cast<std::size_t>(inst.prototype)]->scene());
     rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.to_world[0][0]);
     map_id(instance_of_geometry_, attach(top_.get(), g), i);
+  }
+  for (const scene::GrassTile& tile : scene.meadow.tiles)
+    grass_.push_back(std::make_unique<GrassPrototype>(device, tile));
+  for (std::size_t i = 0; i < scene.meadow.placements.size(); ++i) {
+    const scene::GrassPlacement& p = scene.meadow.placements[i];
+    RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(g, grass_[static_cast<std::size_t>(p.tile)]->scene());
+    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &p.to_world[0][0]);
+    map_id(grass_of_geometry_, attach(top_.get(), g), i);
   }
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
     const scene::MeshObject& mesh = scene.meshes[i];
@@ -110,6 +120,7 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
     hit.ground = false;
     hit.mesh = true;
     hit.instance = -1;
+    hit.grass = -1;
     hit.material = &mesh.materials[mesh.material[rh.hit.primID]];
     hit.object_id = mesh.object_id;
     hit.material_id = mesh.material_ids[mesh.material[rh.hit.primID]];
@@ -120,6 +131,7 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
     hit.ground = true;
     hit.mesh = false;
     hit.instance = -1;
+    hit.grass = -1;
     hit.material = &scene_.ground;
     hit.object_id = scene_.ground_object_id;
     hit.material_id = scene_.ground_material_id;
@@ -133,7 +145,12 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
     s.leaf = -1;
     return true;
   }
-  const int instance = instance_of_geometry_[rh.hit.instID[0]];
+  const unsigned inst_id = rh.hit.instID[0];
+  if (inst_id < grass_of_geometry_.size() && grass_of_geometry_[inst_id] >= 0) {
+    describe_grass(ray, rh.hit.primID, rh.hit.u, rh.ray.tfar, grass_of_geometry_[inst_id], hit);
+    return true;
+  }
+  const int instance = instance_of_geometry_[inst_id];
   const scene::TreeInstance& inst = scene_.instances[static_cast<std::size_t>(instance)];
   // The same ray in the prototype's space (t is unchanged by an affine map of the direction).
   Ray local;
@@ -149,12 +166,37 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
   hit.ground = false;
   hit.mesh = false;
   hit.instance = instance;
+  hit.grass = -1;
   hit.material = s.kind == SurfaceKind::Leaf ? &inst.leaf : &inst.bark;
   hit.object_id = inst.object_id;
   hit.material_id = s.kind != SurfaceKind::Leaf                  ? inst.bark_id
                     : s.material == generator::kMaterialLeafBack ? inst.leaf_back_id
                                                                  : inst.leaf_front_id;
   return true;
+}
+
+void World::describe_grass(const Ray& ray, unsigned blade, float u, float t, int placement,
+                           WorldHit& hit) const {
+  const scene::Meadow& m = scene_.meadow;
+  const scene::GrassPlacement& p = m.placements[static_cast<std::size_t>(placement)];
+  Ray local;
+  local.origin = glm::vec3(p.to_object * glm::vec4(ray.origin, 1.0f));
+  local.direction = glm::vec3(p.to_object * glm::vec4(ray.direction, 0.0f));
+  SurfaceHit& s = hit.surface;
+  grass_[static_cast<std::size_t>(p.tile)]->describe_hit(local, blade, u, t, s);
+  // A turn about z and a translation: normals and tangents turn with the placement.
+  const glm::mat3 turn(p.to_world);
+  s.position = ray.origin + ray.direction * t;
+  s.geometric_normal = turn * s.geometric_normal;
+  s.shading_normal = turn * s.shading_normal;
+  s.tangent = turn * s.tangent;
+  hit.ground = false;
+  hit.mesh = false;
+  hit.instance = -1;
+  hit.grass = placement;
+  hit.material = &m.grass;
+  hit.object_id = m.object_id;
+  hit.material_id = s.material == generator::kMaterialLeafBack ? m.back_id : m.front_id;
 }
 
 bool World::occluded(const Ray& ray) const {

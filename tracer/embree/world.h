@@ -1,6 +1,6 @@
-// The renderable world: a scene (scene/) in Embree — one prototype scene per grown tree, placed
-// by instances, the meshes and a ground quad — and the hits it answers in world space.
-// Immutable while rendering.
+// The renderable world: a scene (scene/) in Embree — one prototype scene per grown tree and per
+// meadow tile, placed by instances, the meshes and a ground quad — and the hits it answers in world
+// space. Immutable while rendering.
 #pragma once
 
 #include <cstddef>
@@ -15,6 +15,7 @@
 namespace arbor::tracer {
 
 class TreePrototype;
+class GrassPrototype;
 
 // The rays a render asked the world to trace, in the order they were asked (with several threads
 // the order between threads is the scheduler's): for replaying exactly them through Embree alone
@@ -50,10 +51,16 @@ class World {
   void log_rays(RayLog* log) { log_ = log; }
 
  private:
+  // Fills `hit` for a hit on `blade` of meadow placement `placement` (world-space ray).
+  void describe_grass(const Ray& ray, unsigned blade, float u, float t, int placement,
+                      WorldHit& hit) const;
+
   const scene::Scene& scene_;
   const EmbreeDevice& device_;
   SceneHandle top_;
   std::vector<std::unique_ptr<TreePrototype>> prototypes_;
+  std::vector<std::unique_ptr<GrassPrototype>> grass_;  // one per meadow tile
+  std::vector<int> grass_of_geometry_;  // Embree geometry id in the top scene → meadow placement
   std::vector<int> instance_of_geometry_;  // Embree geometry id in the top scene → instance
   std::vector<int> mesh_of_geometry_;      // Embree geometry id in the top scene → mesh
   double build_seconds_ = 0.0;
