@@ -298,6 +298,7 @@ struct RunResult {
   int first_pass = 0;
   std::size_t instances = 0, prototypes = 0;
   double build_seconds = 0;
+  std::size_t blades = 0, distinct_blades = 0, tiles = 0, meadow_bytes = 0;  // the meadow's
 };
 
 // Builds the scene and renders the film's remaining passes, writing checkpoints and, at the end,
@@ -335,6 +336,10 @@ RunResult build_and_render(const formats::SceneDesc& scene, const scene::RenderI
   result.instances = built->stats.instances;
   result.prototypes = built->stats.prototypes;
   result.build_seconds = built->stats.build_seconds + world.build_seconds();
+  result.blades = built->meadow.placed_blades();
+  for (const scene::GrassTile& t : built->meadow.tiles) result.distinct_blades += t.blades();
+  result.tiles = built->meadow.tiles.size();
+  result.meadow_bytes = built->meadow.bytes();
   RenderWrite write{scene.output.exr, scene.output.png, &color, StopReason::None};
   RenderJob job;
   job.plan = plan;
@@ -397,6 +402,12 @@ void report(const formats::SceneDesc& scene, const PassPlan& plan, const RunRang
       window.width(), window.height(), spp_text, run.pass_begin, film.next_pass() - 1,
       plan.passes(), stats.seconds, double(stats.samples) / seconds, double(stats.rays) / seconds,
       result.instances, result.prototypes, result.build_seconds);
+  if (result.blades > 0) {
+    std::fprintf(stderr,
+                 "arbor: a meadow of %zu grass blades (%zu distinct, in %zu tiles: %.1f MB)\n",
+                 result.blades, result.distinct_blades, result.tiles,
+                 static_cast<double>(result.meadow_bytes) / 1e6);
+  }
   if (result.outcome.stopped != StopReason::None) {
     std::fprintf(stderr,
                  "arbor: stopped early (%s) after %d of %d passes; continue with --resume\n",
