@@ -36,6 +36,9 @@ struct RenderSettings {
   std::uint64_t seed = 1;
   Integrator integrator = Integrator::Path;
   int max_depth = 12;
+  // Path regularisation (docs/rendering.md, "Regularisation"): after a non-specular bounce,
+  // glossy coats are roughened by pbrt-v4's rule. Biased; off for references.
+  bool regularize = false;
   int treemaker_spp = 4;  // samples per pixel of the treemaker integrator (anti-aliasing)
   int pass_spp = 16;      // samples a pixel takes per pass (a power of two keeps Sobol' balanced)
   bool independent_passes =

@@ -112,6 +112,8 @@ class SceneReader : TomlReader {
       else if (k == "integrator")
         r.integrator =
             static_cast<Integrator>(choice_index(n, "render.integrator", kIntegratorNames));
+      else if (k == "regularize")
+        r.regularize = boolean(n, "render.regularize");
       else if (k == "max_depth")
         r.max_depth = static_cast<int>(integer(n, "render.max_depth", 1, 1024));
       else if (k == "treemaker_spp")

@@ -222,6 +222,10 @@ void add_render_attributes(Imf::Header& header, const Image& img, const OutputSp
   header.insert("arbor:mean_spp", Imf::FloatAttribute(static_cast<float>(meta.mean_spp)));
   text("arbor:fingerprint", meta.fingerprint);
   integer("arbor:transparent_sky", o.transparent_sky ? 1 : 0);
+  text("arbor:regularize",
+       meta.regularize ? "on: after the first bounce a glossy coat's GGX alpha < 0.3 becomes "
+                         "clamp(2 alpha, 0.1, 0.3) (pbrt-v4's rule); biased, not a reference"
+                       : "off");
   if (meta.noise_threshold > 0) {
     header.insert("arbor:noise_threshold",
                   Imf::FloatAttribute(static_cast<float>(meta.noise_threshold)));

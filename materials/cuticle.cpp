@@ -77,6 +77,12 @@ CuticleCoat::CuticleCoat(double ior, double roughness)
   mean_albedo_ = 2.0 * mean;
 }
 
+double CuticleCoat::regularized_roughness(double roughness) {
+  const double alpha = std::max(roughness * roughness, kMinAlpha);
+  if (alpha >= 0.3) return roughness;
+  return std::sqrt(std::clamp(2.0 * alpha, 0.1, 0.3));
+}
+
 std::unique_ptr<const CuticleCoat> CuticleCoat::make(double ior, double roughness) {
   if (ior == 1.0) return nullptr;
   return std::make_unique<const CuticleCoat>(ior, roughness);

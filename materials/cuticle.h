@@ -26,6 +26,10 @@ class CuticleCoat {
 
   static constexpr double kMinAlpha = 1e-3;  // roughness 0: a mirror to within about 0.1°
 
+  // The roughness a regularised path sees (`[render] regularize`): pbrt-v4's rule on GGX α,
+  // α < 0.3 → clamp(2α, 0.1, 0.3), as a roughness (√α); rougher coats are kept.
+  static double regularized_roughness(double roughness);
+
   double ior() const { return ior_; }
   double alpha() const { return alpha_; }
 

@@ -25,7 +25,7 @@ SurfaceBsdf LeafMaterial::bsdf(const SurfacePoint& p) const {
       l.transmittance[c] /= sum;
     }
   }
-  l.coat = cuticle;
+  l.coat = p.regularize && regularized ? regularized : cuticle;
   SurfaceBsdf b;
   b.lobes = l;
   b.normal = p.shading_normal;

@@ -21,6 +21,9 @@ struct LeafMaterial {
   // The cuticle, owned by the scene like the maps (one coat per ior and roughness, shared by
   // every leaf material that has it); null: no coat.
   const CuticleCoat* cuticle = nullptr;
+  // The same coat roughened for regularised paths (`[render] regularize`; pbrt-v4's rule:
+  // GGX α < 0.3 becomes clamp(2α, 0.1, 0.3)); null: the cuticle serves them too.
+  const CuticleCoat* regularized = nullptr;
   bool tinted = true;       // false: R and T as given (mesh leaves have no uv or colour)
   LeafVariation variation;  // each leaf's own tint (materials/leaf_variation.h); none by default
   LeafTexture texture;      // midrib, veins and margin over the uv (materials/leaf_texture.h)

@@ -20,10 +20,13 @@ struct SurfacePoint {
   glm::vec3 tangent{1.0f, 0.0f, 0.0f};                // along the limb, for bark bump mapping
   float along = 0.0f, azimuth = 0.0f, radius = 0.0f;  // bark coordinates (metres, radians, metres)
   glm::vec2 uv{0.0f};                                 // over the unit leaf
-  glm::vec3 color{1.0f};       // the primitive's colour, multiplying the albedo
-  glm::vec2 ground{0.0f};      // world x, y of a ground point (its patches)
-  float height = 0.0f;         // world z (m above the ground plane): the bark's base
-  bool leaf_back = false;      // a leaf seen from its back (the back reflectance applies)
+  glm::vec3 color{1.0f};   // the primitive's colour, multiplying the albedo
+  glm::vec2 ground{0.0f};  // world x, y of a ground point (its patches)
+  float height = 0.0f;     // world z (m above the ground plane): the bark's base
+  bool leaf_back = false;  // a leaf seen from its back (the back reflectance applies)
+  // The path has bounced off a non-specular surface and `[render] regularize` is on: glossy
+  // lobes use their regularised roughness (LeafMaterial::regularized).
+  bool regularize = false;
   std::uint64_t leaf_key = 0;  // the leaf's own key (tree instance and leaf), for its variation
   float crown_height = 0.5f;   // the leaf's height in its tree's crown, 0 bottom to 1 top
 };

@@ -15,7 +15,7 @@ namespace arbor::scene {
 namespace {
 
 constexpr double kBladesPerTuft = 12.0;
-constexpr double kTuftRadius = 0.025;  // metres: σ of a tuft's blades about its centre
+constexpr double kTuftRadius = 0.025;   // metres: σ of a tuft's blades about its centre
 constexpr float kBelowGround = 0.005f;  // metres: blades start below the ground, no gap shows
 constexpr double kSwayHz = 0.8;         // the blades' sway in the wind, cycles per second
 
@@ -96,8 +96,7 @@ GrassTile grow_grass_tile(const formats::MeadowDesc& d, int k, double clock) {
       phi = std::atan2(off.y, off.x) + 0.4 * normal(rng);
     }
     const double length = d.height * std::exp(d.height_spread * normal(rng));
-    const double theta =
-        std::min(80.0, d.lean * (0.25 + 1.5 * rng.uniform())) * kPi / 180.0;
+    const double theta = std::min(80.0, d.lean * (0.25 + 1.5 * rng.uniform())) * kPi / 180.0;
     const double twist = 0.5 * normal(rng);
     const double sway = 1.0 + 0.3 * std::sin(2.0 * kPi * (kSwayHz * clock + rng.uniform()));
     const glm::vec3 wind = static_cast<float>(wind_bend * sway) *
@@ -123,8 +122,9 @@ Meadow grow_meadow(const formats::MeadowDesc& d, double clock) {
   const auto half = static_cast<float>(0.5 * side);
   for (std::int64_t iy = iy0; iy < iy1; ++iy) {
     for (std::int64_t ix = ix0; ix < ix1; ++ix) {
-      const std::uint64_t h = derive_key(derive_key(d.seed ^ 0x3ead0e5u, static_cast<std::uint64_t>(ix)),
-                                         static_cast<std::uint64_t>(iy));
+      const std::uint64_t h =
+          derive_key(derive_key(d.seed ^ 0x3ead0e5u, static_cast<std::uint64_t>(ix)),
+                     static_cast<std::uint64_t>(iy));
       GrassPlacement p;
       p.tile = static_cast<int>(h % static_cast<std::uint64_t>(d.tiles));
       if (m.tiles[static_cast<std::size_t>(p.tile)].blades() == 0) continue;

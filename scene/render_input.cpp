@@ -52,7 +52,8 @@ RenderInput render_input(const formats::SceneDesc& d) {
                r.independent_passes,
                r.noise_threshold,
                r.min_spp,
-               r.threads};
+               r.threads,
+               r.regularize};
   formats::check_camera(
       d.camera);  // the reader checked it; a description made in code is checked here
   in.camera = camera_spec(d.camera);

@@ -28,7 +28,8 @@ struct RenderSpec {
   bool independent_passes = false;
   double noise_threshold = 0.0;  // adaptive sampling; 0: off
   int min_spp = 0;
-  int threads = 0;  // 0: all cores
+  int threads = 0;          // 0: all cores
+  bool regularize = false;  // glossy lobes roughened after a non-specular bounce
   // The sample count of the integrator in use.
   int samples() const { return integrator == formats::Integrator::Treemaker ? treemaker_spp : spp; }
 };

@@ -182,6 +182,16 @@ class SceneBuilder {
     if (coat) s_.coats.push_back(std::move(coat));
     return cuticles_.back().second;
   }
+  // A leaf's coat, and its regularised twin when the render regularises (else none).
+  void coat(materials::LeafMaterial& l, double ior, double roughness) {
+    l.cuticle = cuticle(ior, roughness);
+    l.regularized = nullptr;
+    if (l.cuticle && regularize_) {
+      const double r = materials::CuticleCoat::regularized_roughness(roughness);
+      if (r != roughness) l.regularized = cuticle(ior, r);
+    }
+  }
+  void set_regularize(bool on) { regularize_ = on; }
 
   // The species' bark colour by relief and marks (materials/bark_color.h) over `albedo`.
   static materials::BarkPattern bark_pattern(const generator::BarkLook& own,
@@ -235,8 +245,8 @@ class SceneBuilder {
     l.front = to_vec3(front);
     l.back = to_vec3(back);
     l.transmittance = to_vec3(transmittance);
-    l.cuticle = cuticle(leaf.cuticle_ior.value_or(sp.leaf.cuticle_ior),
-                        leaf.cuticle_roughness.value_or(sp.leaf.cuticle_roughness));
+    coat(l, leaf.cuticle_ior.value_or(sp.leaf.cuticle_ior),
+         leaf.cuticle_roughness.value_or(sp.leaf.cuticle_roughness));
     l.variation = {static_cast<float>(leaf.variation.value_or(sp.leaf.variation)),
                    static_cast<float>(leaf.hue_variation.value_or(sp.leaf.hue_variation)),
                    static_cast<float>(leaf.crown_gradient.value_or(sp.leaf.crown_gradient))};
@@ -317,6 +327,7 @@ class SceneBuilder {
   std::vector<std::pair<std::string, std::unique_ptr<generator::Species>>> species_;
   std::map<std::string, int> prototype_keys_;  // (species, seed, time) → prototype
   std::vector<std::pair<std::pair<double, double>, const materials::CuticleCoat*>> cuticles_;
+  bool regularize_ = false;  // [render] regularize
   std::map<std::string, int> object_count_;
   std::map<std::string, std::uint32_t> material_ids_;
 };
@@ -348,7 +359,7 @@ void SceneBuilder::add_mesh(const formats::MeshDesc& d) {
         leaf.front = to_vec3(md.reflectance);
         leaf.back = to_vec3(md.back_reflectance);
         leaf.transmittance = to_vec3(md.transmittance);
-        leaf.cuticle = cuticle(md.cuticle_ior, md.cuticle_roughness);
+        coat(leaf, md.cuticle_ior, md.cuticle_roughness);
         material = leaf;
       } else {
         material = materials::DiffuseMaterial{to_vec3(md.albedo)};
@@ -454,6 +465,7 @@ std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
   auto scene = std::make_unique<Scene>();
   SceneBuilder b(*scene, ocio_config);
   b.set_threads(threads);
+  b.set_regularize(desc.render.regularize);
   std::size_t total = desc.trees.size(), done = 0;
   for (const formats::ForestDesc& f : desc.forests) total += static_cast<std::size_t>(f.variants);
   if (progress) progress->set_total(total);

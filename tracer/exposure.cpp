@@ -34,7 +34,7 @@ double metered_exposure(const scene::RenderInput& input, const World& world, con
                                                input.render.width)));
   const Camera camera(input.camera, w, h);
   const bool treemaker = input.render.integrator == formats::Integrator::Treemaker;
-  const PathIntegrator path(world, sky, input.render.max_depth);
+  const PathIntegrator path(world, sky, input.render.max_depth, input.render.regularize);
   const TreemakerIntegrator tm(world, sky);
   const bool transparent = input.output.transparent_sky;
   // Each pixel's mean luminance (negative: sky only, under a transparent sky), rows in parallel.

@@ -147,6 +147,7 @@ void write_film_state(const std::string& path, const FilmHeader& h, const Film& 
        << "aovs " << h.output.aovs.text() << "\n"
        << "treemaker_weights " << h.treemaker_weights << "\n"
        << "exposure " << h.exposure << "\n"
+       << "regularize " << (h.regularize ? 1 : 0) << "\n"
        << "object_names " << joined(h.object_names) << "\n"
        << "material_names " << joined(h.material_names) << "\n"
        << "end\n";
@@ -212,6 +213,7 @@ FilmFile read_film_state(const std::string& path) {
   h.output.transparent_sky = keys["transparent_sky"] == "1";
   h.treemaker_weights = keys["treemaker_weights"];
   h.exposure = keys["exposure"];
+  h.regularize = keys["regularize"] == "1";
   h.object_names = split_tabs(keys["object_names"]);
   h.material_names = split_tabs(keys["material_names"]);
   {

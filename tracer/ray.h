@@ -53,8 +53,10 @@ struct WorldHit {
   std::uint32_t object_id = 0, material_id = 0;
 
   // The point as the material layer sees it.
-  materials::SurfacePoint point() const {
+  // `regularize`: the path asks for regularised glossy lobes (tracer/integrators/path.h).
+  materials::SurfacePoint point(bool regularize = false) const {
     materials::SurfacePoint p;
+    p.regularize = regularize;
     p.shading_normal = surface.shading_normal;
     p.geometric_normal = surface.geometric_normal;
     p.tangent = surface.tangent;

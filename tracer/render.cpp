@@ -164,7 +164,7 @@ std::vector<std::string> integrator_aov_names(const scene::RenderInput& input) {
 RenderOutcome render_path(const scene::RenderInput& input, const World& world, const Sky& sky,
                           const imaging::ColorTransform& to_output, const RenderJob& job,
                           Film& film, Progress* progress, imaging::RenderStats& stats) {
-  const PathIntegrator integrator(world, sky, input.render.max_depth);
+  const PathIntegrator integrator(world, sky, input.render.max_depth, input.render.regularize);
   auto trace = [&](const Ray& ray, const PixelSampler& sampler, std::uint32_t index, float*) {
     return integrator.trace(ray, sampler, index);
   };

@@ -47,6 +47,7 @@ void write_render(const FilmHeader& h, const Film& film, const RenderWrite& what
     meta.integrator = name_of(h.integrator);
     meta.treemaker_weights = h.treemaker_weights;
     meta.exposure = h.exposure;
+    meta.regularize = h.regularize;
     meta.stats.seconds = h.seconds;
     meta.stats.nonfinite = h.nonfinite;
     meta.stats.rays = h.rays;

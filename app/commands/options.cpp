@@ -72,6 +72,11 @@ void add_override_options(CLI::App* command, RenderOverrides& o, unsigned which,
         "camera rays that escape to the sky add nothing and leave alpha 0 (premultiplied "
         "RGBA, for compositing; sets output.transparent_sky)");
   }
+  if (which & kRegularizeOption) {
+    command->add_flag("--regularize", o.regularize,
+                      "after the first bounce, roughen glossy leaf coats by pbrt-v4's rule (fewer "
+                      "fireflies, biased; stated in the EXR header; sets render.regularize)");
+  }
 }
 
 void apply_overrides(formats::SceneDesc& scene, const RenderOverrides& o) {
@@ -86,6 +91,7 @@ void apply_overrides(formats::SceneDesc& scene, const RenderOverrides& o) {
     for (formats::TreeDesc& t : scene.trees) t.time = *o.time;
   }
   if (o.transparent) scene.output.transparent_sky = true;
+  if (o.regularize) r.regularize = true;
 }
 
 std::vector<std::string> override_arguments(const RenderOverrides& o) {
@@ -105,6 +111,7 @@ std::vector<std::string> override_arguments(const RenderOverrides& o) {
   }
   if (!o.integrator.empty()) add("--integrator", o.integrator);
   if (o.transparent) args.push_back("--transparent");
+  if (o.regularize) args.push_back("--regularize");
   return args;
 }
 

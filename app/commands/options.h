@@ -30,6 +30,7 @@ struct RenderOverrides {
   std::string integrator;      // "path" or "treemaker"
   std::optional<double> time;  // seconds of wind for every [[tree]]
   bool transparent = false;    // output.transparent_sky = true
+  bool regularize = false;     // render.regularize = true
 };
 
 // Which of the overrides a command offers (width, height and time always).
@@ -38,6 +39,7 @@ enum OverrideOptions : unsigned {
   kSeedOption = 1u << 1,
   kIntegratorOption = 1u << 2,
   kTransparentOption = 1u << 3,
+  kRegularizeOption = 1u << 4,
 };
 
 // Adds the overrides `which` names to `command`, bound to `o`; `spp_help` describes --spp.

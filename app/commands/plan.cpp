@@ -239,9 +239,10 @@ CLI::App* add_plan_command(CLI::App& app, PlanRequest& plan) {
                   "A:B: frames A to B-1 of the scene's [animation], one merge each");
   cmd->add_flag("--json", plan.json,
                 "print the plan as one JSON object (units, merges, argv and shell lines)");
-  add_override_options(cmd, plan.overrides,
-                       kSppOption | kSeedOption | kIntegratorOption | kTransparentOption,
-                       "samples per pixel (handed to every unit)");
+  add_override_options(
+      cmd, plan.overrides,
+      kSppOption | kSeedOption | kIntegratorOption | kTransparentOption | kRegularizeOption,
+      "samples per pixel (handed to every unit)");
   return cmd;
 }
 

@@ -76,10 +76,10 @@ std::string render_fingerprint(const formats::SceneDesc& scene, const RenderRequ
   s.precision(17);
   s << "size " << r.width << "x" << r.height << "; spp " << r.spp << "; pass_spp " << r.pass_spp
     << "; independent_passes " << (r.independent_passes ? "true" : "false") << "; seed " << r.seed
-    << "; integrator " << name_of(r.integrator) << "; max_depth " << r.max_depth
-    << "; treemaker_spp " << r.treemaker_spp << "; noise_threshold " << r.noise_threshold
-    << "; min_spp " << r.min_spp << "; transparent_sky "
-    << (scene.output.transparent_sky ? "true" : "false") << "; ids "
+    << "; integrator " << name_of(r.integrator) << "; max_depth " << r.max_depth << "; regularize "
+    << (r.regularize ? "true" : "false") << "; treemaker_spp " << r.treemaker_spp
+    << "; noise_threshold " << r.noise_threshold << "; min_spp " << r.min_spp
+    << "; transparent_sky " << (scene.output.transparent_sky ? "true" : "false") << "; ids "
     << (scene.output.wants_ids() ? "kept" : "none") << "; --time "
     << (a.overrides.time ? std::to_string(*a.overrides.time) : std::string("none"));
   if (a.frame) s << "; frame " << *a.frame << "; clock " << scene.clock;
@@ -242,6 +242,7 @@ FilmHeader film_header(const formats::SceneDesc& scene, const scene::RenderInput
   header.noise_threshold = r.noise_threshold;
   header.min_spp = r.min_spp;
   header.integrator = input.render.integrator;
+  header.regularize = input.render.regularize;
   header.seed = r.seed;
   header.output = scene.output;
   return header;
@@ -435,10 +436,11 @@ CLI::App* add_render_command(CLI::App& app, RenderRequest& render) {
                   "EXR to write: replaces the scene's [output] exr and png (a PNG is then written "
                   "only with --png)");
   cmd->add_option("--png", render.png, "PNG to write through the display view");
-  add_override_options(cmd, render.overrides,
-                       kSppOption | kSeedOption | kIntegratorOption | kTransparentOption,
-                       "samples per pixel of the integrator in use (overrides render.spp, or "
-                       "render.treemaker_spp for treemaker)");
+  add_override_options(
+      cmd, render.overrides,
+      kSppOption | kSeedOption | kIntegratorOption | kTransparentOption | kRegularizeOption,
+      "samples per pixel of the integrator in use (overrides render.spp, or "
+      "render.treemaker_spp for treemaker)");
   cmd->add_option("--threads", render.threads, "threads (0: all cores)")
       ->check(CLI::Range(0, 1024));
   cmd->add_option("--frame", render.frame,

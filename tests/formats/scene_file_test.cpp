@@ -161,6 +161,9 @@ TEST(SceneFile, ValuesAreRangeAndTypeChecked) {
   expect_error("[render]\nwidth = 0\n", 2, 9, "render.width = 0 is out of range");
   expect_error("[render]\nspp = 1.5\n", 2, 7, "whole number");
   expect_error("[render]\nintegrator = \"bdpt\"\n", 2, 14, "one of \"path\", \"treemaker\"");
+  expect_error("[render]\nregularize = 1\n", 2, 14, "true or false");
+  EXPECT_TRUE(parse_scene("[render]\nregularize = true\n", "s.toml").render.regularize);
+  EXPECT_FALSE(parse_scene("", "s.toml").render.regularize);
   expect_error("[camera]\nfov = 200.0\n", 2, 7, "camera.fov");
   expect_error("[camera]\nposition = [1.0, 2.0]\n", 2, 12, "array of 3 numbers");
   expect_error("[camera]\nfov = nan\n", 2, 7, "finite");

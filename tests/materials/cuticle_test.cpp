@@ -11,6 +11,7 @@
 #include "chi_square.h"
 #include "common/math.h"
 #include "common/rng.h"
+#include "materials/leaf.h"
 #include "materials/leaf_bsdf.h"
 
 namespace arbor::materials {
@@ -186,6 +187,32 @@ TEST(CoatedLeafBsdf, TheCoatReflectsWhiteAndIsStrongestAtTheMirrorDirection) {
   EXPECT_NEAR(specular.y, specular.z, 1e-12);
   EXPECT_GT(specular.x, 10.0 * bare.eval(wo, mirror).y);  // a highlight, not a tint
   EXPECT_GT(green.eval(wo, mirror).x, green.eval(wo, off).x);
+}
+
+// Regularisation (`[render] regularize`): pbrt-v4's rule on GGX α = roughness², α < 0.3 →
+// clamp(2α, 0.1, 0.3); coats already rougher are kept.
+TEST(CuticleCoat, RegularizedRoughnessFollowsPbrtsRule) {
+  EXPECT_NEAR(CuticleCoat::regularized_roughness(0.0), std::sqrt(0.1), 1e-12);   // mirror → 0.1
+  EXPECT_NEAR(CuticleCoat::regularized_roughness(0.2), std::sqrt(0.1), 1e-12);   // 2 × 0.04
+  EXPECT_NEAR(CuticleCoat::regularized_roughness(0.3), std::sqrt(0.18), 1e-12);  // 2 × 0.09
+  EXPECT_NEAR(CuticleCoat::regularized_roughness(0.35), std::sqrt(0.245), 1e-12);
+  EXPECT_NEAR(CuticleCoat::regularized_roughness(0.5), std::sqrt(0.3), 1e-12);  // 0.5 → 0.3
+  EXPECT_EQ(CuticleCoat::regularized_roughness(0.6), 0.6);                      // α 0.36
+  EXPECT_EQ(CuticleCoat::regularized_roughness(1.0), 1.0);
+}
+
+// A leaf takes its regularised coat only on a regularised path, and only if it has one.
+TEST(CuticleCoat, ALeafUsesItsRegularizedCoatOnlyWhenThePathAsks) {
+  const CuticleCoat sharp(1.45, 0.35), rough(1.45, CuticleCoat::regularized_roughness(0.35));
+  LeafMaterial m;
+  m.cuticle = &sharp;
+  m.regularized = &rough;
+  SurfacePoint p;
+  EXPECT_EQ(std::get<LeafBsdf>(m.bsdf(p).lobes).coat, &sharp);
+  p.regularize = true;
+  EXPECT_EQ(std::get<LeafBsdf>(m.bsdf(p).lobes).coat, &rough);
+  m.regularized = nullptr;
+  EXPECT_EQ(std::get<LeafBsdf>(m.bsdf(p).lobes).coat, &sharp);
 }
 
 }  // namespace arbor::materials

@@ -33,8 +33,7 @@ glm::vec3 bezier(const glm::vec4* p, float u) {
 
 double arc_length(const glm::vec4* p) {
   double l = 0.0;
-  for (int i = 0; i < 64; ++i)
-    l += glm::length(bezier(p, (i + 1) / 64.0f) - bezier(p, i / 64.0f));
+  for (int i = 0; i < 64; ++i) l += glm::length(bezier(p, (i + 1) / 64.0f) - bezier(p, i / 64.0f));
   return l;
 }
 
@@ -207,7 +206,9 @@ TEST(GrassBsdf, SamplesItsPdfAndCreatesNoEnergy) {
       for (int c = 0; c < 3; ++c) EXPECT_LE(lobe.reflectance[c] + lobe.transmittance[c], 1.0);
       const glm::dvec3 wo = glm::normalize(glm::dvec3(0.3, -0.2, 0.8));
       const auto r = materials::testing::chi_square(
-          [&](Rng& rng) { return lobe.sample(wo, {rng.uniform(), rng.uniform(), rng.uniform()}); },
+          [&](Rng& rng) {
+            return lobe.sample(wo, {rng.uniform(), rng.uniform(), rng.uniform()});
+          },
           [&](const glm::dvec3& wi) { return lobe.pdf(wo, wi); }, 40000, 7 + i);
       EXPECT_LT(r.chi2, materials::testing::chi_square_critical(r.degrees_of_freedom));
       // The white furnace of one bounce: ∫ f |cos| dω over the sphere is R + T ≤ 1.
@@ -215,7 +216,8 @@ TEST(GrassBsdf, SamplesItsPdfAndCreatesNoEnergy) {
       glm::dvec3 sum(0.0);
       const int n = 20000;
       for (int k = 0; k < n; ++k) {
-        const materials::BsdfSample s = lobe.sample(wo, {rng.uniform(), rng.uniform(), rng.uniform()});
+        const materials::BsdfSample s =
+            lobe.sample(wo, {rng.uniform(), rng.uniform(), rng.uniform()});
         sum += s.value * std::fabs(s.wi.z) / s.pdf / double(n);
       }
       for (int c = 0; c < 3; ++c) {

@@ -33,9 +33,9 @@ double projected_area(const scene::GrassTile& t) {
     for (int i = 0; i < steps; ++i) {
       const float u = (static_cast<float>(i) + 0.5f) / steps, s = 1.0f - u;
       const float w[4] = {s * s * s, 3 * s * s * u, 3 * s * u * u, u * u * u};
-      const glm::vec3 d = 3.0f * (s * s * glm::vec3(p[1] - p[0]) +
-                                  2.0f * s * u * glm::vec3(p[2] - p[1]) +
-                                  u * u * glm::vec3(p[3] - p[2]));
+      const glm::vec3 d =
+          3.0f * (s * s * glm::vec3(p[1] - p[0]) + 2.0f * s * u * glm::vec3(p[2] - p[1]) +
+                  u * u * glm::vec3(p[3] - p[2]));
       glm::vec3 normal(0.0f);
       float r = 0.0f;
       for (int k = 0; k < 4; ++k) {
@@ -74,7 +74,8 @@ void cover(double density, std::uint64_t seed, Cover& c) {
     for (const bool inside : {true, false}) {
       Ray ray;
       // Inside: the middle 5 × 5 m; outside: a band 1–4 m beyond the meadow's edge.
-      const double x = inside ? rng.vary(0.0, 2.5) : rng.vary(0.0, 2.5) + (rng.uniform() < 0.5 ? -6.5 : 6.5);
+      const double x =
+          inside ? rng.vary(0.0, 2.5) : rng.vary(0.0, 2.5) + (rng.uniform() < 0.5 ? -6.5 : 6.5);
       const double y = rng.vary(0.0, inside ? 2.5 : 7.0);
       ray.origin = glm::vec3(static_cast<float>(x), static_cast<float>(y), 3.0f);
       ray.direction = glm::vec3(0.0f, 0.0f, -1.0f);
@@ -94,7 +95,8 @@ void cover(double density, std::uint64_t seed, Cover& c) {
     const double a = 2.0 * kPi * rng.uniform();
     across.origin = glm::vec3(static_cast<float>(rng.vary(0.0, 2.0)),
                               static_cast<float>(rng.vary(0.0, 2.0)), 0.05f);
-    across.direction = glm::vec3(static_cast<float>(std::cos(a)), static_cast<float>(std::sin(a)), 0.0f);
+    across.direction =
+        glm::vec3(static_cast<float>(std::cos(a)), static_cast<float>(std::sin(a)), 0.0f);
     WorldHit hit;
     if (w.world.intersect(across, hit) && hit.grass >= 0) {
       EXPECT_LT(glm::dot(hit.surface.geometric_normal, across.direction), 0.0f);

@@ -37,10 +37,11 @@ void GrassPrototype::describe_hit(const Ray& ray, unsigned blade, float u, float
   const glm::vec3* n = &tile_.normals[scene::GrassTile::kPointsPerBlade * std::size_t{blade}];
   // The Bézier's derivative (a quadratic in the differences) and its interpolated normal.
   const float s = 1.0f - u;
-  const glm::vec3 d = 3.0f * (s * s * glm::vec3(p[1] - p[0]) + 2.0f * s * u * glm::vec3(p[2] - p[1]) +
-                              u * u * glm::vec3(p[3] - p[2]));
-  const glm::vec3 nc = s * s * s * n[0] + 3.0f * s * s * u * n[1] + 3.0f * s * u * u * n[2] +
-                       u * u * u * n[3];
+  const glm::vec3 d =
+      3.0f * (s * s * glm::vec3(p[1] - p[0]) + 2.0f * s * u * glm::vec3(p[2] - p[1]) +
+              u * u * glm::vec3(p[3] - p[2]));
+  const glm::vec3 nc =
+      s * s * s * n[0] + 3.0f * s * s * u * n[1] + 3.0f * s * u * u * n[2] + u * u * u * n[3];
   const glm::vec3 tangent = glm::length(d) > 0.0f ? glm::normalize(d) : glm::vec3(0, 0, 1);
   glm::vec3 up = nc - glm::dot(nc, tangent) * tangent;
   up = glm::length(up) > 0.0f ? glm::normalize(up) : glm::vec3(0, 0, 1);

@@ -111,7 +111,9 @@ PathSample PathIntegrator::trace(const Ray& camera_ray, const PixelSampler& samp
       break;
     }
     const SurfaceHit& s = hit.surface;
-    const materials::SurfaceBsdf sh = hit.material->bsdf(hit.point());
+    // pbrt-v4 regularises once a bounce was not specular; arbor has no specular (delta) lobe, so
+    // every vertex after the camera's first hit.
+    const materials::SurfaceBsdf sh = hit.material->bsdf(hit.point(regularize_ && depth > 0));
     if (depth == 0) first_hit(hit, sh, ray, sky_, out, beta);
     if (depth >= max_depth_) break;
     const ShadingFrame frame(sh.normal);

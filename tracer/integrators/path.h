@@ -27,8 +27,14 @@ struct PathSample {
 
 class PathIntegrator {
  public:
-  PathIntegrator(const World& world, const Sky& sky, int max_depth)
-      : world_(world), sky_(sky), max_depth_(max_depth), choice_(light_choice(sky)) {}
+  // `regularize`: after a non-specular bounce, glossy lobes take their regularised roughness
+  // (materials::SurfacePoint::regularize; biased, off for references).
+  PathIntegrator(const World& world, const Sky& sky, int max_depth, bool regularize = false)
+      : world_(world),
+        sky_(sky),
+        max_depth_(max_depth),
+        regularize_(regularize),
+        choice_(light_choice(sky)) {}
 
   // Next-event estimation picks one light per vertex: the sun with probability `sun`, the sky
   // with `sky` (sun + sky is 1, or 0 when neither is worth a shadow ray).
@@ -50,6 +56,7 @@ class PathIntegrator {
   const World& world_;
   const Sky& sky_;
   int max_depth_;
+  bool regularize_;
   LightChoice choice_;
 };
 
