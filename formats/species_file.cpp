@@ -38,8 +38,8 @@ generator::Species load_species(const std::string& path) {
     // Colours come from the template: the looks only scale them.
     sp.bark.albedo = {1.0, 1.0, 1.0};
     sp.bark.bump_height = 0.0;
-    sp.leaf.reflectance = sp.leaf.back_reflectance = {0.75, 0.75, 0.75};
-    sp.leaf.transmittance = {0.25, 0.25, 0.25};
+    sp.leaf.reflectance = sp.leaf.back_reflectance = {0.6, 0.6, 0.6};
+    sp.leaf.transmittance = {0.3, 0.3, 0.3};
     return sp;
   }
   throw InputError({path, 0, 0},

@@ -70,9 +70,12 @@ struct BarkLook {
 // the waxy cuticle on both faces (materials/cuticle.h; docs/species-format.md gives the sources of
 // the defaults: cuticular wax has a refractive index near 1.45; 0.5 is a moderately glossy leaf).
 struct LeafLook {
-  Rgb reflectance{0.06, 0.20, 0.04};
-  Rgb back_reflectance{0.10, 0.24, 0.07};
-  Rgb transmittance{0.05, 0.18, 0.03};
+  // A broadleaf's, checked against measured leaves (bench/leaf_colours.py: a PROSPECT-5 leaf
+  // calibrated on LOPEX93/ANGERS, linear Rec. 709 (0.087, 0.123, 0.038), and the ColorChecker's
+  // foliage patch (0.095, 0.150, 0.056)): red about 0.6 of green, blue 0.3, green 0.10–0.15.
+  Rgb reflectance{0.08, 0.13, 0.04};
+  Rgb back_reflectance{0.10, 0.15, 0.055};
+  Rgb transmittance{0.055, 0.09, 0.01};
   double cuticle_ior = 1.45;       // 1: no cuticle (a matte leaf)
   double cuticle_roughness = 0.5;  // [0, 1]; GGX α = roughness²
   double hinge_angle = 0.0;        // degrees; > 0: Bloomenthal's hinged three-polygon leaf (§10)

@@ -20,12 +20,25 @@ namespace {
 
 double uniform(Rng& rng, const TmRange& r) { return r.lo + (r.hi - r.lo) * rng.uniform(); }
 
-// A colour's weights normalised to its largest (only ratios matter, §V), times a brightness.
+// The weakest channel of a primitive's colour, at least this share of its strongest: measured
+// leaves are never purer (blue about 0.3 of green; docs/species-format.md, "Leaf colours").
+constexpr double kMinChannelShare = 0.3;
+
+// A colour's weights normalised to its largest (only ratios matter, §V), times a brightness: a
+// display value of the 1990 frame buffer, so decoded as sRGB to a linear one, whose weaker
+// channels are then raised to kMinChannelShare of its strongest (docs/treemaker-format.md,
+// "Colours"): the paper's pure green (0, 1, 0) at brightness 0.6 becomes (0.096, 0.319, 0.096).
 glm::vec3 shade(const TreeMakerTemplate& t, const std::string& name, double brightness) {
   const TmColor* c = t.color(name);
-  if (!c) return glm::vec3(static_cast<float>(brightness));
-  const double m = std::max({c->rgb.x, c->rgb.y, c->rgb.z});
-  return glm::vec3(c->rgb / m * brightness);
+  glm::dvec3 rgb(1.0);
+  if (c) rgb = c->rgb / std::max({c->rgb.x, c->rgb.y, c->rgb.z});
+  glm::dvec3 linear;
+  for (int i = 0; i < 3; ++i) {
+    const double v = rgb[i] * brightness;
+    linear[i] = v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+  }
+  const double top = std::max({linear.x, linear.y, linear.z});
+  return glm::vec3(glm::max(linear, glm::dvec3(kMinChannelShare * top)));
 }
 
 // A unit vector at `angle` degrees from `axis`, turned `dir` degrees about it from the horizontal
