@@ -9,7 +9,13 @@ The measured references, in linear Rec. 709 (arbor's scene_linear) under D65:
   Cm 0.009, its reflectance and transmittance at 10 nm as computed by the model's reference
   implementation (opticleaf.ipgp.fr), integrated here against CIE 1931 (the multi-lobe fit of
   Wyman, Sloan and Shirley 2013) and a 6504 K Planckian for D65;
-- the ColorChecker's "foliage" patch (a painted match to a leaf): sRGB (87, 108, 67), decoded.
+- the ColorChecker's "foliage" patch (a painted match to a leaf): sRGB (87, 108, 67), decoded;
+- autumn leaves, as schematic spectra read off the measured ones (piecewise linear in
+  wavelength): yellow, chlorophyll gone and carotenoids left (Merzlyak et al. 1999, Physiol.
+  Plantarum 106: 135–141): 0.06 to 480 nm, 0.30 at 530, 0.42 at 570, 0.48 from 600; red,
+  anthocyanins absorbing the green (Gitelson, Merzlyak and Chivkunova 2001, Photochem. Photobiol.
+  74: 38–45): 0.05 to 580 nm, 0.30 at 640, 0.40 from 680; brown, dead and tannin-stained: 0.05
+  at 400 nm, 0.15 at 550, 0.28 at 650, 0.35 at 780.
 Prints each species' adaxial reflectance, abaxial reflectance and transmittance with the ratios
 that make a leaf read as a leaf — red over green and blue over green (its saturation) and green's
 level — against the references, and writes bench/results/leaf_colours.json.
@@ -87,7 +93,17 @@ def species_leaves(folder):
 def main():
     folder = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..",
                                                                 "species")
+    def schematic(points):
+        x, y = zip(*points)
+        return np.interp(LAM, x, y)
+
     refs = {"PROSPECT-5 reflectance": linear_709(PROSPECT_R),
+            "autumn yellow": linear_709(schematic([(400, .06), (480, .06), (530, .30), (570, .42),
+                                                   (600, .48), (780, .48)])),
+            "autumn red": linear_709(schematic([(400, .05), (580, .05), (640, .30), (680, .40),
+                                                (780, .40)])),
+            "autumn brown": linear_709(schematic([(400, .05), (550, .15), (650, .28),
+                                                  (780, .35)])),
             "PROSPECT-5 transmittance": np.maximum(linear_709(PROSPECT_T), 0.0),
             "ColorChecker foliage": srgb_decode([87, 108, 67])}
     result = {"references": {k: ratios(v) for k, v in refs.items()}, "species": {}}

@@ -123,8 +123,9 @@ struct MeadowDesc {
   double tile = 1.0;            // metres, the side of a tile of blades
   int tiles = 4;                // distinct tiles the meadow repeats, turned and shuffled
   std::uint64_t seed = 1;
-  Rgb reflectance{0.05, 0.13, 0.03}, back_reflectance{0.06, 0.14, 0.035};
-  Rgb transmittance{0.04, 0.12, 0.02};
+  // A grass blade's, by the leaves' measured ratios (docs/species-format.md, "Leaf colours").
+  Rgb reflectance{0.07, 0.12, 0.035}, back_reflectance{0.08, 0.13, 0.04};
+  Rgb transmittance{0.045, 0.08, 0.01};
   Rgb dry_reflectance{0.30, 0.24, 0.12};
   SourceLocation where;
 };
@@ -159,7 +160,8 @@ struct LeafOverride {
   std::optional<double> cuticle_ior, cuticle_roughness;            // 1: no cuticle; [0, 1]
   std::optional<double> variation, hue_variation, crown_gradient;  // each leaf's own tint
   std::optional<double> veins;  // the procedural texture's strength
-  std::string albedo_map;       // image over the leaf's uv multiplying R, back R and T; empty: none
+  std::optional<generator::Season> season;
+  std::string albedo_map;  // image over the leaf's uv multiplying R, back R and T; empty: none
 };
 
 // Overrides of the five TREE-MAKER shading weights (§III); unset ones keep the template's

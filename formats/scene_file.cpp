@@ -350,6 +350,9 @@ class SceneReader : TomlReader {
         l.crown_gradient = number(n, owner + ".leaf.crown_gradient", look_range::kCrownGradient);
       else if (k == "veins")
         l.veins = number(n, owner + ".leaf.veins", look_range::kVeins);
+      else if (k == "season")
+        l.season = static_cast<generator::Season>(
+            choice_index(n, owner + ".leaf.season", generator::kSeasonNames));
       else
         unknown(key, owner + ".leaf");
     }

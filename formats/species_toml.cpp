@@ -149,6 +149,11 @@ class TomlSpecies : TomlReader {
         sp.leaf.crown_gradient = number(node, "leaf.crown_gradient", look_range::kCrownGradient);
       } else if (k == "veins") {
         sp.leaf.veins = number(node, "leaf.veins", look_range::kVeins);
+      } else if (k == "autumn") {
+        sp.leaf.autumn = colour(node, "leaf.autumn");
+      } else if (k == "season") {
+        sp.leaf.season = static_cast<generator::Season>(
+            choice_index(node, "leaf.season", generator::kSeasonNames));
       } else if (k == "vein_pairs") {
         const double n = number(node, "leaf.vein_pairs", {1.0, 30.0, "pairs"});
         if (n != std::floor(n))

@@ -2,6 +2,7 @@
 // bark and leaf looks.
 #pragma once
 
+#include <array>
 #include <map>
 #include <optional>
 #include <string>
@@ -69,6 +70,12 @@ struct BarkLook {
 // Default leaves of the species: front reflectance, the lighter back, diffuse transmittance, and
 // the waxy cuticle on both faces (materials/cuticle.h; docs/species-format.md gives the sources of
 // the defaults: cuticular wax has a refractive index near 1.45; 0.5 is a moderately glossy leaf).
+// The season a tree's leaves show (docs/species-format.md, "Seasons"): summer is the leaf as
+// given; spring lighter and yellower (less chlorophyll); autumn turns most leaves towards the
+// species' autumn colour (evergreen species, without one, keep their leaves).
+enum class Season { Summer, Spring, Autumn };
+inline constexpr std::array<const char*, 3> kSeasonNames = {"summer", "spring", "autumn"};
+
 struct LeafLook {
   // A broadleaf's, checked against measured leaves (bench/leaf_colours.py: a PROSPECT-5 leaf
   // calibrated on LOPEX93/ANGERS, linear Rec. 709 (0.087, 0.123, 0.038), and the ColorChecker's
@@ -88,6 +95,9 @@ struct LeafLook {
   // secondary vein pairs.
   double veins = 0.0;
   int vein_pairs = 8;
+  Season season = Season::Summer;
+  // The front reflectance the leaves turn to in autumn (absent: evergreen, no autumn colour).
+  std::optional<Rgb> autumn;
 };
 
 // Root buttresses at the trunk's base (Bloomenthal 1985, "the base of a tree": planar blobby

@@ -7,6 +7,7 @@ glm::vec3 LeafMaterial::tint(const SurfacePoint& p) const {
   const glm::vec3 tex = albedo_map ? albedo_map->sample(p.uv.x, p.uv.y) : glm::vec3(1.0f);
   glm::vec3 t = tex * p.color;
   if (texture.any()) t *= texture.tint(p.uv);
+  if (season.any()) t *= season.tint(p.leaf_key);
   return variation.any() ? t * variation.tint(p.leaf_key, p.crown_height) : t;
 }
 

@@ -26,6 +26,7 @@ struct LeafMaterial {
   const CuticleCoat* regularized = nullptr;
   bool tinted = true;       // false: R and T as given (mesh leaves have no uv or colour)
   LeafVariation variation;  // each leaf's own tint (materials/leaf_variation.h); none by default
+  LeafSeason season;        // spring's or autumn's tint (materials/leaf_variation.h); summer: none
   LeafTexture texture;      // midrib, veins and margin over the uv (materials/leaf_texture.h)
 
   SurfaceBsdf bsdf(const SurfacePoint& p) const;

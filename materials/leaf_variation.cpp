@@ -26,4 +26,16 @@ glm::vec3 LeafVariation::tint(std::uint64_t key, float crown_height) const {
   return t;
 }
 
+glm::vec3 LeafSeason::tint(std::uint64_t key) const {
+  glm::vec3 t = spring;
+  if (turned > 0.0f) {
+    Rng rng(derive_key(key, 0x5ea5011u));  // a stream apart from the variation's
+    if (rng.uniform() < turned) {
+      const auto m = static_cast<float>(0.5 + 0.5 * rng.uniform());
+      t *= glm::vec3(1.0f) + m * (autumn - glm::vec3(1.0f));
+    }
+  }
+  return t;
+}
+
 }  // namespace arbor::materials

@@ -32,4 +32,17 @@ struct LeafVariation {
   glm::vec3 tint(std::uint64_t key, float crown_height) const;
 };
 
+// The season's tint of a leaf (docs/species-format.md, "Seasons"): in spring every leaf is
+// multiplied by `spring`; in autumn a leaf turns with probability `turned`, by its key, and then
+// has mix(1, autumn, m) with m uniform in [0.5, 1] — part-way or fully to the species' autumn
+// colour (autumn = that colour ÷ the summer front reflectance, per channel).
+struct LeafSeason {
+  glm::vec3 spring{1.0f};
+  glm::vec3 autumn{1.0f};
+  float turned = 0.0f;
+
+  bool any() const { return turned > 0.0f || spring != glm::vec3(1.0f); }
+  glm::vec3 tint(std::uint64_t key) const;
+};
+
 }  // namespace arbor::materials

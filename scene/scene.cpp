@@ -43,6 +43,25 @@ std::string file_stem(const std::string& path) {
 
 glm::vec3 to_vec3(const Rgb& c) { return glm::vec3(c[0], c[1], c[2]); }
 
+// The season's tint (materials/leaf_variation.h, LeafSeason): spring's from arbor's chlorophyll
+// axis, ln tint += 0.35 · (1, 0.35, 0) (the variation's hue axis: a leaf with less chlorophyll);
+// autumn's turns 85 % of the leaves towards the species' autumn colour, if it has one.
+materials::LeafSeason leaf_season(generator::Season season, const std::optional<Rgb>& autumn,
+                                  const Rgb& front) {
+  materials::LeafSeason s;
+  if (season == generator::Season::Spring) {
+    s.spring = {static_cast<float>(std::exp(0.35)), static_cast<float>(std::exp(0.35 * 0.35)),
+                1.0f};
+  } else if (season == generator::Season::Autumn && autumn) {
+    s.turned = 0.85f;
+    for (int c = 0; c < 3; ++c) {
+      const auto i = static_cast<std::size_t>(c);
+      s.autumn[c] = static_cast<float>((*autumn)[i] / std::max(front[i], 1e-4));
+    }
+  }
+  return s;
+}
+
 // TREE-MAKER's h0 and r0 (§III) from the skeleton's points, measured from the root stem's first
 // point. A tree whose points all lie on one vertical line (r0 = 0), or at one height (h0 = 0),
 // takes that measure from its geometry's bounds instead, so h/h0 and r/r0 stay finite.
@@ -251,6 +270,7 @@ class SceneBuilder {
                    static_cast<float>(leaf.hue_variation.value_or(sp.leaf.hue_variation)),
                    static_cast<float>(leaf.crown_gradient.value_or(sp.leaf.crown_gradient))};
     l.texture = {static_cast<float>(leaf.veins.value_or(sp.leaf.veins)), sp.leaf.vein_pairs};
+    l.season = leaf_season(leaf.season.value_or(sp.leaf.season), sp.leaf.autumn, front);
     look.leaf = l;
     return look;
   }

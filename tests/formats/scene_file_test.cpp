@@ -162,6 +162,8 @@ TEST(SceneFile, ValuesAreRangeAndTypeChecked) {
   expect_error("[render]\nspp = 1.5\n", 2, 7, "whole number");
   expect_error("[render]\nintegrator = \"bdpt\"\n", 2, 14, "one of \"path\", \"treemaker\"");
   expect_error("[render]\nregularize = 1\n", 2, 14, "true or false");
+  expect_error("[[tree]]\nspecies = \"a.toml\"\n[tree.leaf]\nseason = \"winter\"\n", 4, 10,
+               "tree.leaf.season must be one of \"summer\", \"spring\", \"autumn\"");
   EXPECT_TRUE(parse_scene("[render]\nregularize = true\n", "s.toml").render.regularize);
   EXPECT_FALSE(parse_scene("", "s.toml").render.regularize);
   expect_error("[camera]\nfov = 200.0\n", 2, 7, "camera.fov");

@@ -77,6 +77,23 @@ TEST(SpeciesToml, MinimalFileGetsDefaults) {
   EXPECT_EQ(s.name, "m.toml");
 }
 
+// [leaf] season and autumn: read, checked; absent, the leaves are summer's and evergreen.
+TEST(SpeciesToml, LeafSeasonAndAutumnColour) {
+  const Species plain = formats::parse_species_toml(kMinimal, "m.toml");
+  EXPECT_EQ(plain.leaf.season, generator::Season::Summer);
+  EXPECT_FALSE(plain.leaf.autumn.has_value());
+  const Species autumn = formats::parse_species_toml(
+      std::string(kMinimal) + "[leaf]\nseason = \"autumn\"\nautumn = [0.55, 0.33, 0.03]\n",
+      "m.toml");
+  EXPECT_EQ(autumn.leaf.season, generator::Season::Autumn);
+  ASSERT_TRUE(autumn.leaf.autumn.has_value());
+  EXPECT_EQ((*autumn.leaf.autumn)[0], 0.55);
+  expect_toml_error(std::string(kMinimal) + "[leaf]\nseason = \"fall\"\n", 3, 10,
+                    "leaf.season must be one of");
+  expect_toml_error(std::string(kMinimal) + "[leaf]\nautumn = [1.5, 0.3, 0.0]\n", 3, 11,
+                    "leaf.autumn");
+}
+
 TEST(SpeciesToml, SyntaxErrorsCarryTheirPosition) {
   expect_toml_error("model = \"weber-penn\"\nShape = = 3\n", 2, 9, "");
 }

@@ -108,5 +108,59 @@ TEST(LeafVariation, AVariedLeafNeverCreatesEnergyAndShowsInTheAlbedo) {
   EXPECT_GT(scaled, 500) << scaled;
 }
 
+// Seasons (LeafSeason): in autumn the documented share of leaves turns, each part-way or fully
+// (mix(1, autumn, m), m in [0.5, 1]); the others keep their colour; spring tints every leaf alike;
+// and a turned leaf never scatters more than it receives.
+TEST(LeafSeason, AutumnTurnsTheDocumentedShareOfLeavesPartWayOrFully) {
+  LeafSeason s;
+  s.turned = 0.85f;
+  s.autumn = {6.0f, 2.5f, 0.7f};
+  const int n = 20000;
+  int turned = 0;
+  double mean_m = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const glm::vec3 t = s.tint(derive_key(17, static_cast<std::uint64_t>(i)));
+    if (t == glm::vec3(1.0f)) continue;
+    ++turned;
+    const float m = (t.x - 1.0f) / 5.0f;  // from the red channel
+    ASSERT_GE(m, 0.5f - 1e-5f);
+    ASSERT_LE(m, 1.0f + 1e-5f);
+    EXPECT_NEAR(t.y, 1.0f + m * 1.5f, 1e-4f);
+    EXPECT_NEAR(t.z, 1.0f - m * 0.3f, 1e-4f);
+    mean_m += m;
+  }
+  // Binomial: σ of the share is 0.0025 at n = 20,000.
+  EXPECT_NEAR(turned / double(n), 0.85, 0.01);
+  EXPECT_NEAR(mean_m / turned, 0.75, 0.01);
+  LeafSeason spring;
+  spring.spring = {1.4f, 1.1f, 1.0f};
+  EXPECT_EQ(spring.tint(1), spring.spring);
+  EXPECT_EQ(spring.tint(2), spring.spring);
+  EXPECT_FALSE(LeafSeason{}.any());
+}
+
+TEST(LeafSeason, ATurnedLeafNeverCreatesEnergy) {
+  LeafMaterial m;
+  m.front = {0.085f, 0.14f, 0.042f};
+  m.back = {0.11f, 0.16f, 0.06f};
+  m.transmittance = {0.06f, 0.10f, 0.012f};
+  m.season.turned = 0.85f;
+  m.season.autumn = glm::vec3(0.55f, 0.33f, 0.03f) / m.front;
+  m.variation = {0.15f, 0.1f, 0.2f};
+  int changed = 0;
+  for (int i = 0; i < 3000; ++i) {
+    for (const bool back : {false, true}) {
+      SurfacePoint p;
+      p.leaf_back = back;
+      p.leaf_key = derive_key(5, static_cast<std::uint64_t>(i));
+      const SurfaceBsdf b = m.bsdf(p);
+      const LeafBsdf& l = std::get<LeafBsdf>(b.lobes);
+      for (int c = 0; c < 3; ++c) ASSERT_LE(l.reflectance[c] + l.transmittance[c], 1.0 + 1e-12);
+      if (!back && l.reflectance.x > 0.2) ++changed;
+    }
+  }
+  EXPECT_GT(changed, 2000);  // most fronts turned golden: red up from 0.085
+}
+
 }  // namespace
 }  // namespace arbor::materials

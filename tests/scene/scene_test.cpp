@@ -7,6 +7,8 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 namespace arbor::scene {
@@ -90,6 +92,31 @@ TEST(BuildScene, ParallelGrowthBuildsTheSceneSerialGrowthBuilds) {
   // The variants differ from each other (so the comparison above could see a swap).
   EXPECT_FALSE(same_bytes(one->prototypes[3].geometry->leaves.positions,
                           one->prototypes[4].geometry->leaves.positions));
+}
+
+// `[tree.leaf] season`: autumn turns a species' leaves towards its autumn colour (the tint is its
+// ratio to the summer front); a species without one keeps its leaves; spring tints every leaf.
+TEST(BuildScene, TheSeasonTintsLeavesByTheSpeciesAutumnColour) {
+  const std::string broadleaf = tree("fractal_broadleaf.toml", 1, 0.0);
+  const std::string evergreen = tree("young_tree.skel", 1, 4.0);
+  const auto leaf = [&](const std::string& text) {
+    return build_scene(formats::parse_scene(text, "/tmp/scene.toml"), kOcio)
+        ->instances.front()
+        .leaf.as<materials::LeafMaterial>()
+        ->season;
+  };
+  EXPECT_FALSE(leaf(broadleaf).any());  // summer: as given
+  const materials::LeafSeason autumn = leaf(broadleaf + "[tree.leaf]\nseason = \"autumn\"\n");
+  EXPECT_EQ(autumn.turned, 0.85f);
+  // fractal_broadleaf: front (0.08, 0.13, 0.04), autumn (0.55, 0.33, 0.03).
+  EXPECT_NEAR(autumn.autumn.x, 0.55f / 0.08f, 1e-4f);
+  EXPECT_NEAR(autumn.autumn.y, 0.33f / 0.13f, 1e-4f);
+  EXPECT_NEAR(autumn.autumn.z, 0.03f / 0.04f, 1e-4f);
+  EXPECT_FALSE(leaf(evergreen + "[tree.leaf]\nseason = \"autumn\"\n").any());
+  const materials::LeafSeason spring = leaf(evergreen + "[tree.leaf]\nseason = \"spring\"\n");
+  EXPECT_NEAR(spring.spring.x, std::exp(0.35f), 1e-6f);
+  EXPECT_NEAR(spring.spring.y, std::exp(0.35f * 0.35f), 1e-6f);
+  EXPECT_EQ(spring.spring.z, 1.0f);
 }
 
 TEST(BuildScene, AGroundlessSceneHasNoGround) {
