@@ -9,7 +9,7 @@ shift || true
 arbor="$build/app/arbor"
 [ -x "$arbor" ] || { echo "gallery.sh: no arbor at $arbor (build first: make build)" >&2; exit 2; }
 scenes=("$@")
-[ ${#scenes[@]} -eq 0 ] && scenes=(default default_treemaker dogwood fractal lsystem forest forest_10000)
+[ ${#scenes[@]} -eq 0 ] && scenes=(default autumn default_treemaker dogwood fractal lsystem forest forest_10000)
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 for name in "${scenes[@]}"; do
