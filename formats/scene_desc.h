@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -129,6 +130,13 @@ struct MeadowDesc {
   Rgb dry_reflectance{0.30, 0.24, 0.12};
   SourceLocation where;
 };
+
+// The cells of a meadow's tile grid its area touches, at most (the area rounded out to whole
+// tiles, plus one per axis for an area off the grid): what its instances cost.
+inline double meadow_cells(const MeadowDesc& m) {
+  return std::ceil((m.area[2] - m.area[0]) / m.tile + 1.0) *
+         std::ceil((m.area[3] - m.area[1]) / m.tile + 1.0);
+}
 
 // The ground's albedo as one number, what the atmosphere's sky sees: the luminance (Rec. 709) of
 // its albedo and its patches' by the share each covers.

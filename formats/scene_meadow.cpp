@@ -1,7 +1,6 @@
 // The scene file's [meadow] table.
 #include "formats/scene_meadow.h"
 
-#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -66,8 +65,7 @@ void read_meadow(const TomlReader& r, const toml::table& t, MeadowDesc& m) {
     throw InputError(m.where, "[meadow] density × area is " + std::to_string(m.density * area) +
                                   " blades, more than the 10⁹ arbor places");
   }
-  const double cells = std::ceil((m.area[2] - m.area[0]) / m.tile + 1.0) *
-                       std::ceil((m.area[3] - m.area[1]) / m.tile + 1.0);
+  const double cells = meadow_cells(m);
   if (m.density > 0.0 && cells > 1e6) {
     throw InputError(m.where, "[meadow] area holds " + std::to_string(cells) +
                                   " tiles, more than 10⁶: make meadow.tile larger");

@@ -154,6 +154,12 @@ std::size_t Meadow::placed_blades() const {
   return n;
 }
 
+std::size_t Meadow::distinct_blades() const {
+  std::size_t n = 0;
+  for (const GrassTile& t : tiles) n += t.blades();
+  return n;
+}
+
 std::size_t Meadow::bytes() const {
   std::size_t n = placements.size() * sizeof(GrassPlacement);
   for (const GrassTile& t : tiles) n += t.bytes();

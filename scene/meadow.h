@@ -45,8 +45,9 @@ struct Meadow {
   std::uint32_t object_id = 0, front_id = 0, back_id = 0;
 
   bool empty() const { return placements.empty(); }
-  std::size_t placed_blades() const;  // over every placement
-  std::size_t bytes() const;          // the tiles' arrays (not Embree's)
+  std::size_t placed_blades() const;    // over every placement
+  std::size_t distinct_blades() const;  // over the tiles
+  std::size_t bytes() const;            // the tiles' arrays (not Embree's)
 };
 
 // The meadow of `d` at `clock` seconds into the animation (the wind's sway). Empty when the

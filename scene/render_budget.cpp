@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -56,8 +55,7 @@ MemoryEstimate estimate_render_memory(const formats::SceneDesc& s, const FilmCos
   e.instance_bytes = e.instances * kBytesPerInstance;
   const formats::MeadowDesc& m = s.meadow;
   if (m.density > 0.0) {
-    const double cells = std::ceil((m.area[2] - m.area[0]) / m.tile + 1.0) *
-                         std::ceil((m.area[3] - m.area[1]) / m.tile + 1.0);
+    const double cells = formats::meadow_cells(m);
     const double blades = m.density * m.tile * m.tile * m.tiles;
     e.meadow_bytes = static_cast<std::uint64_t>(cells) * kBytesPerInstance +
                      static_cast<std::uint64_t>(blades) * kBytesPerBlade;

@@ -338,7 +338,7 @@ RunResult build_and_render(const formats::SceneDesc& scene, const scene::RenderI
   result.prototypes = built->stats.prototypes;
   result.build_seconds = built->stats.build_seconds + world.build_seconds();
   result.blades = built->meadow.placed_blades();
-  for (const scene::GrassTile& t : built->meadow.tiles) result.distinct_blades += t.blades();
+  result.distinct_blades = built->meadow.distinct_blades();
   result.tiles = built->meadow.tiles.size();
   result.meadow_bytes = built->meadow.bytes();
   RenderWrite write{scene.output.exr, scene.output.png, &color, StopReason::None};

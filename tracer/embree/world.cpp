@@ -82,6 +82,7 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
   RTCRayHit rh = embree_ray_hit(ray);
   rtcIntersect1(top_.get(), &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  hit.grass = -1;  // a blade's describe_grass sets it
   SurfaceHit& s = hit.surface;
   if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && rh.hit.geomID < mesh_of_geometry_.size() &&
       mesh_of_geometry_[rh.hit.geomID] >= 0) {
@@ -120,7 +121,6 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
     hit.ground = false;
     hit.mesh = true;
     hit.instance = -1;
-    hit.grass = -1;
     hit.material = &mesh.materials[mesh.material[rh.hit.primID]];
     hit.object_id = mesh.object_id;
     hit.material_id = mesh.material_ids[mesh.material[rh.hit.primID]];
@@ -131,7 +131,6 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
     hit.ground = true;
     hit.mesh = false;
     hit.instance = -1;
-    hit.grass = -1;
     hit.material = &scene_.ground;
     hit.object_id = scene_.ground_object_id;
     hit.material_id = scene_.ground_material_id;
@@ -166,7 +165,6 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
   hit.ground = false;
   hit.mesh = false;
   hit.instance = instance;
-  hit.grass = -1;
   hit.material = s.kind == SurfaceKind::Leaf ? &inst.leaf : &inst.bark;
   hit.object_id = inst.object_id;
   hit.material_id = s.kind != SurfaceKind::Leaf                  ? inst.bark_id
