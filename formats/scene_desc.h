@@ -40,6 +40,12 @@ struct RenderSettings {
   // Path regularisation (docs/rendering.md, "Regularisation"): after a non-specular bounce,
   // glossy coats are roughened by pbrt-v4's rule. Biased; off for references.
   bool regularize = false;
+  // Level of detail at range (docs/rendering.md, "Level of detail"; Weber & Penn §5): each tree
+  // keeps the paper's fraction of its limbs and leaves for its range from the camera, leaves
+  // enlarged to keep the crown's leaf area. Approximate; off for references. lod_quality is the
+  // paper's quality factor (larger: detail kept farther away).
+  bool lod = false;
+  double lod_quality = 1.0;
   int treemaker_spp = 4;  // samples per pixel of the treemaker integrator (anti-aliasing)
   int pass_spp = 16;      // samples a pixel takes per pass (a power of two keeps Sobol' balanced)
   bool independent_passes =

@@ -114,6 +114,10 @@ class SceneReader : TomlReader {
             static_cast<Integrator>(choice_index(n, "render.integrator", kIntegratorNames));
       else if (k == "regularize")
         r.regularize = boolean(n, "render.regularize");
+      else if (k == "lod")
+        r.lod = boolean(n, "render.lod");
+      else if (k == "lod_quality")
+        r.lod_quality = number(n, "render.lod_quality", 0.01, 100.0);
       else if (k == "max_depth")
         r.max_depth = static_cast<int>(integer(n, "render.max_depth", 1, 1024));
       else if (k == "treemaker_spp")

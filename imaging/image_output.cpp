@@ -226,6 +226,10 @@ void add_render_attributes(Imf::Header& header, const Image& img, const OutputSp
        meta.regularize ? "on: after the first bounce a glossy coat's GGX alpha < 0.3 becomes "
                          "clamp(2 alpha, 0.1, 0.3) (pbrt-v4's rule); biased, not a reference"
                        : "off");
+  text("arbor:lod", meta.lod_quality > 0.0
+                        ? "on, quality " + std::to_string(meta.lod_quality) +
+                              ": trees thinned by range (Weber & Penn section 5); not a reference"
+                        : std::string("off"));
   if (meta.noise_threshold > 0) {
     header.insert("arbor:noise_threshold",
                   Imf::FloatAttribute(static_cast<float>(meta.noise_threshold)));

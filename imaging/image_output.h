@@ -20,8 +20,9 @@ struct ExrMetadata {
   // The treemaker integrator's weights as "ambient=… lambert=… height=… radius=… angle=…" when
   // every tree shares them, "per tree" when they differ; empty for the path integrator.
   std::string treemaker_weights;
-  std::string exposure;     // arbor:exposure: the stops the pixels carry (empty: not written)
-  bool regularize = false;  // arbor:regularize: the path integrator's regularisation
+  std::string exposure;      // arbor:exposure: the stops the pixels carry (empty: not written)
+  bool regularize = false;   // arbor:regularize: the path integrator's regularisation
+  double lod_quality = 0.0;  // arbor:lod: level of detail's quality factor; 0: off
   // The passes (docs/rendering.md, "Passes"): pass_spp samples each, passes_planned in all;
   // this image holds passes [pass_begin, pass_begin + passes).
   int pass_spp = 0, passes = 1, passes_planned = 1, pass_begin = 0, pass_end = 1;

@@ -93,6 +93,7 @@ TreeExtent tree_extent(const generator::Skeleton& sk, const generator::TreeGeome
 struct TreeLook {
   materials::Material bark, leaf;
   materials::TreemakerWeights treemaker;
+  LodScale lod;  // Weber & Penn §5's s and d for the tree's season
 };
 
 class SceneBuilder {
@@ -211,6 +212,14 @@ class SceneBuilder {
     }
   }
   void set_regularize(bool on) { regularize_ = on; }
+  // [render] lod: each instance's level of detail from its range to `camera`.
+  void set_lod(const formats::SceneDesc& d) {
+    lod_ = d.render.lod;
+    lod_quality_ = d.render.lod_quality;
+    camera_ = {d.camera.position[0], d.camera.position[1], d.camera.position[2]};
+    height_ = d.render.height;
+    fov_ = d.camera.fov;
+  }
 
   // The species' bark colour by relief and marks (materials/bark_color.h) over `albedo`.
   static materials::BarkPattern bark_pattern(const generator::BarkLook& own,
@@ -270,8 +279,10 @@ class SceneBuilder {
                    static_cast<float>(leaf.hue_variation.value_or(sp.leaf.hue_variation)),
                    static_cast<float>(leaf.crown_gradient.value_or(sp.leaf.crown_gradient))};
     l.texture = {static_cast<float>(leaf.veins.value_or(sp.leaf.veins)), sp.leaf.vein_pairs};
-    l.season = leaf_season(leaf.season.value_or(sp.leaf.season), sp.leaf.autumn, front);
+    const generator::Season season = leaf.season.value_or(sp.leaf.season);
+    l.season = leaf_season(season, sp.leaf.autumn, front);
     look.leaf = l;
+    look.lod = lod_scale(lod_quality_, season, !sp.leaf.autumn.has_value());
     return look;
   }
 
@@ -310,6 +321,13 @@ class SceneBuilder {
     inst.extent.base = glm::vec3(m * glm::vec4(pe.base, 1.0f));
     inst.extent.height = pe.height * static_cast<float>(pl.scale);
     inst.extent.radius = pe.radius * static_cast<float>(pl.scale);
+    if (lod_) {
+      // Range to the middle of the tree's bounds.
+      const generator::TreeGeometry& g = *s_.prototypes[static_cast<size_t>(prototype)].geometry;
+      const glm::vec3 middle(m * glm::vec4(0.5f * (g.bounds_min + g.bounds_max), 1.0f));
+      const double range = glm::length(glm::dvec3(middle) - camera_);
+      inst.lod = instance_lod(calibrated_range(range, height_, fov_), look.lod, g.lod_items);
+    }
     s_.instances.push_back(inst);
   }
 
@@ -348,6 +366,11 @@ class SceneBuilder {
   std::map<std::string, int> prototype_keys_;  // (species, seed, time) → prototype
   std::vector<std::pair<std::pair<double, double>, const materials::CuticleCoat*>> cuticles_;
   bool regularize_ = false;  // [render] regularize
+  bool lod_ = false;         // [render] lod, lod_quality, and what the range is calibrated by
+  double lod_quality_ = 1.0;
+  glm::dvec3 camera_{0.0};
+  int height_ = 1;
+  double fov_ = 45.0;
   std::map<std::string, int> object_count_;
   std::map<std::string, std::uint32_t> material_ids_;
 };
@@ -486,6 +509,7 @@ std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
   SceneBuilder b(*scene, ocio_config);
   b.set_threads(threads);
   b.set_regularize(desc.render.regularize);
+  b.set_lod(desc);
   std::size_t total = desc.trees.size(), done = 0;
   for (const formats::ForestDesc& f : desc.forests) total += static_cast<std::size_t>(f.variants);
   if (progress) progress->set_total(total);

@@ -17,6 +17,7 @@
 #include "generator/geometry/tree_geometry.h"
 #include "materials/treemaker_weights.h"
 #include "materials/material.h"
+#include "scene/lod.h"
 #include "scene/meadow.h"
 
 namespace arbor {
@@ -48,6 +49,7 @@ struct TreeInstance {
   materials::Material bark, leaf;         // species defaults with the scene's overrides
   materials::TreemakerWeights treemaker;  // the TREE-MAKER shading weights (§III) of this tree
   TreeExtent extent;                      // world space
+  InstanceLod lod;  // what it keeps at its range ([render] lod; everything when off)
   // Compositing ids (1-based into Scene::object_names / material_names; docs/outputs.md).
   std::uint32_t object_id = 0;
   std::uint32_t bark_id = 0, leaf_front_id = 0, leaf_back_id = 0;

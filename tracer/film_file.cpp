@@ -148,6 +148,7 @@ void write_film_state(const std::string& path, const FilmHeader& h, const Film& 
        << "treemaker_weights " << h.treemaker_weights << "\n"
        << "exposure " << h.exposure << "\n"
        << "regularize " << (h.regularize ? 1 : 0) << "\n"
+       << "lod " << h.lod_quality << "\n"
        << "object_names " << joined(h.object_names) << "\n"
        << "material_names " << joined(h.material_names) << "\n"
        << "end\n";
@@ -214,6 +215,8 @@ FilmFile read_film_state(const std::string& path) {
   h.treemaker_weights = keys["treemaker_weights"];
   h.exposure = keys["exposure"];
   h.regularize = keys["regularize"] == "1";
+  h.lod_quality = keys["lod"].empty() ? 0.0 : std::strtod(keys["lod"].c_str(), nullptr);
+  if (!std::isfinite(h.lod_quality) || h.lod_quality < 0.0) throw bad("its lod is not a quality");
   h.object_names = split_tabs(keys["object_names"]);
   h.material_names = split_tabs(keys["material_names"]);
   {

@@ -34,7 +34,8 @@ struct FilmHeader {
   // The stops the samples were exposed by, as arbor:exposure says them ("1.5", or "1.390625
   // (metered)" for exposure = "auto"); empty in a state file written before it was kept.
   std::string exposure;
-  bool regularize = false;  // [render] regularize (absent from older state files: off)
+  bool regularize = false;   // [render] regularize (absent from older state files: off)
+  double lod_quality = 0.0;  // [render] lod_quality with lod on; 0: off (absent: off)
   // The compositing ids' names (Scene::object_names, material_names).
   std::vector<std::string> object_names, material_names;
 };

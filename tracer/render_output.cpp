@@ -48,6 +48,7 @@ void write_render(const FilmHeader& h, const Film& film, const RenderWrite& what
     meta.treemaker_weights = h.treemaker_weights;
     meta.exposure = h.exposure;
     meta.regularize = h.regularize;
+    meta.lod_quality = h.lod_quality;
     meta.stats.seconds = h.seconds;
     meta.stats.nonfinite = h.nonfinite;
     meta.stats.rays = h.rays;

@@ -76,6 +76,10 @@ void add_override_options(CLI::App* command, RenderOverrides& o, unsigned which,
     command->add_flag("--regularize", o.regularize,
                       "after the first bounce, roughen glossy leaf coats by pbrt-v4's rule (fewer "
                       "fireflies, biased; stated in the EXR header; sets render.regularize)");
+    command->add_flag("--lod", o.lod,
+                      "thin each tree's limbs and leaves by its range from the camera (Weber & "
+                      "Penn's degradation at range; approximate; stated in the EXR header; sets "
+                      "render.lod)");
   }
 }
 
@@ -92,6 +96,7 @@ void apply_overrides(formats::SceneDesc& scene, const RenderOverrides& o) {
   }
   if (o.transparent) scene.output.transparent_sky = true;
   if (o.regularize) r.regularize = true;
+  if (o.lod) r.lod = true;
 }
 
 std::vector<std::string> override_arguments(const RenderOverrides& o) {
@@ -112,6 +117,7 @@ std::vector<std::string> override_arguments(const RenderOverrides& o) {
   if (!o.integrator.empty()) add("--integrator", o.integrator);
   if (o.transparent) args.push_back("--transparent");
   if (o.regularize) args.push_back("--regularize");
+  if (o.lod) args.push_back("--lod");
   return args;
 }
 

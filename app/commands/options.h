@@ -31,6 +31,7 @@ struct RenderOverrides {
   std::optional<double> time;  // seconds of wind for every [[tree]]
   bool transparent = false;    // output.transparent_sky = true
   bool regularize = false;     // render.regularize = true
+  bool lod = false;            // render.lod = true
 };
 
 // Which of the overrides a command offers (width, height and time always).

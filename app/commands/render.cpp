@@ -77,9 +77,11 @@ std::string render_fingerprint(const formats::SceneDesc& scene, const RenderRequ
   s << "size " << r.width << "x" << r.height << "; spp " << r.spp << "; pass_spp " << r.pass_spp
     << "; independent_passes " << (r.independent_passes ? "true" : "false") << "; seed " << r.seed
     << "; integrator " << name_of(r.integrator) << "; max_depth " << r.max_depth << "; regularize "
-    << (r.regularize ? "true" : "false") << "; treemaker_spp " << r.treemaker_spp
-    << "; noise_threshold " << r.noise_threshold << "; min_spp " << r.min_spp
-    << "; transparent_sky " << (scene.output.transparent_sky ? "true" : "false") << "; ids "
+    << (r.regularize ? "true" : "false")
+    << (r.lod ? "; lod quality " + std::to_string(r.lod_quality) : std::string())
+    << "; treemaker_spp " << r.treemaker_spp << "; noise_threshold " << r.noise_threshold
+    << "; min_spp " << r.min_spp << "; transparent_sky "
+    << (scene.output.transparent_sky ? "true" : "false") << "; ids "
     << (scene.output.wants_ids() ? "kept" : "none") << "; --time "
     << (a.overrides.time ? std::to_string(*a.overrides.time) : std::string("none"));
   if (a.frame) s << "; frame " << *a.frame << "; clock " << scene.clock;
@@ -243,6 +245,7 @@ FilmHeader film_header(const formats::SceneDesc& scene, const scene::RenderInput
   header.min_spp = r.min_spp;
   header.integrator = input.render.integrator;
   header.regularize = input.render.regularize;
+  header.lod_quality = scene.render.lod ? scene.render.lod_quality : 0.0;
   header.seed = r.seed;
   header.output = scene.output;
   return header;

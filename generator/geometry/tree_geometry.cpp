@@ -89,6 +89,10 @@ void add_limb_curves(const Skeleton& sk, const Limb& limb, std::int32_t limb_ind
         sk.stems[static_cast<size_t>(
                      limb.knots[std::min(limb.knots.size() - 1, static_cast<std::size_t>(1))].stem)]
             .color;
+    double mid_u = 0.0;  // the stem this piece lies on, at its middle
+    const std::size_t knot = spline.locate(0.5 * (a + b), mid_u);
+    seg.lod_level = static_cast<std::uint8_t>(
+        std::min(2, sk.stems[static_cast<std::size_t>(limb.segment_stem(knot))].level));
     seg.arc0 = static_cast<float>(limb.arc_at(a));
     seg.arc1 = static_cast<float>(limb.arc_at(b));
     seg.normal0 = glm::vec3(frames[j].normal);
@@ -341,6 +345,7 @@ void add_leaf_lines(const Skeleton& sk, TreeGeometry& g) {
     c.tangents.emplace_back(d, 0.0f);
     CurveSegment seg;
     seg.limb = -1;
+    seg.lod_level = kNoLod;
     seg.arc0 = 0.0f;
     seg.arc1 = glm::length(d);
     const glm::vec3 n = glm::normalize(glm::cross(
@@ -362,6 +367,12 @@ void finish(TreeGeometry& g) {
   }
   s.leaf_triangles = g.leaves.triangle_count();
   s.leaf_cards = g.cards.size();
+  g.lod_items = {};
+  for (CurveSegment& seg : g.curves.segments) {
+    if (seg.lod_level != kNoLod) seg.lod_item = g.lod_items[seg.lod_level]++;
+  }
+  for (const LeafCard& c : g.cards.cards)
+    g.lod_items[3] = std::max(g.lod_items[3], static_cast<std::uint32_t>(c.leaf) + 1);
   s.bytes = bytes_of(g.curves.points) + bytes_of(g.curves.tangents) + bytes_of(g.curves.segments) +
             bytes_of(g.grids.vertices) + bytes_of(g.grids.normals) + bytes_of(g.grids.bark) +
             bytes_of(g.grids.grids) + bytes_of(g.leaves.positions) + bytes_of(g.leaves.uvs) +

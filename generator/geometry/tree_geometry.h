@@ -4,6 +4,8 @@
 // material ids, and what is needed for bark coordinates at a hit.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -28,8 +30,14 @@ struct CurveSegment {
   float arc0 = 0.0f, arc1 = 0.0f;          // bark arc length (m) at u = 0 and u = 1
   glm::vec3 normal0{0.0f}, normal1{0.0f};  // rotation-minimising frame normal at the ends
   std::uint16_t material = kMaterialBark;
+  // Level of detail at range (scene/lod.h, Weber & Penn §5): the item's level (0 trunk, 1 main
+  // branches, 2 the deeper stems; kNoLod: never thinned) and its index among that level's segments
+  // in the order they were made.
+  std::uint8_t lod_level = 0;
+  std::uint32_t lod_item = 0;
   glm::vec3 color{1.0f};  // multiplies the material's albedo (TREE-MAKER colours)
 };
+inline constexpr std::uint8_t kNoLod = 0xff;
 
 // Embree's ROUND_HERMITE_CURVE layout: segment i uses points[2i], points[2i+1] (x, y, z, radius)
 // and tangents[2i], tangents[2i+1] (their derivatives with respect to u in [0, 1]).
@@ -82,6 +90,10 @@ struct LeafCard {
   float x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // the rectangle in leaf coordinates
   // The leaf point at quad coordinates (u, v).
   glm::vec2 leaf_point(float u, float v) const { return {x0 + u * (x1 - x0), y0 + v * (y1 - y0)}; }
+  // The leaf point a card is enlarged about (level of detail, scene/lod.h): the leaf's middle
+  // for a flat card or the middle panel, the hinge line for a side panel, so every panel stays in
+  // its own plane and the panels still meet.
+  glm::vec2 centre() const { return {std::clamp(0.0f, x0, x1), 0.5f * (y0 + y1)}; }
 };
 
 struct LeafCards {
@@ -109,6 +121,9 @@ struct TreeGeometry {
   LeafCards cards;  // every leaf of a LeafShape
   GeometryStats stats;
   glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
+  // Items of each level of detail (scene/lod.h): curve segments of levels 0, 1 and 2+, and the
+  // shaped leaves (a card's `leaf` is its item; free-form leaf triangles are never thinned).
+  std::array<std::uint32_t, 4> lod_items{};
 };
 
 enum class LeafStyle { Flat, Hinged };

@@ -166,6 +166,13 @@ TEST(SceneFile, ValuesAreRangeAndTypeChecked) {
                "tree.leaf.season must be one of \"summer\", \"spring\", \"autumn\"");
   EXPECT_TRUE(parse_scene("[render]\nregularize = true\n", "s.toml").render.regularize);
   EXPECT_FALSE(parse_scene("", "s.toml").render.regularize);
+  expect_error("[render]\nlod = \"on\"\n", 2, 7, "true or false");
+  expect_error("[render]\nlod_quality = 0.0\n", 2, 15,
+               "render.lod_quality = 0.000000 is out of range");
+  expect_error("[render]\nlod_quality = inf\n", 2, 15, "finite");
+  EXPECT_FALSE(parse_scene("", "s.toml").render.lod);
+  EXPECT_DOUBLE_EQ(
+      parse_scene("[render]\nlod = true\nlod_quality = 2.5\n", "s.toml").render.lod_quality, 2.5);
   expect_error("[camera]\nfov = 200.0\n", 2, 7, "camera.fov");
   expect_error("[camera]\nposition = [1.0, 2.0]\n", 2, 12, "array of 3 numbers");
   expect_error("[camera]\nfov = nan\n", 2, 7, "finite");

@@ -15,23 +15,78 @@ namespace arbor::tracer {
 
 namespace {
 
+// The level of detail of the instance a filter's ray is in (null: everything kept).
+const scene::InstanceLod* instance_lod(const RTCFilterFunctionNArguments* args,
+                                       const PrototypeLod& lod) {
+  const unsigned inst = args->context->instID[0];
+  if (!lod.instances || inst >= lod.instances->size()) return nullptr;
+  return (*lod.instances)[inst];
+}
+
+// The leaf point of a hit at (u, v) on an enlarged card, on the leaf at the instance's own scale:
+// the card is the leaf × card_scale about its centre (LeafCard::centre), the instance's leaf is
+// × leaf_scale about the same point.
+glm::vec2 leaf_point_at(const generator::LeafCard& c, float u, float v, float reach) {
+  if (reach == 1.0f) return c.leaf_point(u, v);  // bit for bit as without level of detail
+  const glm::vec2 centre = c.centre();
+  return centre + reach * (c.leaf_point(u, v) - centre);
+}
+
 // Embree's filter for leaf cards (closest-hit and occlusion queries alike): a hit on a card
-// counts only inside its leaf's outline, so the ray goes on past the card's corners.
+// counts only inside its leaf's outline, so the ray goes on past the card's corners; with level
+// of detail, only on a leaf the instance keeps, at the instance's leaf scale.
 void cut_out_leaf(const RTCFilterFunctionNArguments* args) {
-  const auto* cards = static_cast<const generator::LeafCards*>(args->geometryUserPtr);
+  const auto* data = static_cast<const TreePrototype::FilterData*>(args->geometryUserPtr);
+  const generator::LeafCards& cards = data->geometry->cards;
+  const scene::InstanceLod* lod = instance_lod(args, data->lod);
+  const float reach = data->lod.card_scale / (lod ? lod->leaf_scale : 1.0f);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
-    const generator::LeafCard& c = cards->cards[RTCHitN_primID(args->hit, args->N, i)];
+    const generator::LeafCard& c = cards.cards[RTCHitN_primID(args->hit, args->N, i)];
+    if (lod && !lod->keep[scene::kLodLeaves].keeps(static_cast<std::uint32_t>(c.leaf))) {
+      args->valid[i] = 0;
+      continue;
+    }
     const glm::vec2 p =
-        c.leaf_point(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
+        leaf_point_at(c, RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i), reach);
     if (!generator::leaf_outline(c.shape).contains(p)) args->valid[i] = 0;
   }
 }
 
+// Embree's filter for limbs with level of detail: a segment counts only when the instance keeps
+// it (Weber & Penn §5's masses; scene/lod.h).
+void thin_limbs(const RTCFilterFunctionNArguments* args) {
+  const auto* data = static_cast<const TreePrototype::FilterData*>(args->geometryUserPtr);
+  const scene::InstanceLod* lod = instance_lod(args, data->lod);
+  if (!lod) return;
+  const generator::CurveSet& curves = data->geometry->curves;
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const generator::CurveSegment& s = curves.segments[RTCHitN_primID(args->hit, args->N, i)];
+    if (s.lod_level != generator::kNoLod && !lod->keep[s.lod_level].keeps(s.lod_item))
+      args->valid[i] = 0;
+  }
+}
+
+// The cards' corners enlarged by `scale` about each card's centre (LeafCard::centre).
+std::vector<glm::vec3> enlarged_corners(const generator::LeafCards& lc, float scale) {
+  std::vector<glm::vec3> out(lc.corners.size());
+  for (std::size_t i = 0; i < lc.size(); ++i) {
+    const generator::LeafCard& c = lc.cards[i];
+    const glm::vec3* q = &lc.corners[4 * i];
+    const glm::vec2 centre = c.centre();
+    const glm::vec3 middle = q[0] + (q[1] - q[0]) * ((centre.x - c.x0) / (c.x1 - c.x0)) +
+                             (q[3] - q[0]) * ((centre.y - c.y0) / (c.y1 - c.y0));
+    for (std::size_t k = 0; k < 4; ++k) out[4 * i + k] = middle + scale * (q[k] - middle);
+  }
+  return out;
+}
+
 }  // namespace
 
-TreePrototype::TreePrototype(const EmbreeDevice& device, const generator::TreeGeometry& geometry)
-    : geometry_(geometry) {
+TreePrototype::TreePrototype(const EmbreeDevice& device, const generator::TreeGeometry& geometry,
+                             const PrototypeLod& lod)
+    : geometry_(geometry), filter_{&geometry, lod} {
   scene_ = new_scene(device);
   const generator::CurveSet& c = geometry.curves;
   if (c.size() > 0) {
@@ -44,6 +99,11 @@ TreePrototype::TreePrototype(const EmbreeDevice& device, const generator::TreeGe
          c.points.size());
     fill(g, RTC_BUFFER_TYPE_TANGENT, RTC_FORMAT_FLOAT4, c.tangents.data(), sizeof(glm::vec4),
          c.tangents.size());
+    if (lod.thin_limbs) {
+      rtcSetGeometryUserData(g, &filter_);
+      rtcSetGeometryIntersectFilterFunction(g, thin_limbs);
+      rtcSetGeometryOccludedFilterFunction(g, thin_limbs);
+    }
     curve_id_ = attach(scene_.get(), g);
   }
   const generator::GridSet& gs = geometry.grids;
@@ -77,9 +137,15 @@ TreePrototype::TreePrototype(const EmbreeDevice& device, const generator::TreeGe
     if (index) {
       for (std::uint32_t k = 0; k < 4 * lc.size(); ++k) index[k] = k;
     }
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, lc.corners.data(),
-                               0, sizeof(glm::vec3), lc.corners.size());
-    rtcSetGeometryUserData(g, const_cast<generator::LeafCards*>(&lc));
+    if (lod.card_scale == 1.0f) {
+      rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, lc.corners.data(),
+                                 0, sizeof(glm::vec3), lc.corners.size());
+    } else {
+      const std::vector<glm::vec3> corners = enlarged_corners(lc, lod.card_scale);
+      fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, corners.data(), sizeof(glm::vec3),
+           corners.size());
+    }
+    rtcSetGeometryUserData(g, &filter_);
     rtcSetGeometryIntersectFilterFunction(g, cut_out_leaf);
     rtcSetGeometryOccludedFilterFunction(g, cut_out_leaf);
     card_id_ = attach(scene_.get(), g);
@@ -91,8 +157,8 @@ TreePrototype::TreePrototype(const EmbreeDevice& device, const generator::TreeGe
 TreePrototype::~TreePrototype() = default;
 
 void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned primitive, float u,
-                                 float v, float t, const glm::vec3& embree_ng,
-                                 SurfaceHit& hit) const {
+                                 float v, float t, const glm::vec3& embree_ng, SurfaceHit& hit,
+                                 float leaf_scale) const {
   hit.t = t;
   hit.primitive = primitive;
   hit.u = u;
@@ -138,7 +204,7 @@ void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned prim
     hit.leaf = card.leaf;
     hit.color = glm::vec3(1.0f);
     hit.crown_height = crown_height(q[0].z);
-    const glm::vec2 p = card.leaf_point(u, v);
+    const glm::vec2 p = leaf_point_at(card, u, v, filter_.lod.card_scale / leaf_scale);
     hit.uv = {p.x + 0.5f, p.y};
     hit.tangent = glm::normalize(q[1] - q[0]);
   } else {

@@ -2,9 +2,12 @@
 // Hermite curves, displaced trunk grids and leaf triangles; and a closest-hit query.
 #pragma once
 
+#include <vector>
+
 #include <glm/vec3.hpp>
 
 #include "generator/geometry/tree_geometry.h"
+#include "scene/lod.h"
 #include "tracer/embree/embree_device.h"
 #include "tracer/ray.h"
 
@@ -12,11 +15,22 @@ struct RTCSceneTy;
 
 namespace arbor::tracer {
 
+// Level of detail (scene/lod.h) for the instances of a prototype: the instances' choices by
+// top-level Embree geometry id (null or past the end: everything, leaves at their own size),
+// whether any instance thins its limbs, and how much the leaf cards are enlarged (the largest
+// leaf scale of any instance; a hit on a card is mapped back to the instance's own scale).
+struct PrototypeLod {
+  const std::vector<const scene::InstanceLod*>* instances = nullptr;
+  bool thin_limbs = false;
+  float card_scale = 1.0f;
+};
+
 class TreePrototype {
  public:
   // Copies the geometry's arrays into Embree buffers and commits the scene (BVH build).
-  // `geometry` must outlive the prototype (hits read its metadata).
-  TreePrototype(const EmbreeDevice& device, const generator::TreeGeometry& geometry);
+  // `geometry` (and `lod.instances`) must outlive the prototype (hits read its metadata).
+  TreePrototype(const EmbreeDevice& device, const generator::TreeGeometry& geometry,
+                const PrototypeLod& lod = {});
   ~TreePrototype();
   TreePrototype(const TreePrototype&) = delete;
   TreePrototype& operator=(const TreePrototype&) = delete;
@@ -25,8 +39,15 @@ class TreePrototype {
 
   // Fills `hit` from Embree's answer for an instanced hit, the ray taken to this prototype's
   // own space (World::intersect carries it back to the world).
+  // `leaf_scale`: the instance's (InstanceLod::leaf_scale; 1 without level of detail).
   void describe_hit(const Ray& ray, unsigned geom_id, unsigned primitive, float u, float v, float t,
-                    const glm::vec3& embree_ng, SurfaceHit& hit) const;
+                    const glm::vec3& embree_ng, SurfaceHit& hit, float leaf_scale = 1.0f) const;
+
+  // What Embree's filters read: the prototype's geometry and its level of detail.
+  struct FilterData {
+    const generator::TreeGeometry* geometry = nullptr;
+    PrototypeLod lod;
+  };
 
  private:
   // Normalised height of z in the prototype's bounds (0 bottom, 1 top), for a leaf's variation.
@@ -36,6 +57,7 @@ class TreePrototype {
   }
 
   const generator::TreeGeometry& geometry_;
+  FilterData filter_;
   SceneHandle scene_;
   unsigned curve_id_ = ~0u, grid_id_ = ~0u, leaf_id_ = ~0u, card_id_ = ~0u;
 };

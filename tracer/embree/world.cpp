@@ -8,9 +8,11 @@
 
 #include <glm/geometric.hpp>
 
+#include "common/error.h"
 #include "tracer/embree/embree_internal.h"
 #include "tracer/embree/embree_scene.h"
 #include "tracer/embree/grass.h"
+#include "tracer/embree/lod_calibration.h"
 
 namespace arbor::tracer {
 
@@ -28,15 +30,35 @@ World::World(const scene::Scene& scene, const EmbreeDevice& device)
     : scene_(scene), device_(device) {
   const auto start = std::chrono::steady_clock::now();
   top_ = new_scene(device);
-  for (const scene::TreePrototypeData& p : scene.prototypes) {
-    prototypes_.push_back(std::make_unique<TreePrototype>(device, *p.geometry));
+  // Level of detail (scene/lod.h): what each prototype's filters need from its instances, and
+  // the instances' choices by Embree id. The instances are attached first, in order, so their
+  // Embree ids are 0, 1, … (checked below).
+  std::vector<PrototypeLod> lods(scene.prototypes.size());
+  lod_.reserve(scene.instances.size());
+  for (const scene::TreeInstance& inst : scene.instances) {
+    PrototypeLod& l = lods[static_cast<std::size_t>(inst.prototype)];
+    if (inst.lod.active) l.instances = &lod_of_geometry_;
+    l.thin_limbs = l.thin_limbs || inst.lod.thins_stems();
+    if (inst.lod.leaf_scale > 1.0f) {  // calibrated with the limbs thinned (lod_calibration.h)
+      l.card_scale = scene::kLodMaxLeafScale;
+      l.thin_limbs = true;
+    }
+    lod_.push_back(inst.lod);
+    lod_of_geometry_.push_back(&lod_.back());
   }
+  for (std::size_t p = 0; p < scene.prototypes.size(); ++p) {
+    prototypes_.push_back(
+        std::make_unique<TreePrototype>(device, *scene.prototypes[p].geometry, lods[p]));
+  }
+  calibrate_leaves(lods);
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
     const scene::TreeInstance& inst = scene.instances[i];
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(g, prototypes_[static_cast<std::size_t>(inst.prototype)]->scene());
     rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.to_world[0][0]);
-    map_id(instance_of_geometry_, attach(top_.get(), g), i);
+    const unsigned id = attach(top_.get(), g);
+    if (id != i) throw RuntimeFailure("Embree numbered the tree instances out of order");
+    map_id(instance_of_geometry_, id, i);
   }
   for (const scene::GrassTile& tile : scene.meadow.tiles)
     grass_.push_back(std::make_unique<GrassPrototype>(device, tile));
@@ -71,6 +93,20 @@ World::World(const scene::Scene& scene, const EmbreeDevice& device)
 }
 
 World::~World() = default;
+
+void World::calibrate_leaves(const std::vector<PrototypeLod>& lods) {
+  for (std::size_t p = 0; p < lods.size(); ++p) {
+    if (lods[p].card_scale == 1.0f) continue;
+    const generator::TreeGeometry& g = *scene_.prototypes[p].geometry;
+    const double alpha = calibrate_leaf_area(device_, prototypes_[p]->scene(), g, lod_of_geometry_);
+    const std::uint32_t leaves = g.lod_items[scene::kLodLeaves];
+    for (std::size_t i = 0; i < lod_.size(); ++i) {
+      if (scene_.instances[i].prototype != static_cast<int>(p)) continue;
+      lod_[i].leaf_scale = calibrated_leaf_scale(
+          alpha, scene::lod_kept(lod_[i].keep[scene::kLodLeaves], leaves), leaves);
+    }
+  }
+}
 
 bool World::intersect(const Ray& ray, WorldHit& hit) const {
   if (log_) {
@@ -157,7 +193,8 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
   local.direction = glm::vec3(inst.to_object * glm::vec4(ray.direction, 0.0f));
   const glm::vec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
   prototypes_[static_cast<std::size_t>(inst.prototype)]->describe_hit(
-      local, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, ng, s);
+      local, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, ng, s,
+      lod_[static_cast<std::size_t>(instance)].leaf_scale);
   s.position = ray.origin + ray.direction * s.t;
   s.geometric_normal = glm::normalize(inst.normal_to_world * s.geometric_normal);
   s.shading_normal = glm::normalize(inst.normal_to_world * s.shading_normal);

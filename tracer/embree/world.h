@@ -15,6 +15,7 @@
 namespace arbor::tracer {
 
 class TreePrototype;
+struct PrototypeLod;
 class GrassPrototype;
 
 // The rays a render asked the world to trace, in the order they were asked (with several threads
@@ -43,6 +44,8 @@ class World {
     return scene_.instances[static_cast<std::size_t>(i)];
   }
   const scene::TreeExtent& extent(int i) const { return instance(i).extent; }
+  // Instance i's level of detail as rendered (its leaf scale calibrated; scene/lod.h).
+  const scene::InstanceLod& lod(int i) const { return lod_[static_cast<std::size_t>(i)]; }
   double build_seconds() const { return build_seconds_; }  // the BVHs, after the scene
   RTCSceneTy* embree_scene() const {
     return top_.get();
@@ -51,6 +54,8 @@ class World {
   void log_rays(RayLog* log) { log_ = log; }
 
  private:
+  // Sets each thinned instance's leaf scale from its prototype's calibrated leaf area.
+  void calibrate_leaves(const std::vector<PrototypeLod>& lods);
   // Fills `hit` for a hit on `blade` of meadow placement `placement` (world-space ray).
   void describe_grass(const Ray& ray, unsigned blade, float u, float t, int placement,
                       WorldHit& hit) const;
@@ -62,7 +67,11 @@ class World {
   std::vector<std::unique_ptr<GrassPrototype>> grass_;  // one per meadow tile
   std::vector<int> grass_of_geometry_;  // Embree geometry id in the top scene → meadow placement
   std::vector<int> instance_of_geometry_;  // Embree geometry id in the top scene → instance
-  std::vector<int> mesh_of_geometry_;      // Embree geometry id in the top scene → mesh
+  // The tree instances' level of detail (scene/lod.h), their leaf scales calibrated by the
+  // crowns' cover (lod_calibration.h); and by Embree geometry id in the top scene.
+  std::vector<scene::InstanceLod> lod_;
+  std::vector<const scene::InstanceLod*> lod_of_geometry_;
+  std::vector<int> mesh_of_geometry_;  // Embree geometry id in the top scene → mesh
   double build_seconds_ = 0.0;
   RayLog* log_ = nullptr;
 };
