@@ -64,8 +64,8 @@ int main(int argc, char** argv) {
         "\"mean_rel_diff\": [%.5f, %.5f, %.5f], \"block\": %d, \"block_channels\": %ld, "
         "\"beyond_3_sigma\": %ld, \"max_abs_z\": %.3f, \"rms_z\": %.3f}\n",
         mean_a[0], mean_a[1], mean_a[2], mean_b[0], mean_b[1], mean_b[2],
-        mean_a[0] / mean_b[0] - 1.0, mean_a[1] / mean_b[1] - 1.0, mean_a[2] / mean_b[2] - 1.0, block,
-        blocks, beyond3, max_z, std::sqrt(sum_z2 / std::max(1L, blocks)));
+        mean_a[0] / mean_b[0] - 1.0, mean_a[1] / mean_b[1] - 1.0, mean_a[2] / mean_b[2] - 1.0,
+        block, blocks, beyond3, max_z, std::sqrt(sum_z2 / std::max(1L, blocks)));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "image_blocks: %s\n", e.what());
     return 2;

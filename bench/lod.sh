@@ -7,7 +7,8 @@
 # arbor's scene and BVH build ("built in"), the render's rays per second, wall and CPU seconds
 # (user + system) and peak RSS (/usr/bin/time). Image error: one pair at ERROR_SPP (256) per
 # scene, the LOD render against the full one by bench/image_blocks (image means per channel,
-# 16 × 16 block means z-tested against their variance). Prints a table and writes
+# 16 × 16 block means z-tested against their variance; `arbor compare --side-by-side` of the pair
+# in bench/results/lod-SCENE.png: LOD, full, difference). Prints a table and writes
 # bench/results/lod.json.
 #
 #   bench/lod.sh [BUILD (build)] [ROUNDS (2)] [SPP (16)] [ERROR_SPP (256)]
@@ -54,6 +55,8 @@ for s in "${scenes[@]}"; do
     cp "$tmp/$s-$lod.exr" "$tmp/$s-$lod-error.exr"
   done
   echo "{\"scene\": \"$s\", \"spp\": $error_spp, \"error\": $("$blocks" "$tmp/$s-on-error.exr" "$tmp/$s-off-error.exr")}" >> "$tmp/errors.jsonl"
+  "$arbor" compare "$tmp/$s-on-error.exr" "$tmp/$s-off-error.exr" \
+    --side-by-side "$root/bench/results/lod-$s.png" > /dev/null
 done
 python3 - "$tmp/runs.jsonl" "$tmp/errors.jsonl" "$out" <<'PY'
 import json, os, sys

@@ -78,8 +78,8 @@ InstanceLod instance_lod(double r2, const LodScale& scale,
   const std::uint32_t leaves = items[kLodLeaves];
   const std::uint32_t kept = lod_kept(lod.keep[kLodLeaves], leaves);
   if (leaves > 0 && kept > 0 && kept < leaves) {
-    lod.leaf_scale = std::min(
-        kLodMaxLeafScale, static_cast<float>(std::sqrt(static_cast<double>(leaves) / kept)));
+    lod.leaf_scale = std::min(kLodMaxLeafScale,
+                              static_cast<float>(std::sqrt(static_cast<double>(leaves) / kept)));
   }
   return lod;
 }

@@ -15,7 +15,12 @@
 namespace arbor::scene {
 
 // The paper's items: level-0 stems, level-1 stems, stems of level 2 and deeper, leaves.
-enum LodLevel : std::uint8_t { kLodTrunk = 0, kLodMainBranches = 1, kLodBranches = 2, kLodLeaves = 3 };
+enum LodLevel : std::uint8_t {
+  kLodTrunk = 0,
+  kLodMainBranches = 1,
+  kLodBranches = 2,
+  kLodLeaves = 3
+};
 inline constexpr int kLodLevels = 4;
 // The paper's mass sizes: 16 for every stem level, 4 for leaves.
 inline constexpr std::array<std::uint32_t, kLodLevels> kLodMassSize = {16, 16, 16, 4};

@@ -29,8 +29,8 @@ TEST(LevelOfDetail, ReproducesTheCountsOfTable2) {
   };
   // Leaves are left out at 600 m and beyond: the table's 1664 is one leaf in 8, against the
   // equation's "minimum of 1" of each 4 (3328), which we keep (docs/rendering.md).
-  const Row rows[] = {{5, 240, 5912, 13312},  {30, 240, 5912, 13312}, {60, 240, 5363, 13312},
-                      {120, 223, 2648, 13312}, {240, 153, 0, 11944},  {600, 35, 0, -1},
+  const Row rows[] = {{5, 240, 5912, 13312},   {30, 240, 5912, 13312}, {60, 240, 5363, 13312},
+                      {120, 223, 2648, 13312}, {240, 153, 0, 11944},   {600, 35, 0, -1},
                       {1200, 0, 0, -1}};
   for (const Row& r : rows) {
     SCOPED_TRACE(r.range);
@@ -96,7 +96,8 @@ TEST(LevelOfDetail, SurvivalIsMonotoneInRange) {
         std::uint32_t kept = 0;
         for (std::uint32_t i = 0; i < items[l]; ++i) {
           const bool far = farther.keep[l].keeps(i);
-          if (far) ASSERT_TRUE(nearer.keep[l].keeps(i)) << "level " << l << " item " << i << " r2 " << r2;
+          if (far)
+            ASSERT_TRUE(nearer.keep[l].keeps(i)) << "level " << l << " item " << i << " r2 " << r2;
           kept += far ? 1 : 0;
         }
         EXPECT_EQ(kept, lod_kept(farther.keep[l], items[l]));

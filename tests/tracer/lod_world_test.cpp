@@ -15,13 +15,13 @@ namespace {
 
 formats::SceneDesc aspen_seen_from(double distance, bool lod) {
   const std::string species = std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml";
-  return formats::parse_scene("[render]\nwidth = 640\nheight = 480\nlod = " +
-                                  std::string(lod ? "true" : "false") +
-                                  "\n[camera]\nposition = [0.0, " + std::to_string(-distance) +
-                                  ", 8.0]\nlook_at = [0.0, 0.0, 8.0]\nfov = 40.0\n[[tree]]\n"
-                                  "species = \"" +
-                                  species + "\"\nseed = 3\n",
-                              "lod.toml");
+  return formats::parse_scene(
+      "[render]\nwidth = 640\nheight = 480\nlod = " + std::string(lod ? "true" : "false") +
+          "\n[camera]\nposition = [0.0, " + std::to_string(-distance) +
+          ", 8.0]\nlook_at = [0.0, 0.0, 8.0]\nfov = 40.0\n[[tree]]\n"
+          "species = \"" +
+          species + "\"\nseed = 3\n",
+      "lod.toml");
 }
 
 struct Sight {
@@ -50,7 +50,8 @@ Sight look_through(const TestWorld& w) {
       ++s.hits;
       s.t_sum += hit.surface.t;
       if (hit.surface.kind == SurfaceKind::Leaf) {
-        if (!w.world.lod(0).keep[scene::kLodLeaves].keeps(static_cast<std::uint32_t>(hit.surface.leaf)))
+        if (!w.world.lod(0).keep[scene::kLodLeaves].keeps(
+                static_cast<std::uint32_t>(hit.surface.leaf)))
           s.only_kept = false;
       } else {
         ++s.bark_hits;
