@@ -96,6 +96,8 @@ class TomlSpecies : TomlReader {
         sp.bark.scar_albedo = colour(node, "bark.scar_albedo");
       } else if (k == "base_height") {
         sp.bark.base_height = number(node, "bark.base_height", look_range::kBaseHeight);
+      } else if (k == "ramiform") {
+        sp.bark.ramiform = boolean(node, "bark.ramiform");
       } else {
         throw InputError(at(key.source()), "unknown key '" + k + "' in [bark]");
       }

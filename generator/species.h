@@ -64,6 +64,9 @@ struct BarkLook {
   Rgb lenticel_albedo{0.06, 0.05, 0.045};
   double scars = 0.0;
   Rgb scar_albedo{0.05, 0.045, 0.04};
+  // Bloomenthal §6's ramiform at the forks of the trunk and main branches (docs/geometry.md):
+  // a smooth collar where a limb leaves its parent instead of the crease of two tubes.
+  bool ramiform = false;
   double base_height = 0.0;
 };
 

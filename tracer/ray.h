@@ -20,7 +20,7 @@ struct Ray {
   float t_max = std::numeric_limits<float>::infinity();
 };
 
-enum class SurfaceKind { None, Curve, Grid, Leaf };
+enum class SurfaceKind { None, Curve, Grid, Leaf, Ramiform };
 
 // A hit on one tree prototype, in the space of the hit (the prototype's own, or the world's).
 struct SurfaceHit {

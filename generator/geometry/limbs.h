@@ -55,6 +55,9 @@ constexpr double kNearlyEqualRadius = 0.05;
 // Largest radius × curvature over the limb's first spline segment (Embree needs it below 1).
 double start_bend_ratio(const Skeleton& skeleton, const Limb& limb);
 
-std::vector<Limb> fit_limbs(const Skeleton& skeleton);
+// `on_parent_axis`: a child limb starts on its parent's spline (what the renderer draws) rather
+// than at its skeleton point on the chord between the parent's points (the ramiform needs the
+// child to leave from inside the parent; docs/geometry.md, "Ramiform").
+std::vector<Limb> fit_limbs(const Skeleton& skeleton, bool on_parent_axis = false);
 
 }  // namespace arbor::generator

@@ -11,6 +11,7 @@
 #include "generator/geometry/geometry_plan.h"
 #include "generator/geometry/leaf_shapes.h"
 #include "generator/geometry/limbs.h"
+#include "generator/geometry/ramiform.h"
 #include "generator/species.h"
 #include "generator/models/weber_penn/weber_penn_formulas.h"
 #include "common/math.h"
@@ -356,6 +357,17 @@ void add_leaf_lines(const Skeleton& sk, TreeGeometry& g) {
   }
 }
 
+// Each curve segment's index among its level's (level of detail, scene/lod.h), and the shaped
+// leaves' count.
+void number_lod_items(TreeGeometry& g) {
+  g.lod_items = {};
+  for (CurveSegment& seg : g.curves.segments) {
+    if (seg.lod_level != kNoLod) seg.lod_item = g.lod_items[seg.lod_level]++;
+  }
+  for (const LeafCard& c : g.cards.cards)
+    g.lod_items[3] = std::max(g.lod_items[3], static_cast<std::uint32_t>(c.leaf) + 1);
+}
+
 void finish(TreeGeometry& g) {
   GeometryStats& s = g.stats;
   s.curve_segments = g.curves.size();
@@ -367,18 +379,17 @@ void finish(TreeGeometry& g) {
   }
   s.leaf_triangles = g.leaves.triangle_count();
   s.leaf_cards = g.cards.size();
-  g.lod_items = {};
-  for (CurveSegment& seg : g.curves.segments) {
-    if (seg.lod_level != kNoLod) seg.lod_item = g.lod_items[seg.lod_level]++;
-  }
-  for (const LeafCard& c : g.cards.cards)
-    g.lod_items[3] = std::max(g.lod_items[3], static_cast<std::uint32_t>(c.leaf) + 1);
+  s.ramiforms = g.ramiforms.forks.size();
+  s.ramiform_triangles = g.ramiforms.triangle_count();
   s.bytes = bytes_of(g.curves.points) + bytes_of(g.curves.tangents) + bytes_of(g.curves.segments) +
             bytes_of(g.grids.vertices) + bytes_of(g.grids.normals) + bytes_of(g.grids.bark) +
             bytes_of(g.grids.grids) + bytes_of(g.leaves.positions) + bytes_of(g.leaves.uvs) +
             bytes_of(g.leaves.indices) + bytes_of(g.leaves.front_material) +
             bytes_of(g.leaves.back_material) + bytes_of(g.leaves.leaf) + bytes_of(g.leaves.color) +
-            bytes_of(g.cards.corners) + bytes_of(g.cards.cards);
+            bytes_of(g.cards.corners) + bytes_of(g.cards.cards) + bytes_of(g.ramiforms.positions) +
+            bytes_of(g.ramiforms.normals) + bytes_of(g.ramiforms.tangents) +
+            bytes_of(g.ramiforms.bark) + bytes_of(g.ramiforms.indices) +
+            bytes_of(g.ramiforms.forks);
   bool any = false;
   auto grow = [&](const glm::vec3& p, float r) {
     if (!any) {
@@ -399,6 +410,7 @@ void finish(TreeGeometry& g) {
   for (const glm::vec3& v : g.grids.vertices) grow(v, 0.0f);
   for (const glm::vec3& v : g.leaves.positions) grow(v, 0.0f);
   for (const glm::vec3& v : g.cards.corners) grow(v, 0.0f);
+  for (const glm::vec3& v : g.ramiforms.positions) grow(v, 0.0f);
 }
 
 }  // namespace
@@ -422,7 +434,7 @@ glm::vec4 CurveSet::second_derivative(std::size_t i, float u) const {
 
 TreeGeometry build_tree_geometry(const Skeleton& sk, const GeometryOptions& o) {
   TreeGeometry g;
-  const std::vector<Limb> limbs = fit_limbs(sk);
+  const std::vector<Limb> limbs = fit_limbs(sk, o.ramiform);
   g.stats.limbs = limbs.size();
   for (const Limb& l : limbs) g.stats.tension_raised_limbs += l.tension_raised ? 1u : 0u;
   for (std::size_t i = 0; i < limbs.size(); ++i) {
@@ -436,6 +448,8 @@ TreeGeometry build_tree_geometry(const Skeleton& sk, const GeometryOptions& o) {
   add_leaves(sk, o, g);
   add_free_leaves(sk, g);
   add_leaf_lines(sk, g);
+  number_lod_items(g);
+  if (o.ramiform) add_ramiforms(limbs, g);
   finish(g);
   return g;
 }
@@ -449,6 +463,7 @@ GeometryOptions geometry_options_for(const Species& species) {
   o.buttresses = species.roots.buttresses;
   o.buttress_height = species.roots.height;
   o.buttress_spread = species.roots.spread;
+  o.ramiform = species.bark.ramiform;
   return o;
 }
 

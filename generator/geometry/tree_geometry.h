@@ -102,6 +102,29 @@ struct LeafCards {
   std::size_t size() const { return cards.size(); }
 };
 
+// Bloomenthal §6's ramiform: the surface at a fork of the trunk or a main branch, joining the
+// parent limb's surface to the child's without the crease of two overlapping tubes (docs/
+// geometry.md, "Ramiform"). Each fork is a collar of kRamiformSides × kRamiformRows quads, row 0
+// on the parent's surface around where the child leaves it, the last row the child's "disk",
+// as two triangles per quad; vertices carry the surfaces' own normals and bark coordinates at
+// both edges, blended between.
+inline constexpr std::uint32_t kRamiformSides = 32, kRamiformRows = 8;
+struct RamiformFork {
+  std::int32_t parent_limb = 0, child_limb = 0;
+  std::uint32_t first_vertex = 0;  // (kRamiformRows + 1) rows of (kRamiformSides + 1) vertices
+  std::uint8_t lod_level = 0;      // the child's first segment's (CurveSegment::lod_level)
+  std::uint32_t lod_item = 0;
+};
+struct RamiformSet {
+  std::vector<glm::vec3> positions, normals;
+  std::vector<glm::vec3> tangents;     // along the bark (the limbs' axes, blended)
+  std::vector<glm::vec3> bark;         // (along, azimuth, radius), as BarkCoordinates
+  std::vector<std::uint32_t> indices;  // three per triangle; fork k's are 2·sides·rows·k onwards
+  std::vector<RamiformFork> forks;
+  static constexpr std::uint32_t kTrianglesPerFork = 2 * kRamiformSides * kRamiformRows;
+  std::size_t triangle_count() const { return indices.size() / 3; }
+};
+
 struct GeometryStats {
   std::size_t limbs = 0;
   std::size_t curve_segments = 0;
@@ -110,15 +133,19 @@ struct GeometryStats {
   std::size_t grids = 0, grid_vertices = 0, grid_triangles = 0;
   std::size_t leaf_triangles = 0;  // free-form (TREE-MAKER) leaf triangles
   std::size_t leaf_cards = 0;
-  std::size_t bytes = 0;  // of all the arrays above
-  bool built = true;      // false: counted by count_tree_geometry (bytes and adjustments unknown)
+  std::size_t ramiforms = 0, ramiform_triangles = 0;
+  std::size_t ramiforms_skipped = 0;  // forks where no collar fits (docs/geometry.md)
+  std::size_t ramiform_trunk_forks = 0, ramiform_trunk_collars = 0;  // of them, the trunk's
+  std::size_t bytes = 0;                                             // of all the arrays above
+  bool built = true;  // false: counted by count_tree_geometry (bytes and adjustments unknown)
 };
 
 struct TreeGeometry {
   CurveSet curves;
   GridSet grids;
-  LeafMesh leaves;  // free-form leaf triangles (TREE-MAKER's tri=)
-  LeafCards cards;  // every leaf of a LeafShape
+  LeafMesh leaves;        // free-form leaf triangles (TREE-MAKER's tri=)
+  LeafCards cards;        // every leaf of a LeafShape
+  RamiformSet ramiforms;  // GeometryOptions::ramiform
   GeometryStats stats;
   glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
   // Items of each level of detail (scene/lod.h): curve segments of levels 0, 1 and 2+, and the
@@ -137,6 +164,7 @@ struct GeometryOptions {
   double hinge_position = 1.0 / 6.0;  // hinges at x = ±this, across a leaf of unit width
   int buttresses = 0;                 // root buttresses at the trunk's base (RootLook)
   double buttress_height = 3.0, buttress_spread = 2.0;  // × the trunk's base radius
+  bool ramiform = false;  // Bloomenthal §6 surfaces at the trunk's and main branches' forks
 };
 
 TreeGeometry build_tree_geometry(const Skeleton& skeleton, const GeometryOptions& options = {});

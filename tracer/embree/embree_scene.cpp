@@ -68,6 +68,22 @@ void thin_limbs(const RTCFilterFunctionNArguments* args) {
   }
 }
 
+// Embree's filter for ramiforms with level of detail: a fork's collar goes with its child limb's
+// first segment.
+void thin_ramiforms(const RTCFilterFunctionNArguments* args) {
+  const auto* data = static_cast<const TreePrototype::FilterData*>(args->geometryUserPtr);
+  const scene::InstanceLod* lod = instance_lod(args, data->lod);
+  if (!lod) return;
+  const generator::RamiformSet& rs = data->geometry->ramiforms;
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const generator::RamiformFork& f =
+        rs.forks[RTCHitN_primID(args->hit, args->N, i) / generator::RamiformSet::kTrianglesPerFork];
+    if (f.lod_level != generator::kNoLod && !lod->keep[f.lod_level].keeps(f.lod_item))
+      args->valid[i] = 0;
+  }
+}
+
 // The cards' corners enlarged by `scale` about each card's centre (LeafCard::centre).
 std::vector<glm::vec3> enlarged_corners(const generator::LeafCards& lc, float scale) {
   std::vector<glm::vec3> out(lc.corners.size());
@@ -88,6 +104,10 @@ TreePrototype::TreePrototype(const EmbreeDevice& device, const generator::TreeGe
                              const PrototypeLod& lod)
     : geometry_(geometry), filter_{&geometry, lod} {
   scene_ = new_scene(device);
+  // A ramiform's collar is a fine triangle mesh over the limbs: Embree's robust mode keeps rays
+  // from slipping through it at its vertices onto the limbs beneath.
+  if (geometry.ramiforms.triangle_count() > 0)
+    rtcSetSceneFlags(scene_.get(), RTC_SCENE_FLAG_ROBUST);
   const generator::CurveSet& c = geometry.curves;
   if (c.size() > 0) {
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_ROUND_HERMITE_CURVE);
@@ -150,11 +170,51 @@ TreePrototype::TreePrototype(const EmbreeDevice& device, const generator::TreeGe
     rtcSetGeometryOccludedFilterFunction(g, cut_out_leaf);
     card_id_ = attach(scene_.get(), g);
   }
+  if (geometry.ramiforms.triangle_count() > 0)
+    ramiform_id_ = attach_ramiforms(device, lod.thin_limbs);
   rtcCommitScene(scene_.get());
   device.check("building the tree's BVH");
 }
 
 TreePrototype::~TreePrototype() = default;
+
+unsigned TreePrototype::attach_ramiforms(const EmbreeDevice& device, bool thin_limbs) {
+  const generator::RamiformSet& rs = geometry_.ramiforms;
+  RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+  fill(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, rs.indices.data(), 3 * sizeof(std::uint32_t),
+       rs.triangle_count());
+  fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, rs.positions.data(), sizeof(glm::vec3),
+       rs.positions.size());
+  if (thin_limbs) {
+    rtcSetGeometryUserData(g, &filter_);
+    rtcSetGeometryIntersectFilterFunction(g, thin_ramiforms);
+    rtcSetGeometryOccludedFilterFunction(g, thin_ramiforms);
+  }
+  return attach(scene_.get(), g);
+}
+
+void TreePrototype::describe_ramiform(const Ray& ray, unsigned primitive, float u, float v,
+                                      const glm::vec3& ng, SurfaceHit& hit) const {
+  const generator::RamiformSet& rs = geometry_.ramiforms;
+  const std::uint32_t* tri = &rs.indices[3 * static_cast<std::size_t>(primitive)];
+  const float w0 = 1.0f - u - v;
+  const auto lerp = [&](const std::vector<glm::vec3>& a) {
+    return a[tri[0]] * w0 + a[tri[1]] * u + a[tri[2]] * v;
+  };
+  hit.kind = SurfaceKind::Ramiform;
+  hit.material = generator::kMaterialBark;
+  hit.geometric_normal = glm::dot(ng, ray.direction) < 0.0f ? ng : -ng;
+  hit.shading_normal = glm::normalize(lerp(rs.normals));
+  if (glm::dot(hit.shading_normal, hit.geometric_normal) < 0.0f)
+    hit.shading_normal = -hit.shading_normal;
+  const glm::vec3 bark = lerp(rs.bark);
+  hit.bark.along = bark.x;
+  hit.bark.azimuth = bark.y;
+  hit.bark.radius = bark.z;
+  hit.bark.around = bark.y * bark.z;
+  hit.tangent = glm::normalize(lerp(rs.tangents));
+  hit.color = glm::vec3(1.0f);
+}
 
 void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned primitive, float u,
                                  float v, float t, const glm::vec3& embree_ng, SurfaceHit& hit,
@@ -192,6 +252,8 @@ void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned prim
     const glm::vec3 along = g.vertices[base + d.width] - g.vertices[base];
     hit.tangent = glm::length(along) > 0.0f ? glm::normalize(along) : glm::vec3(0, 0, 1);
     hit.color = glm::vec3(1.0f);
+  } else if (geom_id == ramiform_id_) {
+    describe_ramiform(ray, primitive, u, v, ng, hit);
   } else if (geom_id == card_id_) {
     hit.kind = SurfaceKind::Leaf;
     const generator::LeafCards& lc = geometry_.cards;

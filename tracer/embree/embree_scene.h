@@ -50,6 +50,11 @@ class TreePrototype {
   };
 
  private:
+  // The ramiforms' triangles as a geometry of the scene (filtered with the limbs); its id.
+  unsigned attach_ramiforms(const EmbreeDevice& device, bool thin_limbs);
+  // describe_hit for a ramiform triangle.
+  void describe_ramiform(const Ray& ray, unsigned primitive, float u, float v, const glm::vec3& ng,
+                         SurfaceHit& hit) const;
   // Normalised height of z in the prototype's bounds (0 bottom, 1 top), for a leaf's variation.
   float crown_height(float z) const {
     const float span = geometry_.bounds_max.z - geometry_.bounds_min.z;
@@ -59,7 +64,7 @@ class TreePrototype {
   const generator::TreeGeometry& geometry_;
   FilterData filter_;
   SceneHandle scene_;
-  unsigned curve_id_ = ~0u, grid_id_ = ~0u, leaf_id_ = ~0u, card_id_ = ~0u;
+  unsigned curve_id_ = ~0u, grid_id_ = ~0u, leaf_id_ = ~0u, card_id_ = ~0u, ramiform_id_ = ~0u;
 };
 
 }  // namespace arbor::tracer

@@ -1,0 +1,500 @@
+// The ramiform's collars: the parent's and the child's rendered surfaces as functions, the
+// child's footprint on the parent, the two rings, and the Hermite columns between them.
+#include "generator/geometry/ramiform.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <optional>
+
+#include <glm/geometric.hpp>
+
+#include "common/math.h"
+
+namespace arbor::generator {
+
+namespace {
+
+// A point of a rendered limb surface, with what the renderer computes for a hit there.
+struct SurfaceSample {
+  glm::dvec3 position{0.0}, normal{0.0}, tangent{0.0};
+  glm::dvec3 bark{0.0};  // along, azimuth, radius
+  bool cap = false;      // on a round curve's joint, where Embree draws no surface
+};
+
+// The surface of a parent limb: inside tests and projections onto it along the direction from
+// its axis, for a round curve (the sphere sweep Embree renders) or a displaced grid.
+class ParentSurface {
+ public:
+  ParentSurface(const TreeGeometry& g, std::int32_t limb) : g_(g) {
+    for (std::size_t i = 0; i < g.curves.size(); ++i)
+      if (g.curves.segments[i].limb == limb) segments_.push_back(i);
+    for (std::size_t i = 0; i < g.grids.grids.size(); ++i)
+      if (g.grids.grids[i].limb == limb) grid_ = i;
+    if (grid_) {
+      const DisplacedGrid& d = g.grids.grids[*grid_];
+      for (std::uint32_t row = 0; row < d.height; ++row) {
+        glm::dvec3 sum(0.0);
+        for (std::uint32_t col = 0; col + 1 < d.width; ++col) sum += vertex(row, col);
+        centres_.push_back(sum / static_cast<double>(d.width - 1));
+      }
+    }
+  }
+  bool valid() const { return grid_ || !segments_.empty(); }
+
+  // Whether p lies inside the surface.
+  bool inside(const glm::dvec3& p) const {
+    const std::optional<SurfaceSample> s = project(p);
+    return s && glm::length(p - axis_) < glm::length(s->position - axis_);
+  }
+
+  // The surface point on the way from the axis through p.
+  std::optional<SurfaceSample> project(const glm::dvec3& p) const {
+    return grid_ ? project_on_grid(p) : project_on_curve(p);
+  }
+
+ private:
+  glm::dvec3 vertex(std::uint32_t row, std::uint32_t col) const {
+    const DisplacedGrid& d = g_.grids.grids[*grid_];
+    return glm::dvec3(g_.grids.vertices[d.first_vertex + row * d.width + col]);
+  }
+
+  // Embree's round curve is each segment's sweep of spheres without caps at the joints: a point
+  // belongs to a segment where its nearest axis point is inside the segment (u in (0, 1)). So the
+  // projection is onto the segment whose inside nearest point is nearest the surface.
+  std::optional<SurfaceSample> project_on_curve(const glm::dvec3& p) const {
+    const CurveSet& c = g_.curves;
+    const auto distance = [&](std::size_t i, double u) {
+      return glm::length(p - glm::dvec3(glm::vec3(c.position(i, static_cast<float>(u)))));
+    };
+    std::vector<std::pair<double, std::size_t>> near;  // (coarse distance to the axis, segment)
+    for (std::size_t i : segments_) {
+      double d = 1e300;
+      for (int k = 0; k <= 16; ++k) d = std::min(d, distance(i, k / 16.0));
+      near.emplace_back(d, i);
+    }
+    std::sort(near.begin(), near.end());
+    double best = 1e300, lo = 0.0, hi = 0.0;
+    bool cap = false;
+    std::size_t best_seg = 0;
+    for (std::size_t n = 0; n < std::min<std::size_t>(3, near.size()); ++n) {
+      const std::size_t i = near[n].second;
+      double a0 = 0.0, b0 = 1.0;
+      for (int k = 0; k < 32; ++k) {  // golden-section search for the nearest axis point
+        const double a = b0 - 0.618034 * (b0 - a0), b = a0 + 0.618034 * (b0 - a0);
+        if (distance(i, a) < distance(i, b)) {
+          b0 = b;
+        } else {
+          a0 = a;
+        }
+      }
+      const double u = 0.5 * (a0 + b0);
+      // Beyond this segment's own sweep: a joint, counted only when no segment has p inside.
+      const bool joint = u < 1e-3 || u > 1.0 - 1e-3;
+      const double gap =
+          distance(i, u) - c.position(i, static_cast<float>(u)).w + (joint ? 1e-9 : 0.0);
+      if (gap < best) best = gap, best_seg = i, lo = a0, hi = b0, cap = joint;
+    }
+    if (best == 1e300) return std::nullopt;
+    const auto u = static_cast<float>(0.5 * (lo + hi));
+    const glm::vec4 a = c.position(best_seg, u);
+    axis_ = glm::dvec3(glm::vec3(a));
+    const glm::dvec3 out = p - axis_;
+    if (glm::length(out) < 1e-12) return std::nullopt;
+    SurfaceSample s;
+    s.normal = glm::normalize(out);
+    s.position = axis_ + s.normal * static_cast<double>(a.w);
+    s.tangent = glm::normalize(glm::dvec3(glm::vec3(c.derivative(best_seg, u))));
+    const BarkCoordinates bc = curve_bark(c, best_seg, u, glm::vec3(s.position));
+    s.bark = {bc.along, bc.azimuth, bc.radius};
+    s.cap = cap;
+    return s;
+  }
+
+  std::optional<SurfaceSample> project_on_grid(const glm::dvec3& p) const {
+    // The nearest point of the rings' centres' polyline, and the ray from it through p.
+    double best = 1e300, f_best = 0.0;
+    std::size_t row = 0;
+    for (std::size_t i = 0; i + 1 < centres_.size(); ++i) {
+      const glm::dvec3 e = centres_[i + 1] - centres_[i];
+      const double len2 = glm::dot(e, e);
+      const double f = len2 > 0 ? std::clamp(glm::dot(p - centres_[i], e) / len2, 0.0, 1.0) : 0.0;
+      const double d = glm::length(p - (centres_[i] + f * e));
+      if (d < best) best = d, f_best = f, row = i;
+    }
+    axis_ = centres_[row] + f_best * (centres_[row + 1] - centres_[row]);
+    const glm::dvec3 out = p - axis_;
+    if (glm::length(out) < 1e-12) return std::nullopt;
+    const glm::dvec3 dir = glm::normalize(out);
+    const DisplacedGrid& d = g_.grids.grids[*grid_];
+    double t_hit = 1e300, gu = 0.0, gv = 0.0;
+    const std::uint32_t r0 = row > 6 ? static_cast<std::uint32_t>(row) - 6 : 0;
+    const std::uint32_t r1 =
+        std::min<std::uint32_t>(d.height - 1, static_cast<std::uint32_t>(row) + 7);
+    for (std::uint32_t r = r0; r < r1; ++r) {
+      for (std::uint32_t col = 0; col + 1 < d.width; ++col) {
+        const glm::dvec3 v0 = vertex(r, col), v1 = vertex(r, col + 1), v2 = vertex(r + 1, col + 1),
+                         v3 = vertex(r + 1, col);
+        // Embree's two triangles of a grid quad: (v0, v1, v3) and (v2, v3, v1).
+        for (int half = 0; half < 2; ++half) {
+          const glm::dvec3 a = half ? v2 : v0, b = half ? v3 : v1, c = half ? v1 : v3;
+          const glm::dvec3 e1 = b - a, e2 = c - a, q = glm::cross(dir, e2);
+          const double det = glm::dot(e1, q);
+          if (std::fabs(det) < 1e-30) continue;
+          const glm::dvec3 s = axis_ - a;
+          const double bu = glm::dot(s, q) / det;
+          const glm::dvec3 rr = glm::cross(s, e1);
+          const double bv = glm::dot(dir, rr) / det;
+          const double t = glm::dot(e2, rr) / det;
+          if (bu < -1e-9 || bv < -1e-9 || bu + bv > 1 + 1e-9 || t <= 0 || t >= t_hit) continue;
+          t_hit = t;
+          const double fx = half ? 1.0 - bu : bu, fy = half ? 1.0 - bv : bv;
+          gu = (col + fx) / (d.width - 1.0);
+          gv = (r + fy) / (d.height - 1.0);
+        }
+      }
+    }
+    if (t_hit == 1e300) return std::nullopt;
+    SurfaceSample s;
+    s.position = axis_ + dir * t_hit;
+    const auto fu = static_cast<float>(gu), fv = static_cast<float>(gv);
+    s.normal = glm::dvec3(grid_normal(g_.grids, *grid_, fu, fv));
+    if (glm::dot(s.normal, dir) < 0.0) s.normal = -s.normal;
+    s.tangent = glm::normalize(centres_[row + 1] - centres_[row]);
+    const BarkCoordinates bc = grid_bark(g_.grids, *grid_, fu, fv);
+    s.bark = {bc.along, bc.azimuth, bc.radius};
+    return s;
+  }
+
+  const TreeGeometry& g_;
+  std::vector<std::size_t> segments_;
+  std::optional<std::size_t> grid_;
+  std::vector<glm::dvec3> centres_;
+  mutable glm::dvec3 axis_{0.0};  // the axis point of the last projection
+};
+
+// A child limb's round curve, by τ (segment index + u along its segments from its base) and the
+// azimuth φ about its frame: the sphere sweep's surface point whose normal has azimuth φ.
+class ChildSurface {
+ public:
+  ChildSurface(const CurveSet& c, std::int32_t limb) : c_(c) {
+    for (std::size_t i = 0; i < c.size(); ++i)
+      if (c.segments[i].limb == limb) segments_.push_back(i);
+  }
+  double end() const { return static_cast<double>(segments_.size()); }
+  std::size_t first() const { return segments_.front(); }
+
+  SurfaceSample at(double tau, double phi) const {
+    const std::size_t k = std::min(segments_.size() - 1, static_cast<std::size_t>(tau));
+    const std::size_t i = segments_[k];
+    const auto u = static_cast<float>(std::clamp(tau - static_cast<double>(k), 0.0, 1.0));
+    const glm::vec4 p = c_.position(i, u), dp = c_.derivative(i, u);
+    const glm::dvec3 axis{glm::vec3(p)};
+    const glm::dvec3 t = glm::normalize(glm::dvec3(glm::vec3(dp)));
+    const CurveSegment& s = c_.segments[i];
+    glm::dvec3 n = glm::dvec3(s.normal0 + (s.normal1 - s.normal0) * u);
+    n = glm::normalize(n - t * glm::dot(n, t));
+    const glm::dvec3 b = glm::cross(t, n);
+    const glm::dvec3 w = n * std::cos(phi) + b * std::sin(phi);
+    // The sweep's normal leans back by the radius' slope along the axis.
+    const double slope = std::clamp(dp.w / glm::length(glm::vec3(dp)), -0.9f, 0.9f);
+    SurfaceSample out;
+    out.normal = w * std::sqrt(1.0 - slope * slope) - t * slope;
+    out.position = axis + out.normal * static_cast<double>(p.w);
+    out.tangent = t;
+    const BarkCoordinates bc = curve_bark(c_, i, u, glm::vec3(out.position));
+    out.bark = {bc.along, bc.azimuth, bc.radius};
+    return out;
+  }
+  double radius(double tau) const {
+    const std::size_t k = std::min(segments_.size() - 1, static_cast<std::size_t>(tau));
+    return c_.position(segments_[k], static_cast<float>(std::clamp(tau - k, 0.0, 1.0))).w;
+  }
+  // Whether the surface point at (τ, φ) lies inside a nearby sphere of the sweep (on the inside
+  // of a bend, where the tube overlaps itself and its surface is elsewhere).
+  bool hides(double tau, double phi) const {
+    const double r = radius(tau), reach = 2.0 * r * per_metre(tau);
+    const glm::dvec3 s = at(tau, phi).position;
+    for (int i = -20; i <= 20; ++i) {
+      const double t = std::clamp(tau + reach * i / 20.0, 0.0, end() - 1e-9);
+      const std::size_t seg = std::min(segments_.size() - 1, static_cast<std::size_t>(t));
+      const glm::vec4 c = c_.position(segments_[seg], static_cast<float>(t - seg));
+      if (glm::length(s - glm::dvec3(glm::vec3(c))) < c.w - 0.005 * r) return true;
+    }
+    return false;
+  }
+  // τ per metre of axis near τ.
+  double per_metre(double tau) const {
+    const std::size_t k = std::min(segments_.size() - 1, static_cast<std::size_t>(tau));
+    const float u = static_cast<float>(std::clamp(tau - k, 0.0, 1.0));
+    return 1.0 / std::max(1e-9f, glm::length(glm::vec3(c_.derivative(segments_[k], u))));
+  }
+
+ private:
+  const CurveSet& c_;
+  std::vector<std::size_t> segments_;
+};
+
+constexpr std::uint32_t kSides = kRamiformSides, kRows = kRamiformRows;
+constexpr double kSeamDepth = 0.03;       // × the child's radius (add_collar)
+constexpr double kMinChildRadius = 0.01;  // metres: thinner children leave no crease to see
+
+// Where the child's surface along azimuth φ leaves the parent's: τ, or none.
+std::optional<double> exit_of(const ParentSurface& parent, const ChildSurface& child, double phi) {
+  double tau = 0.0;
+  if (!parent.inside(child.at(0.0, phi).position)) return 0.0;  // already outside at its base
+  while (true) {
+    const double step = 0.25 * child.radius(tau) * child.per_metre(tau);
+    const double next = tau + std::max(step, 1e-4);
+    if (next >= child.end()) return std::nullopt;  // never leaves
+    if (!parent.inside(child.at(next, phi).position)) {
+      double lo = tau, hi = next;
+      for (int k = 0; k < 30; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (parent.inside(child.at(mid, phi).position) ? lo : hi) = mid;
+      }
+      return hi;
+    }
+    tau = next;
+  }
+}
+
+// A fork's two seam rings: on the parent (lower) and the child's disk (upper), sunk into their
+// limbs, with each column's directions leaving the parent (toward) and reaching the child
+// (along); r is the child's radius at its farthest exit.
+struct Rings {
+  std::array<SurfaceSample, kSides> lower{}, upper{};
+  std::array<glm::dvec3, kSides> toward{}, along{};
+  double r = 0.0;
+};
+
+// The rings of one fork; none when they do not fit.
+std::optional<Rings> rings_of(const ParentSurface& parent, const ChildSurface& child) {
+  std::array<double, kSides> exits{};
+  std::array<glm::dvec3, kSides> foot{};
+  glm::dvec3 centre(0.0);
+  double last = 0.0;
+  int outside = 0;  // azimuths where the child's base is already outside (a child as thick as
+                    // its parent, whose base ring meets the parent's surface)
+  for (std::uint32_t k = 0; k < kSides; ++k) {
+    const double phi = 2.0 * kPi * k / kSides;
+    const std::optional<double> tau = exit_of(parent, child, phi);
+    if (!tau) return std::nullopt;
+    exits[k] = *tau;
+    outside += *tau == 0.0 ? 1 : 0;
+    foot[k] = child.at(*tau, phi).position;
+    centre += foot[k] / static_cast<double>(kSides);
+    last = std::max(last, *tau);
+  }
+  if (outside == static_cast<int>(kSides)) return std::nullopt;  // not joined to its parent at all
+  // The disk (the paper's "far enough along the outgoing limb"), azimuth by azimuth: 0.6 child
+  // radii beyond where that side of the child leaves the parent, and on past any point that the
+  // tube's own spheres hide (the inside of the child's first bend, where its clamped start turns
+  // it away from the parent, Bloomenthal Fig. 5). The ring on the parent: 0.6 child radii (at
+  // most half the parent's radius) beyond the footprint, along the parent's surface away from
+  // its middle.
+  const double r = child.radius(last);
+  std::array<double, kSides> disk{};
+  for (std::uint32_t k = 0; k < kSides; ++k) {
+    const double phi = 2.0 * kPi * k / kSides;
+    double d = exits[k] + 0.6 * r * child.per_metre(exits[k]);
+    while (d < child.end() && child.hides(d, phi)) d += 0.1 * r * child.per_metre(d);
+    if (d >= child.end()) return std::nullopt;
+    disk[k] = d;
+  }
+  Rings rings;
+  rings.r = r;
+  auto& lower = rings.lower;
+  auto& upper = rings.upper;
+  for (std::uint32_t k = 0; k < kSides; ++k) {
+    const double phi = 2.0 * kPi * k / kSides;
+    upper[k] = child.at(disk[k], phi);
+    const std::optional<SurfaceSample> at_foot = parent.project(foot[k]);
+    if (!at_foot) return std::nullopt;
+    glm::dvec3 away = foot[k] - centre;
+    away -= at_foot->normal * glm::dot(away, at_foot->normal);
+    if (glm::length(away) < 1e-9) return std::nullopt;
+    const std::optional<SurfaceSample> q =
+        parent.project(foot[k] + glm::normalize(away) * std::min(0.6 * r, 0.5 * at_foot->bark.z));
+    if (!q || q->cap) return std::nullopt;
+    lower[k] = *q;
+    glm::dvec3 back = -(away - q->normal * glm::dot(away, q->normal));
+    if (glm::length(back) < 1e-9) return std::nullopt;
+    rings.toward[k] = glm::normalize(back);
+    rings.along[k] = glm::normalize(child.at(disk[k] + 1e-3, phi).position -
+                                    child.at(disk[k] - 1e-3, phi).position);
+  }
+  // Both seams sink 3 % of the child's radius into their limbs, so the collar's edges are
+  // buried and no slit opens where Embree's tube differs a little from the sweep modelled here
+  // (at its segments' joints).
+  for (std::uint32_t k = 0; k < kSides; ++k) {
+    lower[k].position -= lower[k].normal * (kSeamDepth * r);
+    upper[k].position -= upper[k].normal * (kSeamDepth * r);
+  }
+  return rings;
+}
+
+// The collar's rows (positions, bark, tangents, the seams' normals) between the rings.
+void add_rows(const Rings& rings, RamiformSet& out) {
+  double wrap = 0.0;  // the parent's azimuth unwrapped along the ring
+  double previous = rings.lower[0].bark.y;
+  for (std::uint32_t j = 0; j <= kRows; ++j) {
+    const double t = static_cast<double>(j) / kRows;
+    const double h00 = 2 * t * t * t - 3 * t * t + 1, h10 = t * t * t - 2 * t * t + t;
+    const double h01 = -2 * t * t * t + 3 * t * t, h11 = t * t * t - t * t;
+    wrap = 0.0;
+    previous = rings.lower[0].bark.y;
+    for (std::uint32_t col = 0; col <= kSides; ++col) {
+      const std::uint32_t k = col % kSides;
+      const SurfaceSample &a = rings.lower[k], &b = rings.upper[k];
+      const double span = glm::length(b.position - a.position);
+      const glm::dvec3 p = h00 * a.position + h10 * span * rings.toward[k] + h01 * b.position +
+                           h11 * span * rings.along[k];
+      out.positions.emplace_back(p);
+      // Bark: the parent's azimuth unwrapped round the ring, the child's running to 2π.
+      double pa = a.bark.y;
+      while (pa + wrap - previous > kPi) wrap -= 2.0 * kPi;
+      while (pa + wrap - previous < -kPi) wrap += 2.0 * kPi;
+      pa += wrap;
+      previous = pa;
+      const double ca = 2.0 * kPi * col / kSides;
+      const glm::dvec3 bark((1 - t) * a.bark.x + t * b.bark.x, (1 - t) * pa + t * ca,
+                            (1 - t) * a.bark.z + t * b.bark.z);
+      out.bark.emplace_back(bark);
+      out.tangents.emplace_back(glm::normalize((1 - t) * a.tangent + t * b.tangent));
+      out.normals.emplace_back(j == 0 ? a.normal : j == kRows ? b.normal : glm::dvec3(0.0));
+    }
+  }
+}
+
+// The collar's inside normals and triangles, its vertices from `base`.
+void finish_collar(std::uint32_t base, RamiformSet& out) {
+  const std::uint32_t w = kSides + 1;
+  // Interior normals from the collar's own differences, facing the side the edges' normals face.
+  for (std::uint32_t j = 1; j < kRows; ++j) {
+    for (std::uint32_t col = 0; col <= kSides; ++col) {
+      const std::uint32_t left = col == 0 ? kSides - 1 : col - 1,
+                          right = col == kSides ? 1 : col + 1;
+      const glm::vec3 around =
+          out.positions[base + j * w + right] - out.positions[base + j * w + left];
+      const glm::vec3 along =
+          out.positions[base + (j + 1) * w + col] - out.positions[base + (j - 1) * w + col];
+      glm::vec3 n = glm::cross(around, along);
+      const double t = static_cast<double>(j) / kRows;
+      const glm::vec3 ref((1 - t) * glm::dvec3(out.normals[base + col]) +
+                          t * glm::dvec3(out.normals[base + kRows * w + col]));
+      if (glm::dot(n, ref) < 0.0f) n = -n;
+      out.normals[base + j * w + col] =
+          glm::length(n) > 0.0f ? glm::normalize(n) : glm::normalize(ref);
+    }
+  }
+  for (std::uint32_t j = 0; j < kRows; ++j) {
+    for (std::uint32_t col = 0; col < kSides; ++col) {
+      const std::uint32_t v0 = base + j * w + col, v1 = v0 + 1, v3 = v0 + w, v2 = v3 + 1;
+      out.indices.insert(out.indices.end(), {v0, v1, v3, v2, v3, v1});
+    }
+  }
+}
+
+// The collar of one fork into g.ramiforms; false when it does not fit.
+bool add_collar(const ParentSurface& parent, const ChildSurface& child, RamiformSet& out) {
+  const std::optional<Rings> rings = rings_of(parent, child);
+  if (!rings) return false;
+  const auto base = static_cast<std::uint32_t>(out.positions.size());
+  add_rows(*rings, out);
+  finish_collar(base, out);
+  return true;
+}
+
+// Whether a collar (vertices from `first`) is sound, as the renderer will see it: its edge rows
+// on the parent's and child's surfaces, facing out; its inside outside both limbs (not folded
+// into them); no quad turned over (no fold of its own).
+bool sound(const RamiformSet& s, std::size_t first, const ParentSurface& parent,
+           const ParentSurface& child, double r) {
+  const std::uint32_t w = kSides + 1;
+  const double e = (kSeamDepth + 0.02) * r;  // the seams' depth and a margin
+  for (std::uint32_t j = 0; j <= kRows; ++j) {
+    for (std::uint32_t col = 0; col < kSides; ++col) {
+      const std::size_t v = first + j * w + col;
+      const glm::dvec3 p(s.positions[v]), n(s.normals[v]);
+      if (j == 0 || j == kRows) {
+        const ParentSurface& limb = j == 0 ? parent : child;
+        if (!limb.inside(p - e * n) || limb.inside(p + e * n)) return false;
+      } else if (parent.inside(p + 2.0 * e * n) || child.inside(p + 2.0 * e * n)) {
+        return false;
+      }
+      if (j == kRows) continue;
+      const glm::dvec3 around(s.positions[v + 1] - s.positions[v]);
+      const glm::dvec3 along(s.positions[v + w] - s.positions[v]);
+      const glm::dvec3 face = glm::cross(around, along);
+      // A quad must have area, and face the way its corners' normals do (within 60°).
+      const double area = glm::length(face);
+      if (area < 1e-6 * r * r) return false;
+      bool agrees = true;
+      for (const std::size_t corner : {v, v + 1, v + w, v + w + 1})
+        agrees = agrees && glm::dot(face / area, glm::dvec3(s.normals[corner])) > 0.5;
+      if (!agrees) return false;
+    }
+  }
+  return true;
+}
+
+bool finite(const RamiformSet& s, std::size_t from) {
+  for (std::size_t i = from; i < s.positions.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(s.positions[i][c]) || !std::isfinite(s.normals[i][c]) ||
+          !std::isfinite(s.bark[i][c]))
+        return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+void add_ramiforms(const std::vector<Limb>& limbs, TreeGeometry& g) {
+  RamiformSet& out = g.ramiforms;
+  for (std::size_t c = 0; c < limbs.size(); ++c) {
+    const Limb& child = limbs[c];
+    if (child.parent < 0 || limbs[static_cast<std::size_t>(child.parent)].level > 1) continue;
+    const ChildSurface child_surface(g.curves, static_cast<std::int32_t>(c));
+    const ParentSurface parent(g, child.parent);
+    if (child_surface.end() == 0.0 || !parent.valid()) {
+      ++g.stats.ramiforms_skipped;  // a displaced child (a clone of a flared trunk)
+      continue;
+    }
+    // Forks large enough to see: a child of at least 1 cm and a quarter of its parent's radius.
+    if (child_surface.end() > 0.0 && child_surface.radius(0.0) < kMinChildRadius) continue;
+    const std::optional<SurfaceSample> base =
+        child_surface.end() > 0.0 ? parent.project(child_surface.at(0.0, 0.0).position)
+                                  : std::nullopt;
+    if (base && child_surface.radius(0.0) < 0.25 * base->bark.z) continue;
+    const bool trunk = limbs[static_cast<std::size_t>(child.parent)].level == 0;
+    g.stats.ramiform_trunk_forks += trunk ? 1 : 0;
+    const std::size_t vertices = out.positions.size(), indices = out.indices.size();
+    const ParentSurface child_limb(g, static_cast<std::int32_t>(c));
+    if (!add_collar(parent, child_surface, out) || !finite(out, vertices) ||
+        !sound(out, vertices, parent, child_limb, child_surface.radius(0.0))) {
+      out.positions.resize(vertices);
+      out.normals.resize(vertices);
+      out.tangents.resize(vertices);
+      out.bark.resize(vertices);
+      out.indices.resize(indices);
+      ++g.stats.ramiforms_skipped;
+      continue;
+    }
+    g.stats.ramiform_trunk_collars += trunk ? 1 : 0;
+    RamiformFork fork;
+    fork.parent_limb = child.parent;
+    fork.child_limb = static_cast<std::int32_t>(c);
+    fork.first_vertex = static_cast<std::uint32_t>(vertices);
+    const CurveSegment& first = g.curves.segments[child_surface.first()];
+    fork.lod_level = first.lod_level;
+    fork.lod_item = first.lod_item;
+    out.forks.push_back(fork);
+  }
+  g.stats.ramiforms = out.forks.size();
+  g.stats.ramiform_triangles = out.triangle_count();
+}
+
+}  // namespace arbor::generator
