@@ -36,6 +36,24 @@ void build_geometry(benchmark::State& state, const char* file) {
   state.counters["geometry_MB"] = static_cast<double>(stats.bytes) / 1e6;
 }
 
+// The same with Bloomenthal's ramiform at the forks (`[bark] ramiform = true`; issue 30): its
+// cost over build_geometry, and the collars built and left out.
+void build_geometry_ramiform(benchmark::State& state, const char* file) {
+  const arbor::generator::Skeleton skeleton = grow(file);
+  arbor::generator::GeometryOptions options;
+  options.ramiform = true;
+  arbor::generator::GeometryStats stats;
+  for (auto _ : state) {
+    const arbor::generator::TreeGeometry g =
+        arbor::generator::build_tree_geometry(skeleton, options);
+    stats = g.stats;
+    benchmark::DoNotOptimize(g.ramiforms.positions.data());
+  }
+  state.counters["collars"] = static_cast<double>(stats.ramiforms);
+  state.counters["forks_left_out"] = static_cast<double>(stats.ramiforms_skipped);
+  state.counters["geometry_MB"] = static_cast<double>(stats.bytes) / 1e6;
+}
+
 // What `arbor grow --stats` does instead of building: counting the same geometry (issue 31).
 void count_geometry(benchmark::State& state, const char* file) {
   const arbor::generator::Skeleton skeleton = grow(file);
@@ -94,5 +112,11 @@ ARBOR_SPECIES_BENCH(build_geometry);
 ARBOR_SPECIES_BENCH(count_geometry);
 ARBOR_SPECIES_BENCH(build_bvh);
 ARBOR_SPECIES_BENCH(limb_bytes);
+BENCHMARK_CAPTURE(build_geometry_ramiform, quaking_aspen, "quaking_aspen.toml")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(build_geometry_ramiform, ca_black_oak, "ca_black_oak.toml")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 
 BENCHMARK_MAIN();

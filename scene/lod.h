@@ -64,6 +64,11 @@ struct InstanceLod {
   double r2 = 0.0;
   std::array<LodKeep, kLodLevels> keep{};
   float leaf_scale = 1.0f;
+  // Whether item `item` of level `level` is kept; levels past the last (such as TREE-MAKER's
+  // leaf lines, generator::kNoLod) are never thinned.
+  bool keeps(std::uint8_t level, std::uint32_t item) const {
+    return level >= kLodLevels || keep[level].keeps(item);
+  }
   bool thins_stems() const {
     return keep[kLodMainBranches].whole < keep[kLodMainBranches].size ||
            keep[kLodBranches].whole < keep[kLodBranches].size;

@@ -111,7 +111,7 @@ bool kept_as_line(const LeafLine& line) {
 GeometryStats count_tree_geometry(const Skeleton& sk, const GeometryOptions& o) {
   GeometryStats s;
   s.built = false;
-  const std::vector<Limb> limbs = fit_limbs(sk, true);
+  const std::vector<Limb> limbs = fit_limbs(sk);
   s.limbs = limbs.size();
   std::vector<double> ts;
   std::vector<bool> limited;

@@ -207,7 +207,7 @@ DVec3 Limb::normal_at(double t) const {
   return f.back().normal;
 }
 
-std::vector<Limb> fit_limbs(const Skeleton& sk, bool on_parent_axis) {
+std::vector<Limb> fit_limbs(const Skeleton& sk) {
   const Topology topo = branch_topology(sk);
   std::vector<Limb> limbs;
   limbs.reserve(topo.starts.size());
@@ -268,8 +268,9 @@ std::vector<Limb> fit_limbs(const Skeleton& sk, bool on_parent_axis) {
       initial_normal = parent.normal_at(origin_param);
       start_arc = parent.arc_at(origin_param);
       // The skeleton puts the child on the chord between its parent's points; the parent's limb
-      // is the spline through them, up to a few centimetres off a long chord.
-      if (on_parent_axis) points[0] = parent.spline.position(origin_param);
+      // is the spline through them, up to a few centimetres off a long chord: the child starts on
+      // the spline, the axis the renderer draws.
+      points[0] = parent.spline.position(origin_param);
     }
     limb.spline = fit_c2_spline(points, start_derivative, last_chord);
     if (origin) {

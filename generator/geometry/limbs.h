@@ -55,9 +55,9 @@ constexpr double kNearlyEqualRadius = 0.05;
 // Largest radius × curvature over the limb's first spline segment (Embree needs it below 1).
 double start_bend_ratio(const Skeleton& skeleton, const Limb& limb);
 
-// `on_parent_axis`: a child limb starts on its parent's spline (what the renderer draws) rather
-// than at its skeleton point on the chord between the parent's points, which may lie centimetres
-// off the drawn axis (docs/geometry.md, "Limbs"); the geometry always asks for it.
-std::vector<Limb> fit_limbs(const Skeleton& skeleton, bool on_parent_axis = false);
+// A child limb starts on its parent's spline (what the renderer draws), not at its skeleton point
+// on the chord between the parent's points, which may lie centimetres off the drawn axis
+// (docs/geometry.md, "Limbs").
+std::vector<Limb> fit_limbs(const Skeleton& skeleton);
 
 }  // namespace arbor::generator

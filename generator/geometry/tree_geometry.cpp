@@ -434,7 +434,7 @@ glm::vec4 CurveSet::second_derivative(std::size_t i, float u) const {
 
 TreeGeometry build_tree_geometry(const Skeleton& sk, const GeometryOptions& o) {
   TreeGeometry g;
-  const std::vector<Limb> limbs = fit_limbs(sk, true);
+  const std::vector<Limb> limbs = fit_limbs(sk);
   g.stats.limbs = limbs.size();
   for (const Limb& l : limbs) g.stats.tension_raised_limbs += l.tension_raised ? 1u : 0u;
   for (std::size_t i = 0; i < limbs.size(); ++i) {

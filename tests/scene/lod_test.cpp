@@ -40,7 +40,9 @@ TEST(LevelOfDetail, ReproducesTheCountsOfTable2) {
     };
     EXPECT_PRED2(near, drawn(r.range, kLodMainBranches, 240, summer), r.main);
     EXPECT_PRED2(near, drawn(r.range, kLodBranches, 5912, summer), r.other);
-    if (r.leaves >= 0) EXPECT_PRED2(near, drawn(r.range, kLodLeaves, 13312, summer), r.leaves);
+    if (r.leaves >= 0) {
+      EXPECT_PRED2(near, drawn(r.range, kLodLeaves, 13312, summer), r.leaves);
+    }
   }
   // The trunk is always drawn (polygons to 800, lines from 100).
   EXPECT_EQ(drawn(1e6, kLodTrunk, 90, summer), 90u);
@@ -96,8 +98,9 @@ TEST(LevelOfDetail, SurvivalIsMonotoneInRange) {
         std::uint32_t kept = 0;
         for (std::uint32_t i = 0; i < items[l]; ++i) {
           const bool far = farther.keep[l].keeps(i);
-          if (far)
+          if (far) {
             ASSERT_TRUE(nearer.keep[l].keeps(i)) << "level " << l << " item " << i << " r2 " << r2;
+          }
           kept += far ? 1 : 0;
         }
         EXPECT_EQ(kept, lod_kept(farther.keep[l], items[l]));

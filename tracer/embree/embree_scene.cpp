@@ -20,7 +20,7 @@ const scene::InstanceLod* instance_lod(const RTCFilterFunctionNArguments* args,
                                        const PrototypeLod& lod) {
   const unsigned inst = args->context->instID[0];
   if (!lod.instances || inst >= lod.instances->size()) return nullptr;
-  return (*lod.instances)[inst];
+  return &(*lod.instances)[inst];
 }
 
 // The leaf point of a hit at (u, v) on an enlarged card, on the leaf at the instance's own scale:
@@ -43,7 +43,7 @@ void cut_out_leaf(const RTCFilterFunctionNArguments* args) {
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
     const generator::LeafCard& c = cards.cards[RTCHitN_primID(args->hit, args->N, i)];
-    if (lod && !lod->keep[scene::kLodLeaves].keeps(static_cast<std::uint32_t>(c.leaf))) {
+    if (lod && !lod->keeps(scene::kLodLeaves, static_cast<std::uint32_t>(c.leaf))) {
       args->valid[i] = 0;
       continue;
     }
@@ -53,35 +53,32 @@ void cut_out_leaf(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-// Embree's filter for limbs with level of detail: a segment counts only when the instance keeps
-// it (Weber & Penn §5's masses; scene/lod.h).
-void thin_limbs(const RTCFilterFunctionNArguments* args) {
+// Embree's filter for limbs and their ramiforms with level of detail: a hit counts only on an
+// item the instance keeps (Weber & Penn §5's masses; scene/lod.h). `Item` gives primitive i's
+// (lod_level, lod_item) holder: a curve segment, or a ramiform's fork (a collar goes with its
+// child limb's first segment).
+template <typename Item>
+void thin(const RTCFilterFunctionNArguments* args, Item item) {
   const auto* data = static_cast<const TreePrototype::FilterData*>(args->geometryUserPtr);
   const scene::InstanceLod* lod = instance_lod(args, data->lod);
   if (!lod) return;
-  const generator::CurveSet& curves = data->geometry->curves;
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
-    const generator::CurveSegment& s = curves.segments[RTCHitN_primID(args->hit, args->N, i)];
-    if (s.lod_level != generator::kNoLod && !lod->keep[s.lod_level].keeps(s.lod_item))
-      args->valid[i] = 0;
+    const auto& it = item(*data->geometry, RTCHitN_primID(args->hit, args->N, i));
+    if (!lod->keeps(it.lod_level, it.lod_item)) args->valid[i] = 0;
   }
 }
-
-// Embree's filter for ramiforms with level of detail: a fork's collar goes with its child limb's
-// first segment.
+void thin_limbs(const RTCFilterFunctionNArguments* args) {
+  thin(
+      args, [](const generator::TreeGeometry& g, unsigned prim) -> const auto& {
+        return g.curves.segments[prim];
+      });
+}
 void thin_ramiforms(const RTCFilterFunctionNArguments* args) {
-  const auto* data = static_cast<const TreePrototype::FilterData*>(args->geometryUserPtr);
-  const scene::InstanceLod* lod = instance_lod(args, data->lod);
-  if (!lod) return;
-  const generator::RamiformSet& rs = data->geometry->ramiforms;
-  for (unsigned i = 0; i < args->N; ++i) {
-    if (args->valid[i] != -1) continue;
-    const generator::RamiformFork& f =
-        rs.forks[RTCHitN_primID(args->hit, args->N, i) / generator::RamiformSet::kTrianglesPerFork];
-    if (f.lod_level != generator::kNoLod && !lod->keep[f.lod_level].keeps(f.lod_item))
-      args->valid[i] = 0;
-  }
+  thin(
+      args, [](const generator::TreeGeometry& g, unsigned prim) -> const auto& {
+        return g.ramiforms.forks[prim / generator::RamiformSet::kTrianglesPerFork];
+      });
 }
 
 // The cards' corners enlarged by `scale` about each card's centre (LeafCard::centre).

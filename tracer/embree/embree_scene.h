@@ -16,11 +16,12 @@ struct RTCSceneTy;
 namespace arbor::tracer {
 
 // Level of detail (scene/lod.h) for the instances of a prototype: the instances' choices by
-// top-level Embree geometry id (null or past the end: everything, leaves at their own size),
+// top-level Embree geometry id (the tree instances are geometries 0, 1, … of the world's scene;
+// null or past the end: everything, leaves at their own size),
 // whether any instance thins its limbs, and how much the leaf cards are enlarged (the largest
 // leaf scale of any instance; a hit on a card is mapped back to the instance's own scale).
 struct PrototypeLod {
-  const std::vector<const scene::InstanceLod*>* instances = nullptr;
+  const std::vector<scene::InstanceLod>* instances = nullptr;
   bool thin_limbs = false;
   float card_scale = 1.0f;
 };

@@ -61,9 +61,9 @@ long cover(RTCScene scene, const glm::vec3& lo, const glm::vec3& hi) {
 
 double calibrate_leaf_area(const EmbreeDevice& device, RTCSceneTy* prototype,
                            const generator::TreeGeometry& geometry,
-                           std::vector<const scene::InstanceLod*>& table) {
+                           std::vector<scene::InstanceLod>& instances) {
   const std::uint32_t leaves = geometry.lod_items[scene::kLodLeaves];
-  if (table.empty() || leaves < 4) return 1.0;
+  if (instances.empty() || leaves < 4) return 1.0;
   // One instance of the prototype as geometry 0 of a scene of its own.
   SceneHandle top = new_scene(device);
   RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
@@ -73,10 +73,10 @@ double calibrate_leaf_area(const EmbreeDevice& device, RTCSceneTy* prototype,
   attach(top.get(), g);
   rtcCommitScene(top.get());
   device.check("building the level-of-detail calibration");
-  const scene::InstanceLod* borrowed = table[0];
-  scene::InstanceLod trial;
+  const scene::InstanceLod borrowed = instances[0];
+  scene::InstanceLod& trial = instances[0];
+  trial = scene::InstanceLod{};
   trial.active = true;
-  table[0] = &trial;
   const long full = cover(top.get(), geometry.bounds_min, geometry.bounds_max);
   // Far away: one leaf in four, and of the limbs only the trunk (lod_numbers beyond r2 = 2000s).
   trial.keep[scene::kLodLeaves] =
@@ -95,7 +95,7 @@ double calibrate_leaf_area(const EmbreeDevice& device, RTCSceneTy* prototype,
       (cover(top.get(), geometry.bounds_min, geometry.bounds_max) > full ? hi : lo) = mid;
     }
   }
-  table[0] = borrowed;
+  instances[0] = borrowed;
   const double scale = 0.5 * (lo + hi);
   return scale * scale * kept / leaves;
 }

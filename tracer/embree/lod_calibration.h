@@ -23,11 +23,11 @@ namespace arbor::tracer {
 // elevations, three azimuths, a 48 × 48 grid each over the crown's bounds) stop as many as at
 // full detail, found by bisection on the leaf scale in [1, kLodMaxLeafScale]. `prototype` is the
 // prototype's Embree scene, built with cards enlarged by kLodMaxLeafScale and leaf thinning; its
-// filters read the instance with top-level id 0 from `table`, whose first entry is borrowed for
-// the calibration and restored. Deterministic.
+// filters read the instance with top-level id 0 from `instances`, whose first entry is borrowed
+// for the calibration and restored. Deterministic.
 double calibrate_leaf_area(const EmbreeDevice& device, RTCSceneTy* prototype,
                            const generator::TreeGeometry& geometry,
-                           std::vector<const scene::InstanceLod*>& table);
+                           std::vector<scene::InstanceLod>& instances);
 
 // The leaf scale of a tree that keeps `kept` of its `total` leaves, for a prototype whose
 // calibrated α is `alpha` (α interpolated linearly in the kept fraction from 1 with every leaf

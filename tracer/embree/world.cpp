@@ -30,21 +30,19 @@ World::World(const scene::Scene& scene, const EmbreeDevice& device)
     : scene_(scene), device_(device) {
   const auto start = std::chrono::steady_clock::now();
   top_ = new_scene(device);
-  // Level of detail (scene/lod.h): what each prototype's filters need from its instances, and
-  // the instances' choices by Embree id. The instances are attached first, in order, so their
-  // Embree ids are 0, 1, … (checked below).
+  // Level of detail (scene/lod.h): what each prototype's filters need from its instances. The
+  // instances are attached first, in order, so their Embree ids are their indices in lod_
+  // (checked below).
   std::vector<PrototypeLod> lods(scene.prototypes.size());
-  lod_.reserve(scene.instances.size());
   for (const scene::TreeInstance& inst : scene.instances) {
     PrototypeLod& l = lods[static_cast<std::size_t>(inst.prototype)];
-    if (inst.lod.active) l.instances = &lod_of_geometry_;
+    if (inst.lod.active) l.instances = &lod_;
     l.thin_limbs = l.thin_limbs || inst.lod.thins_stems();
     if (inst.lod.leaf_scale > 1.0f) {  // calibrated with the limbs thinned (lod_calibration.h)
       l.card_scale = scene::kLodMaxLeafScale;
       l.thin_limbs = true;
     }
     lod_.push_back(inst.lod);
-    lod_of_geometry_.push_back(&lod_.back());
   }
   for (std::size_t p = 0; p < scene.prototypes.size(); ++p) {
     prototypes_.push_back(
@@ -98,7 +96,7 @@ void World::calibrate_leaves(const std::vector<PrototypeLod>& lods) {
   for (std::size_t p = 0; p < lods.size(); ++p) {
     if (lods[p].card_scale == 1.0f) continue;
     const generator::TreeGeometry& g = *scene_.prototypes[p].geometry;
-    const double alpha = calibrate_leaf_area(device_, prototypes_[p]->scene(), g, lod_of_geometry_);
+    const double alpha = calibrate_leaf_area(device_, prototypes_[p]->scene(), g, lod_);
     const std::uint32_t leaves = g.lod_items[scene::kLodLeaves];
     for (std::size_t i = 0; i < lod_.size(); ++i) {
       if (scene_.instances[i].prototype != static_cast<int>(p)) continue;

@@ -68,9 +68,8 @@ class World {
   std::vector<int> grass_of_geometry_;  // Embree geometry id in the top scene → meadow placement
   std::vector<int> instance_of_geometry_;  // Embree geometry id in the top scene → instance
   // The tree instances' level of detail (scene/lod.h), their leaf scales calibrated by the
-  // crowns' cover (lod_calibration.h); and by Embree geometry id in the top scene.
+  // crowns' cover (lod_calibration.h); instance i is geometry i of the top scene.
   std::vector<scene::InstanceLod> lod_;
-  std::vector<const scene::InstanceLod*> lod_of_geometry_;
   std::vector<int> mesh_of_geometry_;  // Embree geometry id in the top scene → mesh
   double build_seconds_ = 0.0;
   RayLog* log_ = nullptr;
