@@ -13,7 +13,6 @@
 #include "tracer/camera.h"
 #include "tracer/embree/world.h"
 #include "tracer/integrators/path.h"
-#include "tracer/integrators/treemaker.h"
 #include "tracer/lights/sky.h"
 #include "tracer/sampler.h"
 
@@ -33,11 +32,9 @@ double metered_exposure(const scene::RenderInput& input, const World& world, con
       std::max(1, static_cast<int>(std::lround(static_cast<double>(w) * input.render.height /
                                                input.render.width)));
   const Camera camera(input.camera, w, h);
-  const bool treemaker = input.render.integrator == formats::Integrator::Treemaker;
-  const PathIntegrator path(world, sky, input.render.max_depth, input.render.regularize);
-  const TreemakerIntegrator tm(world, sky);
-  const bool transparent = input.output.transparent_sky;
-  // Each pixel's mean luminance (negative: sky only, under a transparent sky), rows in parallel.
+  // The scene's light, not one output's: the path tracer (whatever the render's integrator),
+  // without regularisation, every pixel counted (a transparent sky is the same exposure).
+  const PathIntegrator path(world, sky, input.render.max_depth, false);
   std::vector<double> y(static_cast<std::size_t>(w) * h, 0.0);
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j < rows.end(); ++j) {
@@ -49,8 +46,7 @@ double metered_exposure(const scene::RenderInput& input, const World& world, con
         for (std::uint32_t s = 0; s < kPreviewSpp; ++s) {
           const glm::vec2 u = sampler.get2d(s, 0);
           const Ray ray = camera.generate({i + u.x, j + u.y}, sampler.get2d(s, 1));
-          const PathSample p = treemaker ? tm.trace(ray).shade : path.trace(ray, sampler, s);
-          if (transparent && !p.hit) continue;
+          const PathSample p = path.trace(ray, sampler, s);
           const double l = luminance<double>(p.radiance.x, p.radiance.y, p.radiance.z);
           if (!std::isfinite(l)) continue;
           sum += l;

@@ -32,7 +32,7 @@ void write_render(const FilmHeader& h, const Film& film, const RenderWrite& what
   const imaging::Image img = film_image(h, film);
   if (!what.exr.empty()) {
     const std::string state = state_path(what.exr);
-    if (!film_complete(h, film)) {
+    if (what.keep_state || !film_complete(h, film)) {
       write_film_state(state, h, film);
     } else {
       // The finished render's state goes, and with it any temporary of it a killed writer left.

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "app/commands/metering.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/progress.h"
@@ -78,10 +79,13 @@ int export_command(const ExportRequest& a) {
   if (input.camera.auto_exposure) {
     // pbrt has no meter: the exposure arbor's render meters, written as a fixed scale.
     const EmbreeDevice device("");
-    const World world(*built, device);
     const Sky sky(input.sky, input.sun, color.xyz_to_scene_linear());
-    input = with_exposure(input, world, sky);
-    std::fprintf(stderr, "arbor: metered exposure %+.2f stops\n", input.camera.exposure);
+    const double frame_zero =
+        meters_frame_zero(scene, input)
+            ? frame_zero_exposure(scene, input, sky, {&device, color.config_path()})
+            : 0.0;
+    const World world(*built, device);
+    input = with_scene_exposure(scene, input, world, sky, frame_zero);
   }
   const PbrtExport result = write_pbrt_scene(*built, input, color, a.out, a.sky_resolution);
   for (const std::string& c : result.clamped) {

@@ -71,6 +71,30 @@ std::vector<FilmPart> read_parts(const std::vector<std::string>& paths) {
   return parts;
 }
 
+// InputError unless the merged film is the whole render: a forgotten tile or pass group is named
+// before anything is written.
+void check_whole(const FilmFile& merged, std::size_t count) {
+  const FilmHeader& h = merged.header;
+  const Film& film = *merged.film;
+  if (film_complete(h, film)) return;
+  const Window& box = film.window();
+  std::string lacks;
+  if (!(box == Window{0, 0, h.full_width, h.full_height})) {
+    lacks = "the window " + std::to_string(box.x0) + "," + std::to_string(box.y0) + "," +
+            std::to_string(box.x1) + "," + std::to_string(box.y1) + " of the " +
+            std::to_string(h.full_width) + "x" + std::to_string(h.full_height) + " image";
+  }
+  if (film.pass_begin() != 0 || film.next_pass() != h.plan.passes()) {
+    lacks += (lacks.empty() ? "" : ", and ") + passes_text(film.pass_begin(), film.next_pass()) +
+             " of the render's " + passes_text(0, h.plan.passes());
+  }
+  throw InputError({}, (count == 1 ? std::string("the part covers only ")
+                                   : "the " + std::to_string(count) + " parts cover only ") +
+                           lacks +
+                           "; give the parts that are missing, or --partial to write what "
+                           "they cover (with its film state, to merge the rest into later)");
+}
+
 }  // namespace
 
 CLI::App* add_merge_command(CLI::App& app, MergeRequest& merge) {
@@ -83,6 +107,10 @@ CLI::App* add_merge_command(CLI::App& app, MergeRequest& merge) {
       ->required();
   cmd->add_option("-o,--output", merge.exr, "the merged EXR")->required();
   cmd->add_option("--png", merge.png, "also write a PNG of it through the display view");
+  cmd->add_flag(
+      "--partial", merge.partial,
+      "write the merge even when the parts do not make the whole image and every pass "
+      "(else refused, exit 2); it keeps its film state, so it merges with the rest later");
   return cmd;
 }
 
@@ -94,11 +122,12 @@ int merge_command(const MergeRequest& req) {
   std::vector<FilmPart> parts = read_parts(req.parts);
   const std::size_t count = parts.size();
   const FilmFile merged = merge_film_parts(std::move(parts));
+  if (!req.partial) check_whole(merged, count);
   const imaging::ColorPipeline color(req.ocio_config);
   write_render(merged.header, *merged.film, {req.exr, req.png, &color, StopReason::None});
   const Window& box = merged.film->window();
-  std::fprintf(stderr, "arbor: merged %zu parts: %dx%d at (%d, %d), %s of %d%s\n", count,
-               box.width(), box.height(), box.x0, box.y0,
+  std::fprintf(stderr, "arbor: merged %zu part%s: %dx%d at (%d, %d), %s of %d%s\n", count,
+               count == 1 ? "" : "s", box.width(), box.height(), box.x0, box.y0,
                passes_text(merged.film->pass_begin(), merged.film->next_pass()).c_str(),
                merged.header.plan.passes(),
                film_complete(merged.header, *merged.film) ? " (the whole render)" : "");

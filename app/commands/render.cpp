@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <unistd.h>
 
+#include "app/commands/metering.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/executable.h"
@@ -316,25 +317,28 @@ RunResult build_and_render(const formats::SceneDesc& scene, const scene::RenderI
   const std::uint64_t unit_passes =
       run.pass_begin > 0 ? static_cast<std::uint64_t>(run.pass_end - run.pass_begin) : 0;
   const EmbreeDevice device(r.threads > 0 ? "threads=" + std::to_string(r.threads) : "");
-  Progress build_progress("build", 1);
-  const std::unique_ptr<const scene::Scene> built =
-      scene::build_scene(scene, color.config_path(), &build_progress,
+  const Sky sky(input.sky, input.sun, color.xyz_to_scene_linear());
+  const MeterBuild meter{&device, color.config_path(),
                          scene::geometry_budget(scene, Film::costs(), a.force,
                                                 scene::usable_memory_bytes(), unit_passes),
-                         static_cast<unsigned>(std::max(0, r.threads)));
+                         static_cast<unsigned>(std::max(0, r.threads))};
+  // A later frame meters frame 0 first (its world gone before this frame's is built).
+  const double frame_zero =
+      meters_frame_zero(scene, input) ? frame_zero_exposure(scene, input, sky, meter) : 0.0;
+  Progress build_progress("build", 1);
+  const std::unique_ptr<const scene::Scene> built = scene::build_scene(
+      scene, color.config_path(), &build_progress, meter.geometry_budget, meter.threads);
   const World world(*built, device);
   build_progress.finish();
   if (treemaker) header.treemaker_weights = treemaker_weights_text(*built);
   header.object_names = built->object_names;
   header.material_names = built->material_names;
-  const Sky sky(input.sky, input.sun, color.xyz_to_scene_linear());
-  // [camera] exposure = "auto": metered from a preview, the same for every unit and resume.
-  const scene::RenderInput metered = with_exposure(input, world, sky);
+  // [camera] exposure = "auto": metered once per scene, the same for every unit, resume, frame,
+  // integrator and --transparent (tracer/exposure.h).
+  const scene::RenderInput metered = with_scene_exposure(scene, input, world, sky, frame_zero);
   // Every digit: `exposure = <it>` renders the same pixels.
   header.exposure =
       number_text(metered.camera.exposure) + (input.camera.auto_exposure ? " (metered)" : "");
-  if (input.camera.auto_exposure)
-    std::fprintf(stderr, "arbor: metered exposure %+.2f stops\n", metered.camera.exposure);
 
   RunResult result;
   result.instances = built->stats.instances;
@@ -344,7 +348,8 @@ RunResult build_and_render(const formats::SceneDesc& scene, const scene::RenderI
   result.distinct_blades = built->meadow.distinct_blades();
   result.tiles = built->meadow.tiles.size();
   result.meadow_bytes = built->meadow.bytes();
-  RenderWrite write{scene.output.exr, scene.output.png, &color, StopReason::None};
+  RenderWrite write{scene.output.exr, scene.output.png, &color, StopReason::None,
+                    !a.passes.empty() || !a.crop.empty()};
   RenderJob job;
   job.plan = plan;
   job.pass_end = run.pass_end;
@@ -472,6 +477,12 @@ CLI::App* add_render_command(CLI::App& app, RenderRequest& render) {
          "X0,Y0,X1,Y1: render only that window (pixels, end exclusive), each pixel as in the "
          "whole image (needs -o)")
       ->check(non_empty());
+  cmd->footer(
+      "Exposure: [camera] exposure = \"auto\" is metered once per scene (the path tracer's view of "
+      "the scene at its animation's frame 0, the sky included), so --transparent, --integrator "
+      "treemaker, --regularize, every --frame, every --passes/--crop unit and --resume render at "
+      "the same exposure; the EXR's arbor:exposure records it (give that number as exposure to "
+      "fix it).");
   return cmd;
 }
 

@@ -248,8 +248,16 @@ TEST(LongRender, PassRangesAndCropsMergeToTheSingleRender) {
   EXPECT_TRUE(same_pixels(read_exr(dir + "/passes.exr"), reference));
   EXPECT_FALSE(exists(dir + "/passes.exr.state"));
   EXPECT_TRUE(exists(dir + "/passes.png"));
-  // Two later ranges merge into a part that still merges with the first.
-  ASSERT_EQ(run_arbor("merge -o " + dir + "/p12.exr " + p1 + " " + p2).code, 0);
+  // Two later ranges are not the whole render: refused, unless asked for a part (--partial)
+  // that still merges with the first.
+  const CliRun later = run_arbor("merge -o " + dir + "/p12.exr " + p1 + " " + p2);
+  EXPECT_EQ(later.code, 2) << later.err;
+  EXPECT_NE(later.err.find("the 2 parts cover only passes 5 to 15 of the render's passes 0 to 15; "
+                           "give the parts that are missing, or --partial"),
+            std::string::npos)
+      << later.err;
+  EXPECT_FALSE(exists(dir + "/p12.exr"));
+  ASSERT_EQ(run_arbor("merge --partial -o " + dir + "/p12.exr " + p1 + " " + p2).code, 0);
   EXPECT_TRUE(exists(dir + "/p12.exr.state"));
   ASSERT_EQ(run_arbor("merge -o " + dir + "/again.exr " + dir + "/p12.exr " + p0).code, 0);
   EXPECT_TRUE(same_pixels(read_exr(dir + "/again.exr"), reference));
@@ -265,6 +273,14 @@ TEST(LongRender, PassRangesAndCropsMergeToTheSingleRender) {
   ASSERT_EQ(
       run_arbor("merge -o " + dir + "/crops.exr " + right_b + " " + left + " " + right_a).code, 0);
   EXPECT_TRUE(same_pixels(read_exr(dir + "/crops.exr"), reference));
+  // A forgotten tile: refused with what the parts cover, nothing written.
+  const CliRun forgotten = run_arbor("merge -o " + dir + "/half.exr " + left);
+  EXPECT_EQ(forgotten.code, 2) << forgotten.err;
+  EXPECT_NE(forgotten.err.find("the part covers only the window 0,0,13,24 of the 32x24 image;"),
+            std::string::npos)
+      << forgotten.err;
+  EXPECT_FALSE(exists(dir + "/half.exr"));
+  EXPECT_FALSE(exists(dir + "/half.exr.state"));
 
   // Refused: an overlap, a gap, a part of another render.
   const CliRun overlap =

@@ -293,3 +293,37 @@ TEST(Outputs, AnEnvironmentMapThatIsNotAnImageIsNamedAsOne) {
       << r.err;
   EXPECT_FALSE(std::ifstream(dir + "bad_env.exr").good());
 }
+
+// `exposure = "auto"` is metered once per scene (issue 48): the compositing plate
+// (--transparent), TREE-MAKER's render and every frame of an animation take the beauty pass's
+// exposure, as the EXR's arbor:exposure records it; another light meters another.
+TEST(Outputs, AutoExposureIsTheSceneNotTheOutputOrTheFrame) {
+  const std::string dir = ::testing::TempDir() + "exposure_once/";
+  std::system(("rm -rf " + dir + " && mkdir -p " + dir).c_str());
+  // An aspen in the wind: the frames sway it.
+  const std::string scene =
+      write_temp("exposure_once.toml",
+                 "[render]\nwidth = 40\nheight = 30\nspp = 4\npass_spp = 4\n"
+                 "[camera]\nposition = [0.0, -10.0, 2.0]\nlook_at = [0.0, 0.0, 4.0]\nfov = 50.0\n"
+                 "exposure = \"auto\"\n"
+                 "[[tree]]\nspecies = \"" +
+                     species("quaking_aspen.toml") +
+                     "\"\n[ground]\nenabled = true\n[animation]\nframes = 24\nfps = 4\n");
+  const auto exposure_of = [&](const std::string& name, const std::string& options) {
+    const CliRun r = run_arbor("render " + scene + " " + options + " -o " + dir + name);
+    EXPECT_EQ(r.code, 0) << r.err;
+    return read_exr(dir + name).spec.get_string_attribute("arbor:exposure");
+  };
+  const std::string beauty = exposure_of("beauty.exr", "");
+  ASSERT_NE(beauty.find("(metered)"), std::string::npos) << beauty;
+  EXPECT_EQ(exposure_of("plate.exr", "--transparent"), beauty);
+  EXPECT_EQ(exposure_of("approximate.exr", "--integrator treemaker"), beauty);
+  EXPECT_EQ(exposure_of("regularized.exr", "--regularize"), beauty);
+  EXPECT_EQ(exposure_of("f0.exr", "--frame 0"), beauty);
+  EXPECT_EQ(exposure_of("f7.exr", "--frame 7"), beauty);
+  EXPECT_EQ(exposure_of("f23.exr", "--frame 23 --transparent"), beauty);
+  // The frames differ (the aspen sways), their exposure does not.
+  EXPECT_NE(read_exr(dir + "f7.exr").px, read_exr(dir + "f0.exr").px);
+  // The meter still follows the scene: at another time the aspen is another tree.
+  EXPECT_NE(exposure_of("young.exr", "--time 0.3"), beauty);
+}

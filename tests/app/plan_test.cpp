@@ -53,15 +53,16 @@ int run_line(const std::string& line) {
 
 }  // namespace
 
-TEST(Plan, UnitsInAnyOrderMergeIntoTheSingleRenderBitForBit) {
-  const std::string dir = ::testing::TempDir() + "plan_still/";
+// Runs the plan of `split` (plan's options; empty: its defaults, one unit) in a shuffled order
+// from another folder, then its merge; the merged pixels must be the single render's.
+void expect_plan_merges_bit_exact(const std::string& scene, const std::string& split,
+                                  std::size_t units, const std::string& dir) {
+  SCOPED_TRACE("plan " + (split.empty() ? std::string("(defaults)") : split));
   std::system(("rm -rf " + dir).c_str());
-  const std::string scene = plan_scene("plan_still.toml");
-  const CliRun plan =
-      run_arbor("plan " + scene + " --tiles 2x2 --pass-groups 2 --seed 5 -o " + dir + "out.exr");
+  const CliRun plan = run_arbor("plan " + scene + " " + split + " --seed 5 -o " + dir + "out.exr");
   ASSERT_EQ(plan.code, 0) << plan.err;
   std::vector<std::string> commands = lines(plan.out);
-  ASSERT_EQ(commands.size(), 9u);  // 2 × 2 tiles × 2 pass groups, then the merge
+  ASSERT_EQ(commands.size(), units + 1);  // the units, then the merge
   const std::string merge = commands.back();
   commands.pop_back();
   for (const std::string& c : commands) {
@@ -70,7 +71,6 @@ TEST(Plan, UnitsInAnyOrderMergeIntoTheSingleRenderBitForBit) {
   }
   EXPECT_EQ(merge.rfind(std::string(ARBOR_BINARY) + " merge -o " + dir + "out.exr ", 0), 0u)
       << merge;
-  // Any order: shuffled, from another working directory.
   std::mt19937 rng(7);
   std::shuffle(commands.begin(), commands.end(), rng);
   for (const std::string& c : commands) ASSERT_EQ(run_line("cd / && " + c), 0) << c;
@@ -82,14 +82,33 @@ TEST(Plan, UnitsInAnyOrderMergeIntoTheSingleRenderBitForBit) {
   ASSERT_EQ(merged.size(), 40u * 30u * static_cast<unsigned>(channels));
   ASSERT_EQ(merged.size(), single.size());
   EXPECT_EQ(std::memcmp(merged.data(), single.data(), merged.size() * sizeof(float)), 0);
+  // The merge is the whole render: nothing left to resume or merge.
+  EXPECT_NE(std::system(("test -e " + dir + "out.exr.state").c_str()), 0);
+}
+
+// Every shape of split, none included: a plan of one unit (the defaults, as docs/farm.md
+// recommends for animations) is a finished render that must still merge.
+TEST(Plan, UnitsInAnyOrderMergeIntoTheSingleRenderBitForBit) {
+  const std::string dir = ::testing::TempDir() + "plan_still/";
+  const std::string scene = plan_scene("plan_still.toml");
+  expect_plan_merges_bit_exact(scene, "", 1, dir + "none/");
+  expect_plan_merges_bit_exact(scene, "--tiles 1x1 --pass-groups 1", 1, dir + "one/");
+  expect_plan_merges_bit_exact(scene, "--tiles 2x1", 2, dir + "tiles/");
+  expect_plan_merges_bit_exact(scene, "--pass-groups 3", 3, dir + "passes/");
+  expect_plan_merges_bit_exact(scene, "--tiles 2x2 --pass-groups 2", 8, dir + "both/");
 
   // The same plan as JSON: every unit with its tile, window, passes, output and argv.
   const CliRun json = run_arbor("plan " + scene + " --tiles 2x2 --pass-groups 2 --seed 5 -o " +
-                                dir + "out.exr --json");
+                                dir + "both/out.exr --json");
   ASSERT_EQ(json.code, 0) << json.err;
   EXPECT_NE(json.out.find("\"units\": ["), std::string::npos);
   EXPECT_NE(json.out.find("\"crop\": [20, 15, 40, 30], \"passes\": [2, 4]"), std::string::npos)
       << json.out;
+  const std::string merge =
+      lines(run_arbor("plan " + scene + " --tiles 2x2 --pass-groups 2 --seed 5 -o " + dir +
+                      "both/out.exr")
+                .out)
+          .back();
   EXPECT_NE(json.out.find("\"shell\": " + std::string("\"") + merge + "\""), std::string::npos);
 }
 

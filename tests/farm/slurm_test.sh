@@ -136,3 +136,18 @@ grep -q "merged 8 parts" "$job/out/farm.slurm/merge.log" || fail "the merge log 
 idiff -q -fail 0 -failpercent 0 -warn 0 "$job/out/farm.exr" "$job/out/local.exr" ||
   fail "the farm's EXR differs from a local render"
 echo "farm test: 8 units through Slurm (jobs $units_job, $merge_job), merged EXR equals the local render"
+
+# The plan's defaults (--tiles 1x1 --pass-groups 1, docs/farm.md's advice for animations): one
+# unit that is the whole render, which must keep its film state for the merge job.
+submitted=$("$source_dir/tools/farm/arbor-slurm" "$job/scene.toml" --arbor "$arbor" \
+  --seed 3 --cpus 1 --mem 500M --unit-time 10 -o "$job/out/one.exr") || fail "arbor-slurm (one unit) failed"
+echo "$submitted"
+units_job=$(printf '%s\n' "$submitted" | awk '/^units:/ {print $2}')
+merge_job=$(printf '%s\n' "$submitted" | awk '/^merge:/ {print $2}')
+[ "$(wc -l < "$job/out/one.slurm/units.txt")" -eq 1 ] || fail "expected 1 unit"
+wait_for 300 bash -c "! squeue -h -j $units_job,$merge_job 2>/dev/null | grep -q ." || fail "the one-unit jobs did not finish in 300 s"
+[ -f "$job/out/one.exr" ] || fail "the one-unit plan's merge job wrote no EXR"
+grep -q "merged 1 part: .*(the whole render)" "$job/out/one.slurm/merge.log" || fail "the one-unit merge log does not report the whole render"
+idiff -q -fail 0 -failpercent 0 -warn 0 "$job/out/one.exr" "$job/out/local.exr" ||
+  fail "the one-unit farm EXR differs from a local render"
+echo "farm test: 1 unit through Slurm (jobs $units_job, $merge_job), merged EXR equals the local render"

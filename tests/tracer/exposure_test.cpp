@@ -73,6 +73,26 @@ TEST(AutoExposure, FollowsTheLightAndNothingElse) {
   EXPECT_EQ(one_thread, base);
 }
 
+// The meter reads the scene, not the output: a transparent sky (the compositing plate), the
+// treemaker integrator and regularisation meter the beauty pass's exposure, bit for bit.
+TEST(AutoExposure, MetersTheSceneNotTheOutputVariant) {
+  const formats::SceneDesc s = lit_ground();
+  const double beauty = meter(s);
+  formats::SceneDesc plate = s;
+  plate.output.transparent_sky = true;
+  EXPECT_EQ(meter(plate), beauty);
+  formats::SceneDesc approximate = s;
+  approximate.render.integrator = formats::Integrator::Treemaker;
+  EXPECT_EQ(meter(approximate), beauty);
+  formats::SceneDesc regularized = s;
+  regularized.render.regularize = true;
+  EXPECT_EQ(meter(regularized), beauty);
+  // The light still counts: a dimmer sun meters brighter.
+  formats::SceneDesc dim = s;
+  dim.sun.irradiance *= 0.5;
+  EXPECT_GT(meter(dim), beauty + 0.2);
+}
+
 // A render asked for "auto" is, pixel for pixel, the render at the metered exposure given as
 // stops.
 TEST(AutoExposure, TheRenderUsesTheMeteredExposure) {
