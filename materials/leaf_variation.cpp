@@ -31,8 +31,10 @@ glm::vec3 LeafSeason::tint(std::uint64_t key) const {
   if (turned > 0.0f) {
     Rng rng(derive_key(key, 0x5ea5011u));  // a stream apart from the variation's
     if (rng.uniform() < turned) {
-      const auto m = static_cast<float>(0.5 + 0.5 * rng.uniform());
-      t *= glm::vec3(1.0f) + m * (autumn - glm::vec3(1.0f));
+      // Pigments absorb, so a leaf part-way between its summer and autumn pigments has the
+      // geometric mean of their reflectances (Beer–Lambert: absorbances add): autumn^m.
+      const double m = kLeastTurn + (1.0 - kLeastTurn) * rng.uniform();
+      for (int c = 0; c < 3; ++c) t[c] *= static_cast<float>(std::pow(double(autumn[c]), m));
     }
   }
   return t;

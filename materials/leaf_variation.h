@@ -34,9 +34,13 @@ struct LeafVariation {
 
 // The season's tint of a leaf (docs/species-format.md, "Seasons"): in spring every leaf is
 // multiplied by `spring`; in autumn a leaf turns with probability `turned`, by its key, and then
-// has mix(1, autumn, m) with m uniform in [0.5, 1] — part-way or fully to the species' autumn
-// colour (autumn = that colour ÷ the summer front reflectance, per channel).
+// has autumn^m with m uniform in [kLeastTurn, 1] — part-way (the geometric mean: pigments absorb)
+// or fully to the species' autumn colour (autumn = that colour ÷ the summer front reflectance,
+// per channel).
 struct LeafSeason {
+  // The least a turned leaf turns: at its peak a tree in autumn colour is mostly turned leaves
+  // (0.5 made a scarlet tupelo rust-brown: docs/species-format.md, "Seasons").
+  static constexpr double kLeastTurn = 0.75;
   glm::vec3 spring{1.0f};
   glm::vec3 autumn{1.0f};
   float turned = 0.0f;

@@ -109,8 +109,8 @@ TEST(LeafVariation, AVariedLeafNeverCreatesEnergyAndShowsInTheAlbedo) {
 }
 
 // Seasons (LeafSeason): in autumn the documented share of leaves turns, each part-way or fully
-// (mix(1, autumn, m), m in [0.5, 1]); the others keep their colour; spring tints every leaf alike;
-// and a turned leaf never scatters more than it receives.
+// (autumn^m, m in [kLeastTurn, 1]: pigments' absorbances add); the others keep their colour;
+// spring tints every leaf alike; and a turned leaf never scatters more than it receives.
 TEST(LeafSeason, AutumnTurnsTheDocumentedShareOfLeavesPartWayOrFully) {
   LeafSeason s;
   s.turned = 0.85f;
@@ -122,16 +122,16 @@ TEST(LeafSeason, AutumnTurnsTheDocumentedShareOfLeavesPartWayOrFully) {
     const glm::vec3 t = s.tint(derive_key(17, static_cast<std::uint64_t>(i)));
     if (t == glm::vec3(1.0f)) continue;
     ++turned;
-    const float m = (t.x - 1.0f) / 5.0f;  // from the red channel
-    ASSERT_GE(m, 0.5f - 1e-5f);
-    ASSERT_LE(m, 1.0f + 1e-5f);
-    EXPECT_NEAR(t.y, 1.0f + m * 1.5f, 1e-4f);
-    EXPECT_NEAR(t.z, 1.0f - m * 0.3f, 1e-4f);
+    const double m = std::log(t.x) / std::log(6.0);  // from the red channel
+    ASSERT_GE(m, LeafSeason::kLeastTurn - 1e-5);
+    ASSERT_LE(m, 1.0 + 1e-5);
+    EXPECT_NEAR(t.y, std::pow(2.5, m), 1e-4);
+    EXPECT_NEAR(t.z, std::pow(0.7, m), 1e-4);
     mean_m += m;
   }
   // Binomial: σ of the share is 0.0025 at n = 20,000.
   EXPECT_NEAR(turned / double(n), 0.85, 0.01);
-  EXPECT_NEAR(mean_m / turned, 0.75, 0.01);
+  EXPECT_NEAR(mean_m / turned, 0.5 * (1.0 + LeafSeason::kLeastTurn), 0.01);
   LeafSeason spring;
   spring.spring = {1.4f, 1.1f, 1.0f};
   EXPECT_EQ(spring.tint(1), spring.spring);
