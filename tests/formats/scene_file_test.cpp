@@ -1,5 +1,6 @@
 // Tests of the scene file loader: every key of the contract is read, paths resolve against the
 // scene's folder, and every class of bad input is an InputError with file, line and column.
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -328,6 +329,41 @@ TEST(SceneFile, GroundDetailKeysAreReadAndCheckedAtTheKey) {
       EXPECT_NE(std::string(e.what()).find("s.toml:2:"), std::string::npos) << e.what();
     }
   }
+}
+
+}  // namespace arbor::formats
+
+namespace arbor::formats {
+
+// scenes/default_treemaker.toml is the default scene rendered by TREE-MAKER's shading (the
+// README's worked example of --fit-treemaker): every table but [render] and [output] is
+// default.toml's, line for line, and both read to the same camera, light and trees.
+TEST(Scenes, TheTreemakerSceneIsTheDefaultScene) {
+  const std::string folder = std::string(ARBOR_SOURCE_DIR) + "/scenes/";
+  // The text from the [camera] header to the [output] header.
+  const auto middle = [](const std::string& path) {
+    std::ifstream in(path);
+    std::string text, line;
+    bool inside = false;
+    while (std::getline(in, line)) {
+      if (line.rfind("[camera]", 0) == 0) inside = true;
+      if (line.rfind("[output]", 0) == 0) inside = false;
+      if (inside) text += line + "\n";
+    }
+    return text;
+  };
+  const std::string exact = middle(folder + "default.toml");
+  ASSERT_NE(exact.find("[meadow]"), std::string::npos);
+  EXPECT_EQ(middle(folder + "default_treemaker.toml"), exact);
+  const SceneDesc a = load_scene(folder + "default.toml"),
+                  b = load_scene(folder + "default_treemaker.toml");
+  EXPECT_EQ(b.render.integrator, Integrator::Treemaker);
+  EXPECT_EQ(a.render.width, b.render.width);
+  EXPECT_EQ(a.render.height, b.render.height);
+  EXPECT_EQ(a.sun.elevation, b.sun.elevation);
+  EXPECT_EQ(a.sun.azimuth, b.sun.azimuth);
+  EXPECT_EQ(a.meadow.density, b.meadow.density);
+  EXPECT_EQ(a.trees.size(), b.trees.size());
 }
 
 }  // namespace arbor::formats
