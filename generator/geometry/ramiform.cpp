@@ -238,6 +238,7 @@ class ChildSurface {
 constexpr std::uint32_t kSides = kRamiformSides, kRows = kRamiformRows;
 constexpr double kSeamDepth = 0.03;       // × the child's radius (add_collar)
 constexpr double kMinChildRadius = 0.01;  // metres: thinner children leave no crease to see
+constexpr double kCos30 = 0.866;          // sound: a quad within 30° of its corners' normals
 
 // Where the child's surface along azimuth φ leaves the parent's: τ, or none.
 std::optional<double> exit_of(const ParentSurface& parent, const ChildSurface& child, double phi) {
@@ -427,12 +428,13 @@ bool sound(const RamiformSet& s, std::size_t first, const ParentSurface& parent,
       const glm::dvec3 around(s.positions[v + 1] - s.positions[v]);
       const glm::dvec3 along(s.positions[v + w] - s.positions[v]);
       const glm::dvec3 face = glm::cross(around, along);
-      // A quad must have area, and face the way its corners' normals do (within 60°).
+      // A quad must have area, and face the way its corners' normals do (within 30°: the
+      // normals shade it, and a shading normal further off the face shows as a crease).
       const double area = glm::length(face);
       if (area < 1e-6 * r * r) return false;
       bool agrees = true;
       for (const std::size_t corner : {v, v + 1, v + w, v + w + 1})
-        agrees = agrees && glm::dot(face / area, glm::dvec3(s.normals[corner])) > 0.5;
+        agrees = agrees && glm::dot(face / area, glm::dvec3(s.normals[corner])) > kCos30;
       if (!agrees) return false;
     }
   }

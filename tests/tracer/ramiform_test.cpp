@@ -71,10 +71,10 @@ TEST_P(Ramiform, CollarsForksAndLeavesTheLimbsAsTheyWere) {
   EXPECT_EQ(on.grids.vertices.size(), off.grids.vertices.size());
 }
 
-// The aspen's trunk forks: three in four get a collar (measured 32 of 42; 640 collars of the
+// The aspen's trunk forks: three in four get a collar (measured 32 of 42; 610 collars of the
 // trunk's and main branches' 709 forks with a child of 1 cm or more). The rest are counted: a
 // collar that would not be sound (a fold, a dip into a limb, a child too short for its disk, a
-// seam on a curve's joint). (The oak's flared, lobed trunk gets only 9 of 38: docs/geometry.md.)
+// seam on a curve's joint). (The oak's flared, lobed trunk gets only 8 of 38: docs/geometry.md.)
 TEST(RamiformCover, CollarsMostOfTheAspensTrunkForks) {
   const generator::TreeGeometry g = forked("quaking_aspen.toml", true);
   const generator::GeometryStats& st = g.stats;
