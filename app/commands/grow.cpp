@@ -3,6 +3,9 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <string>
+#include <system_error>
 
 #include "app/commands/options.h"
 
@@ -10,6 +13,7 @@
 #include "common/error.h"
 #include "common/progress.h"
 #include "common/strings.h"
+#include "tracer/film_file.h"
 #include "formats/species_file.h"
 #include "generator/export/export_mesh.h"
 #include "generator/export/export_pbrt.h"
@@ -52,7 +56,8 @@ CLI::App* add_grow_command(CLI::App& app, GrowRequest& grow) {
       ->check(CLI::IsMember({"z", "y"}))
       ->capture_default_str();
   cmd->add_flag("--stats", grow.stats,
-                "print statistics of the tree (height and crown width are its envelope's: an upper "
+                "print statistics of the tree (the default without -o or --json; height and crown "
+                "width are its envelope's: an upper "
                 "bound within a few cm) and its render geometry's counts, counted without "
                 "building it; with -o to a mesh or .pbrt also the geometry's size in bytes");
   cmd->add_flag("--json", grow.json, "print the statistics as one JSON object");
@@ -65,10 +70,6 @@ namespace {
 
 // Refuses a request that cannot be carried out before any work, and returns its up axis.
 generator::UpAxis validate(const GrowRequest& a) {
-  if (a.out.empty() && !a.stats && !a.json) {
-    throw InputError(
-        {}, "grow has nothing to do: give -o OUT (.obj, .ply, .pbrt, .skel), --stats or --json");
-  }
   if (!a.out.empty() && !ends_with(a.out, ".obj") && !ends_with(a.out, ".ply") &&
       !ends_with(a.out, ".pbrt") && !ends_with(a.out, ".skel")) {
     throw InputError({}, "-o " + a.out + ": the output must be .obj, .ply, .pbrt or .skel");
@@ -90,12 +91,51 @@ generator::UpAxis validate(const GrowRequest& a) {
   return up;
 }
 
+// Says on stderr when --time or --quality would change nothing for this species' model, rather
+// than ignore them silently.
+void note_ignored_options(const GrowRequest& a, const generator::Species& species) {
+  using generator::Model;
+  const Model model = species.model();
+  const char* time_ignored = nullptr;
+  if (model == Model::WeberPenn && species.weber_penn().wind_speed == 0.0 &&
+      species.weber_penn().wind_gust == 0.0)
+    time_ignored = "the species has no wind (WindSpeed and WindGust are 0), so nothing sways";
+  else if (model != Model::WeberPenn && model != Model::Fractal)
+    time_ignored = "only Weber & Penn species (wind sway) and fractal trees (age) have a time";
+  if (a.time != 0.0 && time_ignored) {
+    std::fprintf(stderr, "arbor: warning: --time %s does nothing for %s: %s\n",
+                 tracer::number_text(a.time).c_str(), a.species.c_str(), time_ignored);
+  }
+  if (a.quality != 1.0 && model != Model::WeberPenn) {
+    std::fprintf(stderr,
+                 "arbor: warning: --quality %s does nothing for %s: only Weber & Penn species "
+                 "have the paper's leaf quality (§4.5)\n",
+                 tracer::number_text(a.quality).c_str(), a.species.c_str());
+  }
+}
+
+// "698 MB": a written file's size, so that a large export does not pass unnoticed.
+std::string size_text(const std::string& path) {
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  if (ec) return "";
+  char buf[48];
+  if (bytes >= 1000000)
+    std::snprintf(buf, sizeof buf, " (%.0f MB)", static_cast<double>(bytes) / 1e6);
+  else
+    std::snprintf(buf, sizeof buf, " (%.0f kB)", static_cast<double>(bytes) / 1e3);
+  return buf;
+}
+
 }  // namespace
 
 int grow_command(const GrowRequest& a) {
   const generator::UpAxis up = validate(a);
   generator::Species species = formats::load_species(a.species);
   for (const std::string& w : species.warnings) std::fprintf(stderr, "%s\n", w.c_str());
+  note_ignored_options(a, species);
+  // With nothing else asked, grow reports the tree (as --stats).
+  const bool report = a.stats || (a.out.empty() && !a.json);
 
   Progress progress("grow", 1);
   generator::GrowOptions options;
@@ -124,7 +164,7 @@ int grow_command(const GrowRequest& a) {
   auto geometry_seconds = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - geometry_start).count();
   };
-  if ((a.stats || a.json) && !exports_geometry) {
+  if ((report || a.json) && !exports_geometry) {
     // The statistics alone: the geometry's counts, without building it (issue 31).
     const generator::GeometryStats counts =
         generator::count_tree_geometry(skeleton, generator::geometry_options_for(species));
@@ -148,16 +188,16 @@ int grow_command(const GrowRequest& a) {
   }
   if (a.json) {
     std::fputs(generator::stats_json(stats, species.name, a.seed, mesh_triangles).c_str(), stdout);
-  } else if (a.stats) {
+  } else if (report) {
     std::printf("%s (seed %llu)\n%s", species.name.c_str(), static_cast<unsigned long long>(a.seed),
                 generator::stats_text(stats).c_str());
   }
   if (!a.out.empty() && !a.json) {
     if (ends_with(a.out, ".obj")) {
-      std::fprintf(stderr, "arbor: wrote %s and %s\n", a.out.c_str(),
+      std::fprintf(stderr, "arbor: wrote %s%s and %s\n", a.out.c_str(), size_text(a.out).c_str(),
                    generator::mtl_path_for(a.out).c_str());
     } else {
-      std::fprintf(stderr, "arbor: wrote %s\n", a.out.c_str());
+      std::fprintf(stderr, "arbor: wrote %s%s\n", a.out.c_str(), size_text(a.out).c_str());
     }
   }
   return 0;

@@ -61,7 +61,7 @@ TEST(ArborCli, VersionAndHelp) {
       {"compare",
        {"--help", "--heatmap", "--side-by-side", "--display", "--view", "--json",
         "--reference-test", "--fit-treemaker"}},
-      {"merge", {"--help", "--output", "--png"}},
+      {"merge", {"--help", "--output", "--png", "--partial"}},
       {"plan",
        {"--help", "--output", "--png", "--tiles", "--pass-groups", "--frames", "--json", "--width",
         "--height", "--spp", "--seed", "--integrator", "--time", "--transparent", "--regularize",

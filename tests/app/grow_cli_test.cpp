@@ -136,10 +136,28 @@ TEST(ArborCli, BadInputExitsTwoWithPosition) {
   EXPECT_NE(missing.err.find("/no/such/tree.toml: error: species does not exist"),
             std::string::npos)
       << missing.err;
-  // Nothing to do is an error, not a silent success.
-  const CliRun idle = run_arbor("grow " + species("quaking_aspen.toml"));
-  EXPECT_EQ(idle.code, 2);
-  EXPECT_NE(idle.err.find("arbor: error: grow has nothing to do"), std::string::npos) << idle.err;
+  // Nothing else asked: grow reports the tree, as --stats (the README's fractal example).
+  const CliRun plain = run_arbor("grow " + species("fractal_broadleaf.toml") + " --time 12");
+  EXPECT_EQ(plain.code, 0) << plain.err;
+  EXPECT_EQ(plain.out,
+            run_arbor("grow " + species("fractal_broadleaf.toml") + " --time 12 --stats").out);
+  EXPECT_NE(plain.out.find("height"), std::string::npos) << plain.out;
+  EXPECT_EQ(plain.err.find("warning"), std::string::npos) << plain.err;  // a fractal has an age
+  // Options the model has no use for are said to do nothing, not ignored silently.
+  const CliRun windless = run_arbor("grow " + species("saguaro_cactus.toml") + " --time 3");
+  EXPECT_EQ(windless.code, 0) << windless.err;
+  EXPECT_NE(windless.err.find("warning: --time 3 does nothing for " +
+                              species("saguaro_cactus.toml") + ": the species has no wind"),
+            std::string::npos)
+      << windless.err;
+  const CliRun lsystem =
+      run_arbor("grow " + species("lsystem_bush.lsys") + " --quality 0.5 --time 2");
+  EXPECT_EQ(lsystem.code, 0) << lsystem.err;
+  EXPECT_NE(lsystem.err.find("warning: --quality 0.5 does nothing"), std::string::npos)
+      << lsystem.err;
+  EXPECT_NE(lsystem.err.find("warning: --time 2 does nothing"), std::string::npos) << lsystem.err;
+  EXPECT_EQ(run_arbor("grow " + species("quaking_aspen.toml") + " --quality 0.5 --time 2").err,
+            "");  // an aspen in the wind has both
 
   EXPECT_EQ(run_arbor("grow").code, 2);  // missing argument
   EXPECT_EQ(run_arbor("grow " + species("quaking_aspen.toml") + " --bogus").code, 2);
@@ -163,7 +181,9 @@ TEST(ArborCli, GrowUpYWritesYUpMeshesWithTheirMaterials) {
   const CliRun y = run_arbor("grow " + species("young_tree.skel") + " -o " + dir + "y.obj --up y");
   ASSERT_EQ(z.code, 0) << z.err;
   ASSERT_EQ(y.code, 0) << y.err;
-  EXPECT_NE(y.err.find("wrote " + dir + "y.obj and " + dir + "y.mtl"), std::string::npos) << y.err;
+  // The mesh's size is stated, so a user sees what a tree costs before opening it.
+  EXPECT_NE(y.err.find("wrote " + dir + "y.obj ("), std::string::npos) << y.err;
+  EXPECT_NE(y.err.find(" kB) and " + dir + "y.mtl"), std::string::npos) << y.err;
   // The same vertices turned: (x, y, z) becomes (x, z, -y); the tree's height moves to y.
   std::istringstream zs(slurp(dir + "z.obj")), ys(slurp(dir + "y.obj"));
   std::string zl, yl;

@@ -67,19 +67,19 @@ double median(std::vector<double> v) {
 TEST(Season, TheScarletTupeloRendersScarlet) {
   const std::string dir = ::testing::TempDir() + "season/";
   std::system(("rm -rf " + dir + " && mkdir -p " + dir).c_str());
-  const std::string scene = write_temp(
-      "season_tupelo.toml",
-      "[render]\nwidth = 96\nheight = 96\nspp = 16\npass_spp = 16\nmax_depth = 6\n"
-      "[camera]\nposition = [14.0, -22.0, 8.0]\nlook_at = [0.0, 0.0, 17.0]\nfov = 40.0\n"
-      "exposure = \"auto\"\n"
-      "[sun]\nelevation = 25.0\nazimuth = -40.0\n"
-      "[sky]\nmodel = \"atmosphere\"\nturbidity = 3.0\n"
-      "[[tree]]\nspecies = \"" +
-          species("black_tupelo.toml") +
-          "\"\nseed = 2\n[tree.leaf]\nseason = \"autumn\"\n"
-          "[output]\naovs = [\"material_id\"]\npixel_type = \"float\"\n");
-  const CliRun r = run_arbor("render " + scene + " --transparent -o " + dir + "t.exr --png " +
-                             dir + "t.png");
+  const std::string scene =
+      write_temp("season_tupelo.toml",
+                 "[render]\nwidth = 96\nheight = 96\nspp = 16\npass_spp = 16\nmax_depth = 6\n"
+                 "[camera]\nposition = [14.0, -22.0, 8.0]\nlook_at = [0.0, 0.0, 17.0]\nfov = 40.0\n"
+                 "exposure = \"auto\"\n"
+                 "[sun]\nelevation = 25.0\nazimuth = -40.0\n"
+                 "[sky]\nmodel = \"atmosphere\"\nturbidity = 3.0\n"
+                 "[[tree]]\nspecies = \"" +
+                     species("black_tupelo.toml") +
+                     "\"\nseed = 2\n[tree.leaf]\nseason = \"autumn\"\n"
+                     "[output]\naovs = [\"material_id\"]\npixel_type = \"float\"\n");
+  const CliRun r =
+      run_arbor("render " + scene + " --transparent -o " + dir + "t.exr --png " + dir + "t.png");
   ASSERT_EQ(r.code, 0) << r.err;
   auto in = OIIO::ImageInput::open(dir + "t.exr");
   ASSERT_TRUE(in);
