@@ -50,6 +50,7 @@ TEST(Species, EveryShippedSpeciesIsATreeOfItsKindAtEverySeed) {
     long long fewest_trunks, most_trunks;
   };
   const std::map<std::string, Band> bands = {
+      {"arbaro_aspen.xml", {8, 25, 1, 1}},
       {"balsam_fir.toml", {9, 25, 1, 1}},
       {"black_spruce.toml", {5, 20, 1, 1}},
       {"black_tupelo.toml", {15, 35, 1, 1}},
@@ -95,6 +96,22 @@ TEST(Species, EveryShippedSpeciesIsATreeOfItsKindAtEverySeed) {
     ++checked;
   }
   EXPECT_EQ(checked, bands.size());  // every band names a shipped species
+}
+
+// The shipped Arbaro file (the README's import example) is the paper's aspen, as the TOML one is:
+// the same tree, stem for stem.
+TEST(Species, TheShippedArbaroAspenGrowsTheTomlAspen) {
+  const std::string folder = std::string(ARBOR_SOURCE_DIR) + "/species/";
+  GrowOptions options;
+  options.seed = 3;
+  const TreeStats xml =
+      compute_stats(grow_tree(formats::load_species(folder + "arbaro_aspen.xml"), options));
+  const TreeStats toml =
+      compute_stats(grow_tree(formats::load_species(folder + "quaking_aspen.toml"), options));
+  EXPECT_EQ(xml.stems_per_level, toml.stems_per_level);
+  EXPECT_EQ(xml.leaves, toml.leaves);
+  EXPECT_EQ(xml.height, toml.height);
+  EXPECT_EQ(xml.crown_width, toml.crown_width);
 }
 
 }  // namespace arbor::generator
