@@ -8,6 +8,13 @@
 
 namespace arbor {
 
+// A number as a person writes it in a message: "0.5", "1e+09", "-0.1" (printf's %g).
+inline std::string short_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
 struct Range {
   double lo = 0.0, hi = 0.0;
   std::string_view unit;  // "" for a pure number

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <string>
 
+#include "common/range.h"
+
 namespace arbor::formats {
 
 void read_meadow(const TomlReader& r, const toml::table& t, MeadowDesc& m) {
@@ -62,12 +64,12 @@ void read_meadow(const TomlReader& r, const toml::table& t, MeadowDesc& m) {
   // Bounded so that a scene cannot ask for more blades than memory holds: 10⁹ placed blades.
   const double area = (m.area[2] - m.area[0]) * (m.area[3] - m.area[1]);
   if (m.density * area > 1e9) {
-    throw InputError(m.where, "[meadow] density × area is " + std::to_string(m.density * area) +
+    throw InputError(m.where, "[meadow] density × area is " + short_number(m.density * area) +
                                   " blades, more than the 10⁹ arbor places");
   }
   const double cells = meadow_cells(m);
   if (m.density > 0.0 && cells > 1e6) {
-    throw InputError(m.where, "[meadow] area holds " + std::to_string(cells) +
+    throw InputError(m.where, "[meadow] area holds " + short_number(cells) +
                                   " tiles, more than 10⁶: make meadow.tile larger");
   }
   if (m.density * m.tile * m.tile * m.tiles > 2e7) {

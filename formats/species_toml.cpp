@@ -208,25 +208,13 @@ class TomlSpecies : TomlReader {
                                    {"leaf_shape", 0, 5, &generator::FractalParams::leaf_shape}};
     for (const Real& r : reals) {
       if (k != r.name) continue;
-      const double v = number(node, k);
-      if (v < r.lo || v > r.hi) {
-        throw InputError(at(node.source()), k + " = " + std::to_string(v) + " is out of range [" +
-                                                std::to_string(r.lo) + ", " + std::to_string(r.hi) +
-                                                "]");
-      }
-      f.*r.field = v;
+      f.*r.field = number(node, k, Range{r.lo, r.hi, ""});
       return;
     }
     for (const Whole& w : wholes) {
       if (k != w.name) continue;
       if (!node.is_integer()) throw InputError(at(node.source()), k + " must be a whole number");
-      const double v = number(node, k);
-      if (v < w.lo || v > w.hi) {
-        throw InputError(at(node.source()), k + " = " + std::to_string(static_cast<long long>(v)) +
-                                                " is out of range [" + std::to_string(w.lo) + ", " +
-                                                std::to_string(w.hi) + "]");
-      }
-      f.*w.field = static_cast<int>(v);
+      f.*w.field = static_cast<int>(number(node, k, Range{double(w.lo), double(w.hi), ""}));
       return;
     }
     throw InputError(at(key.source()), "unknown key '" + k + "' for model = \"fractal\"");

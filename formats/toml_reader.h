@@ -105,20 +105,13 @@ class TomlReader {
   }
   // A finite number in [lo, hi].
   double number(const toml::node& n, std::string_view name, double lo, double hi) const {
-    const double v = number(n, name);
-    if (v < lo || v > hi) {
-      fail(n, std::string(name) + " = " + std::to_string(v) + " is out of range [" +
-                  std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    }
-    return v;
+    return number(n, name, Range{lo, hi, ""});
   }
   // A finite number in a value's stated range (common/range.h).
   double number(const toml::node& n, std::string_view name, const Range& range) const {
     const double v = number(n, name);
     if (!range.contains(v)) {
-      char value[32];
-      std::snprintf(value, sizeof value, "%g", v);
-      fail(n, std::string(name) + " = " + value + " is out of range " + range.text());
+      fail(n, std::string(name) + " = " + short_number(v) + " is out of range " + range.text());
     }
     return v;
   }

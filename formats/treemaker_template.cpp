@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 
+#include "common/range.h"
 #include "common/text_cursor.h"
 
 namespace arbor::formats {
@@ -267,7 +268,7 @@ class Parser {
     for (const generator::TmBranchChoice& c : r.choices) sum += c.p;
     if (std::fabs(sum - 1.0) > 1e-6)
       throw InputError(where, "the probabilities of this branching rule add up to " +
-                                  std::to_string(sum) + ", not 1 (Figure 6, note 5)");
+                                  short_number(sum) + ", not 1 (Figure 6, note 5)");
     for (const generator::TmBranchRule& other : t.branches) {
       if (other.level == r.level)
         throw InputError(where,
@@ -381,9 +382,8 @@ class Parser {
     double sum = 0.0;
     for (const generator::TmLeaf& l : t.leaves) sum += l.p;
     if (std::fabs(sum - 1.0) > 1e-6) {
-      throw InputError(
-          t.leaves.back().where,
-          "the leaf probabilities add up to " + std::to_string(sum) + ", not 1 (Figure 6, note 5)");
+      throw InputError(t.leaves.back().where, "the leaf probabilities add up to " +
+                                                  short_number(sum) + ", not 1 (Figure 6, note 5)");
     }
   }
 

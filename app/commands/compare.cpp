@@ -205,8 +205,10 @@ CLI::App* add_compare_command(CLI::App& app, CompareRequest& cmp) {
   cmd->add_option("--view", cmp.view, "OCIO view for --side-by-side")->capture_default_str();
   cmd->add_flag("--json", cmp.json, "print the metrics as one JSON object");
   cmd->add_flag("--reference-test", cmp.reference_test,
-                "per-pixel z-test against B's variance (alpha 0.01, Sidak-corrected); "
-                "exit 0 when at least 99.5 % of pixels pass, 1 otherwise");
+                "test A against B's variance in three parts: a per-pixel z-test (alpha 0.01, "
+                "Sidak-corrected; at least 99.5 % of pixels must pass), each channel's image "
+                "mean, and a chi-square of the 16x16 block means (alpha 0.005 each); exit 0 "
+                "when all three pass, 1 otherwise");
   cmd->add_flag("--fit-treemaker", cmp.fit_treemaker,
                 "fit the five TREE-MAKER weights by least squares: one image is an exact "
                 "render, the other a treemaker render of the same view with the \"treemaker\" "

@@ -78,13 +78,16 @@ std::string render_fingerprint(const formats::SceneDesc& scene, const RenderRequ
   s << "size " << r.width << "x" << r.height << "; spp " << r.spp << "; pass_spp " << r.pass_spp
     << "; independent_passes " << (r.independent_passes ? "true" : "false") << "; seed " << r.seed
     << "; integrator " << name_of(r.integrator) << "; max_depth " << r.max_depth << "; regularize "
-    << (r.regularize ? "true" : "false")
-    << (r.lod ? "; lod quality " + std::to_string(r.lod_quality) : std::string())
-    << "; treemaker_spp " << r.treemaker_spp << "; noise_threshold " << r.noise_threshold
+    << (r.regularize ? "true" : "false") << "; lod " << (r.lod ? "true" : "false");
+  if (r.lod) s << "; lod quality " << r.lod_quality;
+  s << "; treemaker_spp " << r.treemaker_spp << "; noise_threshold " << r.noise_threshold
     << "; min_spp " << r.min_spp << "; transparent_sky "
     << (scene.output.transparent_sky ? "true" : "false") << "; ids "
-    << (scene.output.wants_ids() ? "kept" : "none") << "; --time "
-    << (a.overrides.time ? std::to_string(*a.overrides.time) : std::string("none"));
+    << (scene.output.wants_ids() ? "kept" : "none") << "; --time ";
+  if (a.overrides.time)
+    s << *a.overrides.time;
+  else
+    s << "none";
   if (a.frame) s << "; frame " << *a.frame << "; clock " << scene.clock;
   std::vector<std::string> files = formats::scene_inputs(scene);
   files.push_back(ocio);
