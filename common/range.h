@@ -2,16 +2,19 @@
 // (e.g. generator/species.h's look ranges) and checked by every reader of that value.
 #pragma once
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <string_view>
 
 namespace arbor {
 
-// A number as a person writes it in a message: "0.5", "1e+09", "-0.1" (printf's %g).
+// A number as a person writes it in a message: "0.5", "1048576", "1e+09", "-0.1" (whole numbers
+// below 10⁷ in full, others by printf's %g).
 inline std::string short_number(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
+  const bool whole = v > -1e7 && v < 1e7 && v == std::floor(v);
+  std::snprintf(buf, sizeof buf, whole ? "%.0f" : "%g", v);
   return buf;
 }
 
@@ -23,9 +26,8 @@ struct Range {
 
   // "[0, 90] degrees": the bounds as short as they print exactly enough for a message.
   std::string text() const {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "[%g, %g]", lo, hi);
-    return unit.empty() ? std::string(buf) : std::string(buf) + " " + std::string(unit);
+    const std::string bounds = "[" + short_number(lo) + ", " + short_number(hi) + "]";
+    return unit.empty() ? bounds : bounds + " " + std::string(unit);
   }
 };
 

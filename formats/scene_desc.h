@@ -290,6 +290,14 @@ std::string frame_path(const std::string& path, int frame);
 SceneDesc load_scene(const std::string& path);
 SceneDesc parse_scene(const std::string& text, const std::string& path);
 
+// Every [render] key and its value at full precision, "name value" items joined by "; "
+// ("width 480; height 360; spp 256; …"): what a render's fingerprint holds of its settings.
+std::string render_settings_text(const RenderSettings& render);
+
+// The scene file's key reference, as docs/scene-format.md holds it (Markdown, generated from the
+// key tables that the reader reads by).
+std::string scene_key_reference();
+
 // Every file the scene reads: the scene itself, species, textures, the environment map, meshes.
 std::vector<std::string> scene_inputs(const SceneDesc& scene);
 

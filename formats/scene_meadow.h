@@ -1,14 +1,13 @@
 // Internal to formats/: the scene file's [meadow] table (docs/rendering.md, "Meadow").
 #pragma once
 
-#include <toml++/toml.h>
-
 #include "formats/scene_desc.h"
-#include "formats/toml_reader.h"
 
 namespace arbor::formats {
 
-// Reads [meadow] into `m`: every key range-checked, unknown keys refused, at their position.
-void read_meadow(const TomlReader& reader, const toml::table& t, MeadowDesc& m);
+// The rules across [meadow]'s keys (each key's range is checked as it is read): a blade creates
+// no light, and the meadow's blades, tiles and distinct blades are bounded. InputError at the
+// table.
+void check_meadow(const MeadowDesc& m);
 
 }  // namespace arbor::formats

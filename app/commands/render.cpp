@@ -75,13 +75,8 @@ std::string render_fingerprint(const formats::SceneDesc& scene, const RenderRequ
   const formats::RenderSettings& r = scene.render;
   std::ostringstream s;
   s.precision(17);
-  s << "size " << r.width << "x" << r.height << "; spp " << r.spp << "; pass_spp " << r.pass_spp
-    << "; independent_passes " << (r.independent_passes ? "true" : "false") << "; seed " << r.seed
-    << "; integrator " << name_of(r.integrator) << "; max_depth " << r.max_depth << "; regularize "
-    << (r.regularize ? "true" : "false") << "; lod " << (r.lod ? "true" : "false");
-  if (r.lod) s << "; lod quality " << r.lod_quality;
-  s << "; treemaker_spp " << r.treemaker_spp << "; noise_threshold " << r.noise_threshold
-    << "; min_spp " << r.min_spp << "; transparent_sky "
+  // Every [render] key from its table (threads is the command line's and changes no pixel).
+  s << formats::render_settings_text(r) << "; transparent_sky "
     << (scene.output.transparent_sky ? "true" : "false") << "; ids "
     << (scene.output.wants_ids() ? "kept" : "none") << "; --time ";
   if (a.overrides.time)
