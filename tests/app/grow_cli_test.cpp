@@ -227,7 +227,9 @@ TEST(ArborCli, ObjNeverOverwritesAnInputWithItsMtl) {
   EXPECT_EQ(slurp(mtl), slurp(species("young_tree.skel")));
 }
 
-TEST(ArborCli, AbsurdTreesAreRefusedUnlessForced) {
+// (That --force then grows it is WeberPenn.RefusesAbsurdSizesUnlessForced, at a limit a test can
+// afford to pass.)
+TEST(ArborCli, AbsurdTreesAreRefusedNamingForce) {
   const std::string huge = write_temp(
       "huge.toml",
       "model = \"weber-penn\"\nLevels = 4\n[level.1]\nBranches = 1000\n[level.2]\nBranches = "

@@ -543,6 +543,13 @@ TEST(WeberPenn, RefusesAbsurdSizesUnlessForced) {
   const double grown = double(grow(aspen).stems.size());
   EXPECT_GE(estimate_size(aspen, 1.0).stems, grown);
   EXPECT_LT(estimate_size(aspen, 1.0).stems, 5.0 * grown);
+  // Forced, a tree over the limit grows whole: the aspen under a limit of a tenth of its stems.
+  GrowOptions small;
+  small.seed = 1;
+  small.max_stems = grown / 10.0;
+  EXPECT_THROW(grow_weber_penn(aspen, small), RuntimeFailure);
+  small.force = true;
+  EXPECT_EQ(double(grow_weber_penn(aspen, small).stems.size()), grown);
 }
 
 }  // namespace arbor::generator

@@ -112,7 +112,6 @@ TEST(TreePrototype, RaysFindTheTrunkLobesAndFlare) {
   // Flare 0.6 near the ground: 1 + 0.6 (100^(1 - 8z) - 1) / 100 at z = 0.02 / 12 m.
   EXPECT_GT(mean_low / mean_high, 1.4);
   EXPECT_GT(mean_low, r0 * 1.4);
-  EXPECT_GT(tree.world().build_seconds(), 0.0);
 }
 
 TEST(TreePrototype, CurvesAreHitAtTheirRadiusWithBarkCoordinates) {
