@@ -66,6 +66,7 @@ std::vector<std::string> scene_inputs(const SceneDesc& s) {
   }
   for (const MeshDesc& m : s.meshes) add(m.path);
   if (s.sky.model == SkyModel::Envmap) add(s.sky.path);
+  if (s.terrain.enabled && s.terrain.kind == TerrainKind::Image) add(s.terrain.path);
   return in;
 }
 

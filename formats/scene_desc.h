@@ -62,11 +62,15 @@ struct CameraDesc {
   Vec3d position{14.0, -20.0, 3.0};
   Vec3d look_at{0.0, 0.0, 6.0};
   Vec3d up{0.0, 0.0, 1.0};
-  double fov = 45.0;                       // vertical, degrees
-  double aperture_radius = 0.0;            // metres
-  double focus_distance = 0.0;             // metres; 0: distance to look_at
-  double exposure = 0.0;                   // stops
-  bool auto_exposure = false;              // exposure = "auto": metered (tracer/exposure.h)
+  double fov = 45.0;             // vertical, degrees
+  double aperture_radius = 0.0;  // metres
+  double focus_distance = 0.0;   // metres; 0: distance to look_at
+  double exposure = 0.0;         // stops
+  bool auto_exposure = false;    // exposure = "auto": metered (tracer/exposure.h)
+  // With a terrain: the eye stands this many metres above the terrain under position (x, y),
+  // whose z is then ignored.
+  std::optional<double> above_ground;
+  SourceLocation above_ground_where;
   SourceLocation look_at_where, up_where;  // the keys' positions, for errors (else the file's)
 };
 
@@ -111,6 +115,29 @@ struct GroundDesc {
   double detail = 0.0, stones = 0.0, litter = 0.0;
   Rgb stone_albedo{0.32, 0.31, 0.29};
   Rgb litter_albedo{0.20, 0.13, 0.07};
+};
+
+// A [terrain] (docs/landscape.md): a height field over a square centred on the origin, from a
+// procedural model (fractional Brownian motion hills, ridged mountains) or from an image (a
+// digital elevation model). Heights run from 0 (the lowest) to `relief`; the ground plane, if
+// on, continues the terrain's lowest level beyond its edges. Its material is the [ground]'s,
+// with soil and rock by slope and curvature.
+enum class TerrainKind { Hills, Mountains, Image };
+inline constexpr std::array<const char*, 3> kTerrainKindNames = {"hills", "mountains", "image"};
+struct TerrainDesc {
+  bool enabled = false;  // a [terrain] table is in the scene
+  TerrainKind kind = TerrainKind::Hills;
+  double size = 1000.0;     // metres: the square's side (image: pixels × metres_per_pixel)
+  double relief = 100.0;    // metres from the lowest to the highest point
+  std::uint64_t seed = 1;   // of the procedural models
+  double resolution = 2.0;  // metres between height samples (procedural models)
+  std::string path;         // kind = "image": a 16-bit PNG or an EXR, one height per pixel
+  double metres_per_pixel = 1.0;
+  double height_scale = 1.0;  // metres per unit of the image's value (a PNG's 0…65535 → 0…1)
+  double rock_slope = 35.0;   // degrees: rock on faces steeper than this (soil a band below)
+  Rgb rock_albedo{0.30, 0.29, 0.26};
+  Rgb soil_albedo{0.19, 0.15, 0.11};
+  SourceLocation where, path_where;  // the table's and the path's positions, for errors found later
 };
 
 // A meadow of grass blades (scene/meadow.h): `density` blades per m² (0: none) over `area`
@@ -271,6 +298,7 @@ struct SceneDesc {
   SunDesc sun;
   SkyDesc sky;
   GroundDesc ground;
+  TerrainDesc terrain;
   MeadowDesc meadow;
   std::vector<TreeDesc> trees;
   std::vector<ForestDesc> forests;

@@ -44,6 +44,25 @@ void read_sky(const KeyValue& v, SkyDesc& s) {
     throw InputError(v.where(), "sky.model = \"envmap\" needs sky.path (an image OIIO reads)");
 }
 
+void read_terrain(const KeyValue& v, TerrainDesc& t) {
+  const toml::table& table = v.table();
+  t.enabled = true;
+  t.where = v.reader.at(table.source());
+  if (const toml::node* kind = table.get("kind"))
+    t.kind =
+        static_cast<TerrainKind>(v.reader.choice_index(*kind, "terrain.kind", kTerrainKindNames));
+  const ModelInUse model{"terrain.kind", kTerrainKindNames[static_cast<int>(t.kind)]};
+  read_keys(v.reader, table, "terrain", "[terrain]", terrain_keys(), t, &model);
+  if (t.kind == TerrainKind::Image && t.path.empty())
+    throw InputError(t.where,
+                     "terrain.kind = \"image\" needs terrain.path (a 16-bit PNG or an EXR)");
+  if (t.kind != TerrainKind::Image && t.size / t.resolution > 32766) {
+    v.reader.fail(table.get("resolution") ? *table.get("resolution") : v.node,
+                  "terrain.size / terrain.resolution must be at most 32766 samples across (" +
+                      short_number(std::ceil(t.size / t.resolution)) + " asked)");
+  }
+}
+
 // Aerial perspective is the air of the nishita or atmosphere sky, seen by the path integrator.
 void check_aerial(const TomlReader& r, const toml::node& n, const SceneDesc& s) {
   if (s.sky.model != SkyModel::Nishita && s.sky.model != SkyModel::Atmosphere)
@@ -93,6 +112,8 @@ const std::vector<Key<SceneDesc>>& scene_keys() {
                 [](const KeyValue& v, S& s) { read_sky(v, s.sky); }),
       custom<S>("ground", KeyKind::Table, "the ground plane's material",
                 [](const KeyValue& v, S& s) { read_table(v, ground_keys(), s.ground); }),
+      custom<S>("terrain", KeyKind::Table, "a height field the scene stands on (docs/landscape.md)",
+                [](const KeyValue& v, S& s) { read_terrain(v, s.terrain); }),
       custom<S>("meadow", KeyKind::Table, "grass blades as geometry",
                 [](const KeyValue& v, S& s) {
                   s.meadow.where = v.reader.at(v.table().source());
@@ -157,11 +178,22 @@ SceneDesc parse_scene(const std::string& text, const std::string& path) {
       s.camera.look_at_where = reader.at(position->source());
   }
   read_keys(reader, root, "", "", scene_keys(), s);
-  check_camera(s.camera);
+  if (s.meadow.density > 0.0 && s.terrain.enabled) {
+    throw InputError(s.meadow.where,
+                     "a [meadow] on a [terrain] is not built yet (its blades would not stand on "
+                     "the slopes); leave one of them out");
+  }
+  if (s.camera.above_ground && !s.terrain.enabled) {
+    throw InputError(s.camera.above_ground_where,
+                     "camera.above_ground needs a [terrain] to stand on");
+  }
+  // A camera on the terrain has its height, and so its look and focus, once the terrain is built
+  // (scene::placed_camera); its position's z is the reader's until then.
+  if (!s.camera.above_ground) check_camera(s.camera);
   if (s.sky.ground_albedo < 0.0) s.sky.ground_albedo = mean_albedo(s.ground);
   if (s.render.aerial_perspective)
     check_aerial(reader, *root.at_path("render.aerial_perspective").node(), s);
-  if (s.camera.focus_distance == 0.0) {
+  if (s.camera.focus_distance == 0.0 && !s.camera.above_ground) {
     const double dx = s.camera.look_at[0] - s.camera.position[0];
     const double dy = s.camera.look_at[1] - s.camera.position[1];
     const double dz = s.camera.look_at[2] - s.camera.position[2];

@@ -117,6 +117,19 @@ const std::vector<Key<CameraDesc>>& camera_keys() {
                 })
           .within(kWorld)
           .shows("[0, 0, 1]"),
+      custom<C>(
+          "above_ground", KeyKind::Number,
+          "with a [terrain]: the eye this many metres above the terrain under position's "
+          "x and y (position's z is then ignored)",
+          [](const KeyValue& v, C& c) {
+            c.above_ground = v.number();
+            c.above_ground_where = v.where();
+          },
+          [](const C& c) {
+            return c.above_ground ? exact_number(*c.above_ground) : std::string("unset");
+          })
+          .within(Range{0, 1e5, "metres"})
+          .shows("unset"),
       value("fov", &C::fov, Range{0.01, 179, "degrees"}, "the vertical field of view"),
       value("aperture_radius", &C::aperture_radius, Range{0, 100, "metres"},
             "the lens's radius for depth of field; 0: a pinhole, all in focus"),

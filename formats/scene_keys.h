@@ -329,6 +329,7 @@ const std::vector<Key<CameraDesc>>& camera_keys();
 const std::vector<Key<SunDesc>>& sun_keys();
 const std::vector<Key<SkyDesc>>& sky_keys();
 const std::vector<Key<GroundDesc>>& ground_keys();
+const std::vector<Key<TerrainDesc>>& terrain_keys();  // scene_keys_land.cpp
 const std::vector<Key<MeadowDesc>>& meadow_keys();
 const std::vector<Key<OutputDesc>>& output_keys();
 const std::vector<Key<AnimationDesc>>& animation_keys();

@@ -51,6 +51,10 @@ std::string scene_key_reference() {
        "(docs/rendering.md, \"Lights\").",
        key_docs(sky_keys())},
       {"[ground]", "The plane z = 0 (docs/rendering.md, \"Materials\").", key_docs(ground_keys())},
+      {"[terrain]",
+       "A height field the scene stands on (docs/landscape.md); a key of another kind than the "
+       "one in use is an error.",
+       key_docs(terrain_keys())},
       {"[meadow]", "Grass blades as geometry (docs/rendering.md, \"Meadow\").",
        key_docs(meadow_keys())},
       {"[[tree]]", "One tree; a scene may hold any number.", key_docs(tree_keys())},

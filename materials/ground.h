@@ -24,6 +24,11 @@ struct GroundMaterial {
   float litter = 0.0f;  // fraction of the ground under leaf litter; set by set_litter
   glm::vec3 litter_albedo{0.20f, 0.13f, 0.07f};
   double litter_threshold = 1e9, litter_edge = 0.1;
+  // On a terrain (docs/landscape.md): bare soil and rock over the above where SurfacePoint::
+  // terrain says (soil, rock); the rock's albedo varied at two scales and patched with lichen.
+  bool terrain = false;
+  glm::vec3 soil_albedo{0.19f, 0.15f, 0.11f};
+  glm::vec3 rock_albedo{0.30f, 0.29f, 0.26f};
 
   SurfaceBsdf bsdf(const SurfacePoint& p) const {
     return SurfaceBsdf::diffuse(p.shading_normal, albedo_at(p));
@@ -37,6 +42,8 @@ struct GroundMaterial {
   static void quantiles(float cover, double& threshold, double& edge);
   float litter_weight(glm::vec2 xy) const;
   glm::vec3 detailed(glm::vec3 soil, glm::vec3 grass, float w, glm::vec2 xy) const;
+  // The rock's albedo at world (x, y): lichen-spotted, varied at 2 m and 30 cm.
+  glm::vec3 rock_at(glm::vec2 xy) const;
   // The patch's weight in [0, 1] at world (x, y).
   float patch(glm::vec2 xy) const;
   static double noise(double x, double y);  // the patches' noise, at coordinates in `scale`s

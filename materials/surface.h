@@ -20,10 +20,11 @@ struct SurfacePoint {
   glm::vec3 tangent{1.0f, 0.0f, 0.0f};                // along the limb, for bark bump mapping
   float along = 0.0f, azimuth = 0.0f, radius = 0.0f;  // bark coordinates (metres, radians, metres)
   glm::vec2 uv{0.0f};                                 // over the unit leaf
-  glm::vec3 color{1.0f};   // the primitive's colour, multiplying the albedo
-  glm::vec2 ground{0.0f};  // world x, y of a ground point (its patches)
-  float height = 0.0f;     // world z (m above the ground plane): the bark's base
-  bool leaf_back = false;  // a leaf seen from its back (the back reflectance applies)
+  glm::vec3 color{1.0f};    // the primitive's colour, multiplying the albedo
+  glm::vec2 ground{0.0f};   // world x, y of a ground point (its patches)
+  float height = 0.0f;      // world z (m above the ground plane): the bark's base
+  glm::vec2 terrain{0.0f};  // a terrain's (soil, rock) cover at a ground point (scene/terrain.h)
+  bool leaf_back = false;   // a leaf seen from its back (the back reflectance applies)
   // The path has bounced off a non-specular surface and `[render] regularize` is on: glossy
   // lobes use their regularised roughness (LeafMaterial::regularized).
   bool regularize = false;

@@ -23,8 +23,11 @@ struct MemoryEstimate {
   std::uint64_t image_bytes = 0;     // the film, its AOVs and the encoded outputs
   std::uint64_t instance_bytes = 0;  // one Embree instance and placement per tree
   std::uint64_t instances = 0;
-  std::uint64_t meadow_bytes = 0;  // the meadow's distinct blades and its tiles' instances
-  std::uint64_t total() const { return image_bytes + instance_bytes + meadow_bytes; }
+  std::uint64_t meadow_bytes = 0;   // the meadow's distinct blades and its tiles' instances
+  std::uint64_t terrain_bytes = 0;  // the terrain's vertices and Embree's grid over them
+  std::uint64_t total() const {
+    return image_bytes + instance_bytes + meadow_bytes + terrain_bytes;
+  }
 };
 
 // Calibrated on the development machine (peak RSS of renders at growing sizes, /usr/bin/time):

@@ -1,5 +1,7 @@
 #include "scene/render_input.h"
 
+#include "scene/terrain.h"
+
 namespace arbor::scene {
 
 namespace {
@@ -54,9 +56,13 @@ RenderInput render_input(const formats::SceneDesc& d) {
                r.min_spp,
                r.threads,
                r.regularize};
-  formats::check_camera(
-      d.camera);  // the reader checked it; a description made in code is checked here
-  in.camera = camera_spec(d.camera);
+  // A camera standing on the terrain needs the terrain (built here once more: the scene's own is
+  // built later, by build_scene). The reader checked the camera; one made in code, or placed on
+  // the terrain, is checked here.
+  const formats::CameraDesc camera =
+      d.camera.above_ground ? placed_camera(d.camera, Terrain(d.terrain)) : d.camera;
+  formats::check_camera(camera);
+  in.camera = camera_spec(camera);
   in.sun = sun_spec(d.sun);
   in.sky = sky_spec(d.sky);
   in.sky.aerial_perspective = r.aerial_perspective;

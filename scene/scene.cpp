@@ -24,6 +24,8 @@
 #include "formats/obj_mesh.h"
 #include "formats/species_file.h"
 #include "generator/grow.h"
+#include "scene/ground.h"
+#include "scene/tree_parts.h"
 
 namespace arbor::scene {
 
@@ -42,52 +44,6 @@ std::string file_stem(const std::string& path) {
 }
 
 glm::vec3 to_vec3(const Rgb& c) { return glm::vec3(c[0], c[1], c[2]); }
-
-// The season's tint (materials/leaf_variation.h, LeafSeason): spring's from arbor's chlorophyll
-// axis, ln tint += 0.35 · (1, 0.35, 0) (the variation's hue axis: a leaf with less chlorophyll);
-// autumn's turns 85 % of the leaves towards the species' autumn colour, if it has one.
-materials::LeafSeason leaf_season(generator::Season season, const std::optional<Rgb>& autumn,
-                                  const Rgb& front) {
-  materials::LeafSeason s;
-  if (season == generator::Season::Spring) {
-    s.spring = {static_cast<float>(std::exp(0.35)), static_cast<float>(std::exp(0.35 * 0.35)),
-                1.0f};
-  } else if (season == generator::Season::Autumn && autumn) {
-    s.turned = 0.85f;
-    for (int c = 0; c < 3; ++c) {
-      const auto i = static_cast<std::size_t>(c);
-      s.autumn[c] = static_cast<float>((*autumn)[i] / std::max(front[i], 1e-4));
-    }
-  }
-  return s;
-}
-
-// TREE-MAKER's h0 and r0 (§III) from the skeleton's points, measured from the root stem's first
-// point. A tree whose points all lie on one vertical line (r0 = 0), or at one height (h0 = 0),
-// takes that measure from its geometry's bounds instead, so h/h0 and r/r0 stay finite.
-TreeExtent tree_extent(const generator::Skeleton& sk, const generator::TreeGeometry& g) {
-  TreeExtent e;
-  for (const generator::Stem& stem : sk.stems) {
-    if (stem.parent < 0 && stem.point_count > 0) {
-      e.base = sk.points[stem.first_point].position;
-      break;
-    }
-  }
-  float h0 = 0.0f, r0 = 0.0f;
-  for (const generator::SkeletonPoint& p : sk.points) {
-    h0 = std::max(h0, p.position.z - e.base.z);
-    r0 = std::max(r0, glm::length(glm::vec2(p.position - e.base)));
-  }
-  if (h0 <= 1e-6f) h0 = std::max(g.bounds_max.z - e.base.z, 1e-3f);
-  if (r0 <= 1e-6f) {
-    const glm::vec2 far = glm::max(glm::abs(glm::vec2(g.bounds_min - e.base)),
-                                   glm::abs(glm::vec2(g.bounds_max - e.base)));
-    r0 = std::max(glm::length(far), 1e-3f);
-  }
-  e.height = h0;
-  e.radius = r0;
-  return e;
-}
 
 // The materials of one placed tree (species defaults with the scene's overrides).
 struct TreeLook {
@@ -116,6 +72,7 @@ class SceneBuilder {
     std::uint64_t seed = 0;
     double time = 0.0;
     SourceLocation where;
+    double sink = 0.0;  // GeometryOptions::sink_slope: on a terrain, the trunk continued down
     std::string key() const {
       return path + "#" + std::to_string(seed) + "@" + std::to_string(time);
     }
@@ -213,12 +170,13 @@ class SceneBuilder {
   }
   void set_regularize(bool on) { regularize_ = on; }
   // [render] lod: each instance's level of detail from its range to `camera`.
-  void set_lod(const formats::SceneDesc& d) {
-    lod_ = d.render.lod;
-    lod_quality_ = d.render.lod_quality;
-    camera_ = {d.camera.position[0], d.camera.position[1], d.camera.position[2]};
-    height_ = d.render.height;
-    fov_ = d.camera.fov;
+  // (`camera` placed on the terrain: placed_camera.)
+  void set_lod(const formats::RenderSettings& render, const formats::CameraDesc& camera) {
+    lod_ = render.lod;
+    lod_quality_ = render.lod_quality;
+    camera_ = {camera.position[0], camera.position[1], camera.position[2]};
+    height_ = render.height;
+    fov_ = camera.fov;
   }
 
   // The species' bark colour by relief and marks (materials/bark_color.h) over `albedo`.
@@ -344,9 +302,11 @@ class SceneBuilder {
     } catch (const RuntimeFailure& e) {
       throw InputError(r.where, std::string(e.what()));
     }
+    generator::GeometryOptions geometry = generator::geometry_options_for(sp);
+    geometry.sink_slope = r.sink;
     TreePrototypeData p;
     p.geometry = std::make_unique<generator::TreeGeometry>(
-        generator::build_tree_geometry(skeleton, generator::geometry_options_for(sp)));
+        generator::build_tree_geometry(skeleton, geometry));
     p.extent = tree_extent(skeleton, *p.geometry);
     return p;
   }
@@ -474,21 +434,30 @@ void check_forest_budget(const formats::ForestDesc& f, std::size_t before, std::
   throw InputError(f.where, buf);
 }
 
-// The ground's material: patched when a cover is given, plain diffuse otherwise.
-materials::Material ground_material(const formats::GroundDesc& d) {
-  if (d.patch_cover <= 0.0 && d.detail <= 0.0 && d.stones <= 0.0 && d.litter <= 0.0)
-    return materials::DiffuseMaterial{to_vec3(d.albedo)};
-  materials::GroundMaterial g;
-  g.albedo = to_vec3(d.albedo);
-  g.patch_albedo = to_vec3(d.patch_albedo);
-  g.set_cover(static_cast<float>(d.patch_cover));
-  g.scale = static_cast<float>(d.patch_scale);
-  g.detail = static_cast<float>(d.detail);
-  g.stones = static_cast<float>(d.stones);
-  g.stone_albedo = to_vec3(d.stone_albedo);
-  g.set_litter(static_cast<float>(d.litter));
-  g.litter_albedo = to_vec3(d.litter_albedo);
-  return g;
+// The ground plane, the terrain's object and the material they share, and the meadow.
+void add_ground_and_meadow(const formats::SceneDesc& desc, Scene& s, SceneBuilder& b) {
+  if (desc.ground.enabled || desc.terrain.enabled) {
+    s.has_ground = desc.ground.enabled;
+    if (desc.ground.enabled) {
+      s.object_names.emplace_back("ground");
+      s.ground_object_id = static_cast<std::uint32_t>(s.object_names.size());
+    }
+    if (desc.terrain.enabled) {
+      s.object_names.emplace_back("terrain");
+      s.terrain_object_id = static_cast<std::uint32_t>(s.object_names.size());
+      s.stats.geometry_bytes += s.terrain.bytes();
+    }
+    s.ground_material_id = b.material_named("ground");
+    s.ground = ground_material(desc.ground, desc.terrain);
+  }
+  if (desc.meadow.density > 0.0) {
+    s.meadow = grow_meadow(desc.meadow, desc.clock);
+    s.object_names.emplace_back("meadow");
+    s.meadow.object_id = static_cast<std::uint32_t>(s.object_names.size());
+    s.meadow.front_id = b.material_named("meadow/blade front");
+    s.meadow.back_id = b.material_named("meadow/blade back");
+    s.stats.geometry_bytes += s.meadow.bytes();
+  }
 }
 
 }  // namespace
@@ -509,7 +478,9 @@ std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
   SceneBuilder b(*scene, ocio_config);
   b.set_threads(threads);
   b.set_regularize(desc.render.regularize);
-  b.set_lod(desc);
+  // The terrain first: everything stands on it (a tree's or a mesh's z is its height above it).
+  if (desc.terrain.enabled) scene->terrain = Terrain(desc.terrain);
+  b.set_lod(desc.render, placed_camera(desc.camera, scene->terrain));
   std::size_t total = desc.trees.size(), done = 0;
   for (const formats::ForestDesc& f : desc.forests) total += static_cast<std::size_t>(f.variants);
   if (progress) progress->set_total(total);
@@ -521,14 +492,21 @@ std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
                ? time + desc.clock * desc.animation.years_per_second
                : time + desc.clock;
   };
+  const auto on_ground = [&](formats::Placement pl) {
+    pl.position[2] += scene->terrain.height(pl.position[0], pl.position[1]);
+    return pl;
+  };
+  // On a terrain every trunk goes on below its base, far enough for a 60° slope (a tree's base
+  // is on the surface under its axis; docs/landscape.md).
+  const double sink = desc.terrain.enabled ? 60.0 : 0.0;
   // The trees' prototypes first, grown in parallel; then their instances in scene order.
   std::vector<SceneBuilder::GrowRequest> trees;
   for (const formats::TreeDesc& t : desc.trees)
-    trees.push_back({t.species, t.seed, animated(t.species, t.time), t.where});
+    trees.push_back({t.species, t.seed, animated(t.species, t.time), t.where, sink});
   const std::vector<int> tree_prototypes = b.prototypes_for(trees, progress, &done);
   for (std::size_t i = 0; i < desc.trees.size(); ++i) {
     const formats::TreeDesc& t = desc.trees[i];
-    b.add_instance(tree_prototypes[i], t.placement,
+    b.add_instance(tree_prototypes[i], on_ground(t.placement),
                    b.look_for(b.species(t.species), t.bark, t.leaf, t.treemaker, t.where),
                    t.species);
   }
@@ -539,7 +517,7 @@ std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
     std::vector<SceneBuilder::GrowRequest> requests;
     for (int v = 0; v < f.variants; ++v) {
       requests.push_back({f.species, derive_key(f.seed, static_cast<std::uint64_t>(v)),
-                          animated(f.species, 0.0), f.where});
+                          animated(f.species, 0.0), f.where, sink});
     }
     std::vector<int> variants;
     {
@@ -557,25 +535,15 @@ std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
                      f.area[1] + (f.area[3] - f.area[1]) * rng.uniform(), 0.0};
       pl.rotation = 360.0 * rng.uniform();
       pl.scale = rng.vary(1.0, 0.1);
-      b.add_instance(variants[static_cast<size_t>(i % f.variants)], pl, look, f.species);
+      b.add_instance(variants[static_cast<size_t>(i % f.variants)], on_ground(pl), look, f.species);
     }
   }
-  for (const formats::MeshDesc& m : desc.meshes) b.add_mesh(m);
-  if (desc.ground.enabled) {
-    scene->has_ground = true;
-    scene->object_names.emplace_back("ground");
-    scene->ground_object_id = static_cast<std::uint32_t>(scene->object_names.size());
-    scene->ground_material_id = b.material_named("ground");
-    scene->ground = ground_material(desc.ground);
+  for (const formats::MeshDesc& m : desc.meshes) {
+    formats::MeshDesc placed = m;
+    placed.placement = on_ground(m.placement);
+    b.add_mesh(placed);
   }
-  if (desc.meadow.density > 0.0) {
-    scene->meadow = grow_meadow(desc.meadow, desc.clock);
-    scene->object_names.emplace_back("meadow");
-    scene->meadow.object_id = static_cast<std::uint32_t>(scene->object_names.size());
-    scene->meadow.front_id = b.material_named("meadow/blade front");
-    scene->meadow.back_id = b.material_named("meadow/blade back");
-    scene->stats.geometry_bytes += scene->meadow.bytes();
-  }
+  add_ground_and_meadow(desc, *scene, b);
   scene->stats.prototypes = scene->prototypes.size();
   scene->stats.instances = scene->instances.size();
   scene->stats.build_seconds =

@@ -19,6 +19,7 @@
 #include "materials/material.h"
 #include "scene/lod.h"
 #include "scene/meadow.h"
+#include "scene/terrain.h"
 
 namespace arbor {
 class Progress;
@@ -85,12 +86,14 @@ struct Scene {
   bool has_ground = false;
   materials::Material ground;
   std::uint32_t ground_object_id = 0, ground_material_id = 0;
-  Meadow meadow;  // empty: none
+  Meadow meadow;    // empty: none
+  Terrain terrain;  // empty: none (the ground plane alone)
+  std::uint32_t terrain_object_id = 0;
   // The names of the compositing ids (id k is names[k - 1]; 0 is nothing, the sky): objects are
   // "<species>.<n>" (the n-th tree of that species in scene order), "<mesh file stem>.<n>",
-  // "ground" and "meadow"; materials "<species>/bark", "<species>/leaf front", "<species>/leaf
-  // back", "<mesh file stem>/<OBJ material or group>", "ground", "meadow/blade front" and
-  // "meadow/blade back". Names are unique; one name, one id.
+  // "ground", "terrain" and "meadow"; materials "<species>/bark", "<species>/leaf front",
+  // "<species>/leaf back", "<mesh file stem>/<OBJ material or group>", "ground", "meadow/blade
+  // front" and "meadow/blade back". Names are unique; one name, one id.
   std::vector<std::string> object_names, material_names;
   SceneStats stats;
   // The textures the materials point to.

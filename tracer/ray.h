@@ -38,6 +38,7 @@ struct SurfaceHit {
   glm::vec2 uv{0.0f};                // over the unit leaf, for leaf hits
   glm::vec3 color{1.0f};             // the primitive's colour (multiplies its material's albedo)
   float crown_height = 0.5f;         // leaf hits: height in the prototype's bounds, 0 to 1
+  glm::vec2 terrain{0.0f};           // terrain hits: the ground's (soil, rock) cover
 };
 
 // A hit in the world: the surface in world space and what it is made of.
@@ -66,6 +67,7 @@ struct WorldHit {
     p.uv = surface.uv;
     p.color = surface.color;
     if (ground) p.ground = glm::vec2(surface.position.x, surface.position.y);
+    p.terrain = surface.terrain;
     p.height = surface.position.z;
     p.leaf_back = mesh ? !mesh_front : surface.material == generator::kMaterialLeafBack;
     if (surface.leaf >= 0) {

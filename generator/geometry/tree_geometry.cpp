@@ -450,6 +450,7 @@ TreeGeometry build_tree_geometry(const Skeleton& sk, const GeometryOptions& o) {
   add_leaf_lines(sk, g);
   number_lod_items(g);
   if (o.ramiform) add_ramiforms(limbs, g);
+  sink_trunk(sk, o.sink_slope, g);
   finish(g);
   return g;
 }

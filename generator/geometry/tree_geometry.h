@@ -165,7 +165,15 @@ struct GeometryOptions {
   int buttresses = 0;                 // root buttresses at the trunk's base (RootLook)
   double buttress_height = 3.0, buttress_spread = 2.0;  // × the trunk's base radius
   bool ramiform = false;  // Bloomenthal §6 surfaces at the trunk's and main branches' forks
+  // Degrees: the trunk continued straight down below its base, far enough that on a slope this
+  // steep its downhill side still reaches the ground (tan(slope) × the base's reach, + 1 cm);
+  // 0: not (a tree on the flat plane). trunk_sink.cpp.
+  double sink_slope = 0.0;
 };
+
+// Continues the trunk below the tree's base by GeometryOptions::sink_slope (its first ring of a
+// displaced trunk, or its first curve segment, repeated straight down).
+void sink_trunk(const Skeleton& skeleton, double slope_degrees, TreeGeometry& g);
 
 TreeGeometry build_tree_geometry(const Skeleton& skeleton, const GeometryOptions& options = {});
 

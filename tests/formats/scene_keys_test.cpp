@@ -7,20 +7,11 @@
 
 #include <gtest/gtest.h>
 
-#include "expect_input_error.h"
+#include "expect_scene_error.h"
 
 #include "formats/scene_desc.h"
 
 namespace arbor::formats {
-
-namespace {
-
-void expect_error(const std::string& text, int line, int column, const std::string& fragment) {
-  testing::expect_input_error([&] { parse_scene(text, "s.toml"); }, "s.toml", line, column,
-                              fragment);
-}
-
-}  // namespace
 
 // docs/scene-format.md is what the tables say. ARBOR_WRITE_REFERENCE=1 rewrites it.
 TEST(SceneKeys, TheReferencePageIsTheTables) {
@@ -44,17 +35,17 @@ TEST(SceneKeys, TheReferencePageIsTheTables) {
 }
 
 TEST(SceneKeys, AKeyOfAnotherSkyModelIsAnErrorAtIt) {
-  expect_error("[sky]\nmodel = \"constant\"\nturbidity = 9.5\n", 3, 13,
-               "sky.turbidity belongs to sky.model = \"preetham\" or \"atmosphere\", not "
-               "\"constant\"");
-  expect_error("[sky]\nmodel = \"constant\"\nrotation = 30\n", 3, 12,
-               "sky.rotation belongs to sky.model = \"envmap\"");
-  expect_error("[sky]\nmodel = \"preetham\"\ncolor = [1, 1, 1]\n", 3, 9,
-               "belongs to sky.model = \"constant\", not \"preetham\"");
-  expect_error("[sky]\nmodel = \"preetham\"\nair_density = 2\n", 3, 15,
-               "\"nishita\" or \"atmosphere\"");
+  expect_scene_error("[sky]\nmodel = \"constant\"\nturbidity = 9.5\n", 3, 13,
+                     "sky.turbidity belongs to sky.model = \"preetham\" or \"atmosphere\", not "
+                     "\"constant\"");
+  expect_scene_error("[sky]\nmodel = \"constant\"\nrotation = 30\n", 3, 12,
+                     "sky.rotation belongs to sky.model = \"envmap\"");
+  expect_scene_error("[sky]\nmodel = \"preetham\"\ncolor = [1, 1, 1]\n", 3, 9,
+                     "belongs to sky.model = \"constant\", not \"preetham\"");
+  expect_scene_error("[sky]\nmodel = \"preetham\"\nair_density = 2\n", 3, 15,
+                     "\"nishita\" or \"atmosphere\"");
   // The default model is preetham's.
-  expect_error("[sky]\ndust_density = 2\n", 2, 16, "not \"preetham\"");
+  expect_scene_error("[sky]\ndust_density = 2\n", 2, 16, "not \"preetham\"");
   // A model's own keys are read.
   const SceneDesc s = parse_scene(
       "[sky]\nmodel = \"nishita\"\nair_density = 2\ndust_density = 0.5\naltitude = 1000\n",

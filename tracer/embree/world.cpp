@@ -76,10 +76,14 @@ World::World(const scene::Scene& scene, const EmbreeDevice& device)
          mesh.indices.size() / 3);
     map_id(mesh_of_geometry_, attach(top_.get(), g), i);
   }
+  if (!scene.terrain.empty()) attach_terrain(scene.terrain);
   if (scene.has_ground) {
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
     const float s = kGroundHalfSize;
-    const float corners[12] = {-s, -s, 0, s, -s, 0, s, s, 0, -s, s, 0};
+    // On a terrain, the plane is its lowest level (0) around it, a hair below so that the
+    // terrain's edge, which falls to 0, wins where they meet.
+    const float z = scene.terrain.empty() ? 0.0f : -1e-3f;
+    const float corners[12] = {-s, -s, z, s, -s, z, s, s, z, -s, s, z};
     const unsigned tris[6] = {0, 1, 2, 0, 2, 3};
     fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, corners, 3 * sizeof(float), 4);
     fill(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, tris, 3 * sizeof(unsigned), 2);
@@ -91,6 +95,32 @@ World::World(const scene::Scene& scene, const EmbreeDevice& device)
 }
 
 World::~World() = default;
+
+void World::attach_terrain(const scene::Terrain& t) {
+  // One grid over the whole terrain (Embree splits it into its own small patches), its vertex
+  // buffer the terrain's own (shared, not copied), in a compact scene of its own (Embree's
+  // compressed nodes: 12 bytes a vertex here and about 12 more in Embree, measured at 4 × 4 km
+  // at 1 m; docs/landscape.md), placed by an identity instance.
+  terrain_ = new_scene(device_);
+  rtcSetSceneFlags(terrain_.get(), RTC_SCENE_FLAG_COMPACT);
+  RTCGeometry g = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_GRID);
+  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, t.vertices().data(),
+                             0, sizeof(glm::vec3),
+                             static_cast<std::size_t>(t.columns()) * t.rows());
+  auto* grid = static_cast<RTCGrid*>(
+      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_GRID, 0, RTC_FORMAT_GRID, sizeof(RTCGrid), 1));
+  grid->startVertexID = 0;
+  grid->stride = static_cast<unsigned>(t.columns());
+  grid->width = static_cast<unsigned short>(t.columns());
+  grid->height = static_cast<unsigned short>(t.rows());
+  attach(terrain_.get(), g);
+  rtcCommitScene(terrain_.get());
+  RTCGeometry inst = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_INSTANCE);
+  rtcSetGeometryInstancedScene(inst, terrain_.get());
+  const glm::mat4 identity(1.0f);
+  rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &identity[0][0]);
+  terrain_geometry_ = attach(top_.get(), inst);
+}
 
 void World::calibrate_leaves(const std::vector<PrototypeLod>& lods) {
   for (std::size_t p = 0; p < lods.size(); ++p) {
@@ -118,6 +148,11 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   hit.grass = -1;  // a blade's describe_grass sets it
   SurfaceHit& s = hit.surface;
+  s.terrain = glm::vec2(0.0f);
+  if (terrain_ && rh.hit.instID[0] == terrain_geometry_) {
+    describe_terrain(ray, rh.ray.tfar, glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z), hit);
+    return true;
+  }
   if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && rh.hit.geomID < mesh_of_geometry_.size() &&
       mesh_of_geometry_[rh.hit.geomID] >= 0) {
     const scene::MeshObject& mesh =
@@ -171,7 +206,7 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
     s.kind = SurfaceKind::None;
     s.t = rh.ray.tfar;
     s.position = ray.origin + ray.direction * s.t;
-    s.position.z = 0.0f;
+    s.position.z = scene_.terrain.empty() ? 0.0f : -1e-3f;
     s.geometric_normal = ray.direction.z < 0.0f ? glm::vec3(0, 0, 1) : glm::vec3(0, 0, -1);
     s.shading_normal = s.geometric_normal;
     s.tangent = glm::vec3(1, 0, 0);
@@ -206,6 +241,33 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
                     : s.material == generator::kMaterialLeafBack ? inst.leaf_back_id
                                                                  : inst.leaf_front_id;
   return true;
+}
+
+void World::describe_terrain(const Ray& ray, float t_hit, glm::vec3 ng, WorldHit& hit) const {
+  const scene::Terrain& t = scene_.terrain;
+  SurfaceHit& s = hit.surface;
+  s.kind = SurfaceKind::None;
+  s.t = t_hit;
+  s.position = ray.origin + ray.direction * s.t;
+  // The facet's normal and the smooth one (both up, z > 0), turned to the side the ray came from.
+  ng = glm::normalize(ng);
+  if (ng.z < 0.0f) ng = -ng;
+  glm::vec3 n = t.normal(s.position.x, s.position.y);
+  if (glm::dot(ng, ray.direction) > 0.0f) {
+    ng = -ng;
+    n = -n;
+  }
+  s.geometric_normal = ng;
+  s.shading_normal = n;
+  s.tangent = glm::normalize(glm::cross(glm::vec3(0, 1, 0), n));
+  s.leaf = -1;
+  s.terrain = t.cover(s.position.x, s.position.y);
+  hit.ground = true;
+  hit.mesh = false;
+  hit.instance = -1;
+  hit.material = &scene_.ground;
+  hit.object_id = scene_.terrain_object_id;
+  hit.material_id = scene_.ground_material_id;
 }
 
 void World::describe_grass(const Ray& ray, unsigned blade, float u, float t, int placement,

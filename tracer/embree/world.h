@@ -56,6 +56,10 @@ class World {
  private:
   // Sets each thinned instance's leaf scale from its prototype's calibrated leaf area.
   void calibrate_leaves(const std::vector<PrototypeLod>& lods);
+  // Puts the terrain into Embree: its grid in a compact scene of its own, instanced in the top.
+  void attach_terrain(const scene::Terrain& terrain);
+  // Fills `hit` for a hit on the terrain.
+  void describe_terrain(const Ray& ray, float t, glm::vec3 ng, WorldHit& hit) const;
   // Fills `hit` for a hit on `blade` of meadow placement `placement` (world-space ray).
   void describe_grass(const Ray& ray, unsigned blade, float u, float t, int placement,
                       WorldHit& hit) const;
@@ -70,7 +74,10 @@ class World {
   // The tree instances' level of detail (scene/lod.h), their leaf scales calibrated by the
   // crowns' cover (lod_calibration.h); instance i is geometry i of the top scene.
   std::vector<scene::InstanceLod> lod_;
-  std::vector<int> mesh_of_geometry_;  // Embree geometry id in the top scene → mesh
+  std::vector<int> mesh_of_geometry_;
+  SceneHandle terrain_;              // the terrain's own scene (none: null)
+  unsigned terrain_geometry_ = ~0u;  // its instance's Embree geometry id in the top scene  //
+                                     // Embree geometry id in the top scene → mesh
   double build_seconds_ = 0.0;
   RayLog* log_ = nullptr;
 };

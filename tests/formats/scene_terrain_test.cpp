@@ -1,0 +1,61 @@
+// Tests of the [terrain] table and camera.above_ground as the scene reader reads them: values,
+// ranges, keys of another kind and the rules across keys, each refused at its line and column.
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "expect_scene_error.h"
+
+#include "formats/scene_desc.h"
+
+namespace arbor::formats {
+
+TEST(SceneTerrain, ItsKeysAreRead) {
+  const SceneDesc none = parse_scene("", "s.toml");
+  EXPECT_FALSE(none.terrain.enabled);
+  const SceneDesc s = parse_scene(
+      "[terrain]\nkind = \"mountains\"\nsize = 2000\nrelief = 350\nseed = 7\nresolution = 4\n"
+      "rock_slope = 40\nrock_albedo = [0.3, 0.3, 0.3]\n[camera]\nposition = [1, 2, 3]\n"
+      "above_ground = 1.7\n",
+      "s.toml");
+  EXPECT_TRUE(s.terrain.enabled);
+  EXPECT_EQ(s.terrain.kind, TerrainKind::Mountains);
+  EXPECT_EQ(s.terrain.size, 2000.0);
+  EXPECT_EQ(s.terrain.relief, 350.0);
+  EXPECT_EQ(s.terrain.seed, 7u);
+  EXPECT_EQ(s.terrain.resolution, 4.0);
+  EXPECT_EQ(s.terrain.rock_slope, 40.0);
+  ASSERT_TRUE(s.camera.above_ground.has_value());
+  EXPECT_EQ(*s.camera.above_ground, 1.7);
+  EXPECT_EQ(s.camera.focus_distance, 0.0);  // measured once the eye stands on the terrain
+  const SceneDesc image = parse_scene(
+      "[terrain]\nkind = \"image\"\npath = \"dem.png\"\nmetres_per_pixel = 30\n"
+      "height_scale = 1000\n",
+      "scenes/s.toml");
+  EXPECT_EQ(image.terrain.path, "scenes/dem.png");
+  EXPECT_EQ(image.terrain.metres_per_pixel, 30.0);
+  EXPECT_EQ(image.terrain.path_where.line, 3);
+}
+
+TEST(SceneTerrain, BadValuesAreRefusedAtTheirPosition) {
+  expect_scene_error("[terrain]\nrelief = 1e30\n", 2, 10, "out of range [0, 10000] metres");
+  expect_scene_error("[terrain]\nrelief = nan\n", 2, 10, "relief");
+  expect_scene_error("[terrain]\nkind = \"volcano\"\n", 2, 8,
+                     "one of \"hills\", \"mountains\", \"image\"");
+  expect_scene_error(
+      "[terrain]\nkind = \"image\"\nsize = 100\npath = \"d.png\"\n", 3, 8,
+      "terrain.size belongs to terrain.kind = \"hills\" or \"mountains\", not \"image\"");
+  expect_scene_error("[terrain]\npath = \"d.png\"\n", 2, 8,
+                     "terrain.path belongs to terrain.kind = \"image\", not \"hills\"");
+  expect_scene_error("[terrain]\nkind = \"image\"\n", 1, 1, "needs terrain.path");
+  expect_scene_error("[terrain]\nsize = 40000\nresolution = 0.5\n", 3, 14,
+                     "at most 32766 samples across (80000 asked)");
+  expect_scene_error("[terrain]\ncliffs = true\n", 2, 1, "unknown key 'cliffs' in [terrain]");
+  expect_scene_error("[camera]\nabove_ground = 1.7\n", 2, 16,
+                     "camera.above_ground needs a [terrain]");
+  expect_scene_error("[terrain]\n[meadow]\ndensity = 100\n", 2, 1,
+                     "a [meadow] on a [terrain] is not built yet");
+  expect_scene_error("[terrain]\n[camera]\nabove_ground = -1\n", 3, 16, "out of range [0, 100000]");
+}
+
+}  // namespace arbor::formats
