@@ -440,6 +440,9 @@ PbrtColorSpace pbrt_color_space_of(const imaging::ColorPipeline& color) {
 PbrtExport write_pbrt_scene(const scene::Scene& scene, const scene::RenderInput& input,
                             const imaging::ColorPipeline& color, const std::string& out,
                             int sky_resolution) {
+  // Refused rather than left out: a landscape without its ground would be another picture.
+  if (!scene.terrain.empty())
+    throw InputError({input.scene, 0, 0}, "the pbrt-v4 export does not write a [terrain] yet");
   const std::vector<float> linear = color.chromaticities("scene_linear");
   PbrtExport result;
   const PbrtColorSpace space = pbrt_color_space_of(color);
