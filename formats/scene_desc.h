@@ -140,6 +140,13 @@ struct TerrainDesc {
   SourceLocation where, path_where;  // the table's and the path's positions, for errors found later
 };
 
+// The metres between a terrain's height samples: the image's metres_per_pixel, or the size
+// divided into whole steps no longer than the resolution.
+inline double terrain_spacing(const TerrainDesc& t) {
+  if (t.kind == TerrainKind::Image) return t.metres_per_pixel;
+  return t.size / std::ceil(t.size / t.resolution - 1e-9);
+}
+
 // A meadow of grass blades (scene/meadow.h): `density` blades per m² (0: none) over `area`
 // (x0, y0, x1, y1, rounded out to whole tiles), each a thin two-sided translucent ribbon.
 struct MeadowDesc {

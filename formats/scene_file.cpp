@@ -179,9 +179,15 @@ SceneDesc parse_scene(const std::string& text, const std::string& path) {
   }
   read_keys(reader, root, "", "", scene_keys(), s);
   if (s.meadow.density > 0.0 && s.terrain.enabled) {
-    throw InputError(s.meadow.where,
-                     "a [meadow] on a [terrain] is not built yet (its blades would not stand on "
-                     "the slopes); leave one of them out");
+    // On a terrain the meadow's tiles are the terrain's cells (scene/meadow.h).
+    const toml::node* tile = root["meadow"]["tile"].node();
+    if (tile) {
+      throw InputError(reader.at(tile->source()),
+                       "meadow.tile is the terrain's cell on a [terrain] (" +
+                           short_number(terrain_spacing(s.terrain)) + " m); leave it out");
+    }
+    s.meadow.tile = terrain_spacing(s.terrain);
+    check_meadow(s.meadow);
   }
   if (s.camera.above_ground && !s.terrain.enabled) {
     throw InputError(s.camera.above_ground_where,

@@ -9,6 +9,7 @@
 
 #include "common/math.h"
 #include "common/rng.h"
+#include "scene/meadow_terrain.h"
 
 namespace arbor::scene {
 
@@ -65,6 +66,34 @@ void add_blade(GrassTile& tile, glm::vec3 root, double length, double theta, dou
   tile.colors.push_back(color);
 }
 
+// The placements of a meadow on the plane z = 0: every cell of the tile grid the area touches.
+void place_on_plane(const formats::MeadowDesc& d, Meadow& m) {
+  const double side = d.tile;
+  const auto ix0 = static_cast<std::int64_t>(std::floor(d.area[0] / side));
+  const auto iy0 = static_cast<std::int64_t>(std::floor(d.area[1] / side));
+  const auto ix1 = static_cast<std::int64_t>(std::ceil(d.area[2] / side));
+  const auto iy1 = static_cast<std::int64_t>(std::ceil(d.area[3] / side));
+  const auto half = static_cast<float>(0.5 * side);
+  for (std::int64_t iy = iy0; iy < iy1; ++iy) {
+    for (std::int64_t ix = ix0; ix < ix1; ++ix) {
+      const std::uint64_t h =
+          derive_key(derive_key(d.seed ^ 0x3ead0e5u, static_cast<std::uint64_t>(ix)),
+                     static_cast<std::uint64_t>(iy));
+      GrassPlacement p;
+      p.tile = static_cast<int>(h % static_cast<std::uint64_t>(d.tiles));
+      if (m.tiles[static_cast<std::size_t>(p.tile)].blades() == 0) continue;
+      const float turn = static_cast<float>((h >> 32) % 4u) * 0.5f * static_cast<float>(kPi);
+      const glm::vec3 centre(static_cast<float>(static_cast<double>(ix) * side) + half,
+                             static_cast<float>(static_cast<double>(iy) * side) + half, 0.0f);
+      p.to_world = glm::translate(glm::mat4(1.0f), centre) *
+                   glm::rotate(glm::mat4(1.0f), turn, glm::vec3(0, 0, 1)) *
+                   glm::translate(glm::mat4(1.0f), glm::vec3(-half, -half, 0.0f));
+      p.to_object = glm::inverse(p.to_world);
+      m.placements.push_back(p);
+    }
+  }
+}
+
 }  // namespace
 
 GrassTile grow_grass_tile(const formats::MeadowDesc& d, int k, double clock) {
@@ -110,33 +139,15 @@ GrassTile grow_grass_tile(const formats::MeadowDesc& d, int k, double clock) {
   return tile;
 }
 
-Meadow grow_meadow(const formats::MeadowDesc& d, double clock) {
+Meadow grow_meadow(const formats::MeadowDesc& d, double clock, const Terrain& terrain) {
   Meadow m;
   if (d.density <= 0.0) return m;
   for (int k = 0; k < d.tiles; ++k) m.tiles.push_back(grow_grass_tile(d, k, clock));
-  const double side = d.tile;
-  const auto ix0 = static_cast<std::int64_t>(std::floor(d.area[0] / side));
-  const auto iy0 = static_cast<std::int64_t>(std::floor(d.area[1] / side));
-  const auto ix1 = static_cast<std::int64_t>(std::ceil(d.area[2] / side));
-  const auto iy1 = static_cast<std::int64_t>(std::ceil(d.area[3] / side));
-  const auto half = static_cast<float>(0.5 * side);
-  for (std::int64_t iy = iy0; iy < iy1; ++iy) {
-    for (std::int64_t ix = ix0; ix < ix1; ++ix) {
-      const std::uint64_t h =
-          derive_key(derive_key(d.seed ^ 0x3ead0e5u, static_cast<std::uint64_t>(ix)),
-                     static_cast<std::uint64_t>(iy));
-      GrassPlacement p;
-      p.tile = static_cast<int>(h % static_cast<std::uint64_t>(d.tiles));
-      if (m.tiles[static_cast<std::size_t>(p.tile)].blades() == 0) continue;
-      const float turn = static_cast<float>((h >> 32) % 4u) * 0.5f * static_cast<float>(kPi);
-      const glm::vec3 centre(static_cast<float>(static_cast<double>(ix) * side) + half,
-                             static_cast<float>(static_cast<double>(iy) * side) + half, 0.0f);
-      p.to_world = glm::translate(glm::mat4(1.0f), centre) *
-                   glm::rotate(glm::mat4(1.0f), turn, glm::vec3(0, 0, 1)) *
-                   glm::translate(glm::mat4(1.0f), glm::vec3(-half, -half, 0.0f));
-      p.to_object = glm::inverse(p.to_world);
-      m.placements.push_back(p);
-    }
+  if (!terrain.empty()) {
+    m.tiles = cut_tiles(m.tiles, d.tile);
+    place_on_terrain(d, terrain, m);
+  } else {
+    place_on_plane(d, m);
   }
   materials::LeafMaterial grass;
   grass.front = to_vec3(d.reflectance);

@@ -15,6 +15,7 @@
 
 #include "formats/scene_desc.h"
 #include "materials/material.h"
+#include "scene/terrain.h"
 
 namespace arbor::scene {
 
@@ -35,7 +36,10 @@ struct GrassTile {
 // One cell of the meadow: which tile, where.
 struct GrassPlacement {
   int tile = 0;
-  glm::mat4 to_world{1.0f}, to_object{1.0f};  // a translation and a turn about z
+  // A translation and a turn about z; on a terrain also a shear z += a·x + b·y + c that lays the
+  // tile's ground on the terrain's triangle (sheared: normals go by the inverse transpose).
+  glm::mat4 to_world{1.0f}, to_object{1.0f};
+  bool sheared = false;
 };
 
 struct Meadow {
@@ -52,7 +56,22 @@ struct Meadow {
 
 // The meadow of `d` at `clock` seconds into the animation (the wind's sway). Empty when the
 // density is 0. The material's compositing ids are left for the caller.
-Meadow grow_meadow(const formats::MeadowDesc& d, double clock);
+//
+// On a terrain (not empty) the tiles are the terrain's cells (d.tile is its spacing) and each
+// is cut along the cell's diagonal into its two triangles, so that a shear lays each half
+// exactly on the rendered triangle under it: every blade's root is on the surface. A half is
+// kept at one of four densities (all its blades, ½, ¼ or ⅛: a prefix of its random order), chosen
+// at random so that the mean density of a triangle is d.density × triangle_grass_share().
+Meadow grow_meadow(const formats::MeadowDesc& d, double clock, const Terrain& terrain = {});
+
+// The share of a meadow's density that grows where the terrain's cover is (soil, rock): none on
+// rock, 30 % on bare soil (scene/ground.h paints them), all elsewhere.
+double grass_share(glm::vec2 cover);
+
+// The share of grass on triangle `upper` (0: (v0, v1, v3), 1: (v2, v3, v1)) of terrain cell
+// (i, j): the least grass_share at its centroid and at the points ⅔ of the way from there to its
+// corners, so that no grass grows on a triangle that is partly rock.
+double triangle_grass_share(const Terrain& terrain, int i, int j, int upper);
 
 // The tile's blades alone (for tests): tile k of the meadow.
 GrassTile grow_grass_tile(const formats::MeadowDesc& d, int k, double clock);

@@ -61,8 +61,10 @@ MemoryEstimate estimate_render_memory(const formats::SceneDesc& s, const FilmCos
   e.instance_bytes = e.instances * kBytesPerInstance;
   const formats::MeadowDesc& m = s.meadow;
   if (m.density > 0.0) {
-    const double cells = formats::meadow_cells(m);
-    const double blades = m.density * m.tile * m.tile * m.tiles;
+    // On a terrain each cell holds two halves, and each tile is kept at four densities.
+    const double halves = s.terrain.enabled ? 2.0 : 1.0, levels = s.terrain.enabled ? 1.875 : 1.0;
+    const double cells = formats::meadow_cells(m) * halves;
+    const double blades = m.density * m.tile * m.tile * m.tiles * levels;
     e.meadow_bytes = static_cast<std::uint64_t>(cells) * kBytesPerInstance +
                      static_cast<std::uint64_t>(blades) * kBytesPerBlade;
   }

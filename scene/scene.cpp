@@ -451,7 +451,7 @@ void add_ground_and_meadow(const formats::SceneDesc& desc, Scene& s, SceneBuilde
     s.ground = ground_material(desc.ground, desc.terrain);
   }
   if (desc.meadow.density > 0.0) {
-    s.meadow = grow_meadow(desc.meadow, desc.clock);
+    s.meadow = grow_meadow(desc.meadow, desc.clock, s.terrain);
     s.object_names.emplace_back("meadow");
     s.meadow.object_id = static_cast<std::uint32_t>(s.object_names.size());
     s.meadow.front_id = b.material_named("meadow/blade front");

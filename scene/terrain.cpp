@@ -137,8 +137,8 @@ Terrain::Terrain(const formats::TerrainDesc& d) : rock_slope_(d.rock_slope) {
       }
     }
   } else {
-    nx_ = ny_ = static_cast<int>(std::ceil(d.size / d.resolution - 1e-9)) + 1;
-    spacing_ = d.size / (nx_ - 1);
+    spacing_ = formats::terrain_spacing(d);
+    nx_ = ny_ = static_cast<int>(std::lround(d.size / spacing_)) + 1;
     vertices_.resize(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_) + 2);
     Rng rng(derive_key(d.seed, 0x7e77a1u));
     const glm::dvec3 offset(1000.0 * rng.uniform(), 1000.0 * rng.uniform(), 100.0 * rng.uniform());

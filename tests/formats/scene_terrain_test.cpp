@@ -53,8 +53,8 @@ TEST(SceneTerrain, BadValuesAreRefusedAtTheirPosition) {
   expect_scene_error("[terrain]\ncliffs = true\n", 2, 1, "unknown key 'cliffs' in [terrain]");
   expect_scene_error("[camera]\nabove_ground = 1.7\n", 2, 16,
                      "camera.above_ground needs a [terrain]");
-  expect_scene_error("[terrain]\n[meadow]\ndensity = 100\n", 2, 1,
-                     "a [meadow] on a [terrain] is not built yet");
+  expect_scene_error("[terrain]\nresolution = 4\n[meadow]\ndensity = 100\ntile = 2\n", 5, 8,
+                     "meadow.tile is the terrain's cell on a [terrain] (4 m); leave it out");
   expect_scene_error("[terrain]\n[camera]\nabove_ground = -1\n", 3, 16, "out of range [0, 100000]");
 }
 

@@ -279,12 +279,20 @@ void World::describe_grass(const Ray& ray, unsigned blade, float u, float t, int
   local.direction = glm::vec3(p.to_object * glm::vec4(ray.direction, 0.0f));
   SurfaceHit& s = hit.surface;
   grass_[static_cast<std::size_t>(p.tile)]->describe_hit(local, blade, u, t, s);
-  // A turn about z and a translation: normals and tangents turn with the placement.
+  // A turn about z and a translation: normals and tangents turn with the placement. Sheared
+  // onto a terrain: tangents by the placement, normals by its inverse transpose.
   const glm::mat3 turn(p.to_world);
   s.position = ray.origin + ray.direction * t;
-  s.geometric_normal = turn * s.geometric_normal;
-  s.shading_normal = turn * s.shading_normal;
-  s.tangent = turn * s.tangent;
+  if (p.sheared) {
+    const glm::mat3 normals = glm::transpose(glm::mat3(p.to_object));
+    s.geometric_normal = glm::normalize(normals * s.geometric_normal);
+    s.shading_normal = glm::normalize(normals * s.shading_normal);
+    s.tangent = glm::normalize(turn * s.tangent);
+  } else {
+    s.geometric_normal = turn * s.geometric_normal;
+    s.shading_normal = turn * s.shading_normal;
+    s.tangent = turn * s.tangent;
+  }
   hit.ground = false;
   hit.mesh = false;
   hit.instance = -1;
