@@ -247,6 +247,43 @@ struct ForestDesc {
   TreemakerOverride treemaker;
 };
 
+// One species of a plant community (scene/community.h; docs/landscape.md, "Plant communities"):
+// how it establishes, grows, competes and where it can live.
+struct CommunitySpecies {
+  std::string species;  // the species file
+  SourceLocation where;
+  int variants = 16;             // distinct trees grown; every plant is one of them, scaled
+  double sown = 0.0;             // established per m² in the first year (an even-aged stand)
+  double seedlings = 1e-3;       // established per m² per year where the habitat is ideal
+  double seeds = 2.0;            // seeds a year from a plant past half its maturity
+  double dispersal = 10.0;       // metres: the mean distance of a seed from its parent
+  double radius = 4.0;           // metres: the circle of influence at maturity (the crown)
+  double maturity = 40.0;        // years to 95 % of the full radius
+  double lifespan = 200.0;       // years; older plants die at 10 % a year
+  double shade_tolerance = 0.0;  // a dominated plant's chance to live another year, [0, 1)
+  double altitude_min = -1e5;    // metres above the terrain's lowest point
+  double altitude_max = 1e5;
+  double slope_max = 45.0;         // degrees
+  double aspect = 180.0;           // degrees from north, clockwise: the way its slopes face
+  double aspect_preference = 0.0;  // 0: any aspect, 1: only slopes facing `aspect`
+  double moisture_min = 0.0;       // the terrain's flow moisture, [0, 1]
+  double moisture_max = 1.0;
+  BarkOverride bark;
+  LeafOverride leaf;
+  TreemakerOverride treemaker;
+};
+
+// A plant community (scene/community.h): its species simulated together over `years` on `area`
+// as circles of influence (Lane & Prusinkiewicz 2002).
+struct CommunityDesc {
+  bool enabled = false;
+  std::array<double, 4> area{-50.0, -50.0, 50.0, 50.0};
+  double years = 100.0;
+  std::uint64_t seed = 1;
+  std::vector<CommunitySpecies> species;
+  SourceLocation where;
+};
+
 struct MeshMaterialDesc {
   std::string kind = "diffuse";  // "bark" | "leaf" | "diffuse"
   Rgb albedo{0.5, 0.5, 0.5};     // bark, diffuse
@@ -309,6 +346,7 @@ struct SceneDesc {
   MeadowDesc meadow;
   std::vector<TreeDesc> trees;
   std::vector<ForestDesc> forests;
+  CommunityDesc community;
   std::vector<MeshDesc> meshes;
   OutputDesc output;
   AnimationDesc animation;

@@ -136,6 +136,16 @@ const std::vector<Key<SceneDesc>>& scene_keys() {
                       throw InputError(d.where, "forest.variants must not exceed forest.count");
                   });
                 }),
+      custom<S>("community", KeyKind::Table,
+                "plants of several species grown together (docs/landscape.md)",
+                [](const KeyValue& v, S& s) {
+                  s.community.enabled = true;
+                  s.community.where = v.reader.at(v.table().source());
+                  read_table(v, community_keys(), s.community);
+                  if (s.community.species.empty())
+                    throw InputError(s.community.where,
+                                     "[community] needs [[community.species]] (at least one)");
+                }),
       custom<S>("mesh", KeyKind::Table, "[[mesh]]: a Wavefront OBJ placed in the scene",
                 [](const KeyValue& v, S& s) {
                   read_array(v, mesh_keys(), s.meshes, [](const MeshDesc& d) {

@@ -1,4 +1,5 @@
 // The scene file's keys of the landscape: [terrain] (scene_keys.h; docs/landscape.md).
+#include "common/range.h"
 #include "formats/scene_keys.h"
 
 namespace arbor::formats {
@@ -51,6 +52,43 @@ const std::vector<Key<TerrainDesc>>& terrain_keys() {
             "faces steeper than this are rock; soil on the 10° below"),
       value("rock_albedo", &T::rock_albedo, kUnitAlbedo, "the rock's albedo (lichen varies it)"),
       value("soil_albedo", &T::soil_albedo, kUnitAlbedo, "bare soil's albedo, below the rock"),
+  };
+  return table;
+}
+
+const std::vector<Key<CommunityDesc>>& community_keys() {
+  using C = CommunityDesc;
+  static const std::vector<Key<C>> table = {
+      value("area", &C::area, Range{}, "[[x0, y0], [x1, y1]]: the rectangle it grows in"),
+      value("years", &C::years, Range{1, 2000, "years"}, "the years simulated"),
+      value("seed", &C::seed, Range{0, 0x1p63, ""}, "the seed of the simulation and variants"),
+      custom<C>(
+          "species", KeyKind::Table, "[[community.species]]: the species, at least one",
+          [](const KeyValue& v, C& c) {
+            const toml::array* a = v.node.as_array();
+            if (!a) {
+              v.reader.fail(v.node,
+                            "'community.species' must be an array of tables: write "
+                            "[[community.species]]");
+            }
+            for (const toml::node& e : *a) {
+              const toml::table& t = v.reader.table(e, v.name);
+              CommunitySpecies& s = c.species.emplace_back();
+              s.where = v.reader.at(t.source());
+              read_keys(v.reader, t, v.name, "[[community.species]]", community_species_keys(), s);
+              if (s.species.empty())
+                throw InputError(s.where, "[[community.species]] needs a species file");
+              for (const auto& [lo, hi, name] :
+                   {std::tuple{s.altitude_min, s.altitude_max, "altitude"},
+                    std::tuple{s.moisture_min, s.moisture_max, "moisture"}})
+                if (lo > hi)
+                  throw InputError(s.where, std::string("[[community.species]] ") + name + "_min " +
+                                                short_number(lo) + " exceeds " + name + "_max " +
+                                                short_number(hi));
+            }
+          },
+          [](const C& c) { return std::to_string(c.species.size()) + " species"; })
+          .shows("none"),
   };
   return table;
 }

@@ -93,6 +93,51 @@ const std::vector<Key<ForestDesc>>& forest_keys() {
   return table;
 }
 
+const std::vector<Key<CommunitySpecies>>& community_species_keys() {
+  using C = CommunitySpecies;
+  static const std::vector<Key<C>> table = [] {
+    std::vector<Key<C>> t = {
+        file("species", &C::species, "the species file, as [[tree]]'s").shows("required"),
+        value("variants", &C::variants, Range{1, 1024, "trees"},
+              "distinct trees grown; every plant is one of them, scaled to its size"),
+        value("sown", &C::sown, Range{0, 10, "per m²"},
+              "established in the first year, where the habitat is ideal (an even-aged stand)"),
+        value("seedlings", &C::seedlings, Range{0, 10, "per m² per year"},
+              "established anywhere, where the habitat is ideal"),
+        value("seeds", &C::seeds, Range{0, 1000, "per year"},
+              "seeds a plant past half its maturity disperses"),
+        value("dispersal", &C::dispersal, Range{0.1, 10000, "metres"},
+              "the mean distance of a seed from its parent"),
+        value("radius", &C::radius, Range{0.05, 100, "metres"},
+              "the circle of influence at maturity (about the crown's)"),
+        value("maturity", &C::maturity, Range{1, 10000, "years"},
+              "years to 95 % of the full radius"),
+        value("lifespan", &C::lifespan, Range{1, 10000, "years"},
+              "older plants die at 10 % a year"),
+        value("shade_tolerance", &C::shade_tolerance, Range{0, 0.999, ""},
+              "a plant overtopped by a taller species' chance to live another year (by its own "
+              "kind, it dies)"),
+        value("altitude_min", &C::altitude_min, Range{-1e5, 1e5, "metres"},
+              "above the terrain's lowest point")
+            .shows("no limit"),
+        value("altitude_max", &C::altitude_max, Range{-1e5, 1e5, "metres"},
+              "above the terrain's lowest point")
+            .shows("no limit"),
+        value("slope_max", &C::slope_max, Range{0, 90, "degrees"}, "the steepest it grows on"),
+        value("aspect", &C::aspect, Range{0, 360, "degrees"},
+              "the way its favourite slopes face, clockwise from north (180: south)"),
+        value("aspect_preference", &C::aspect_preference, Range{0, 1, ""},
+              "0: any aspect; 1: only slopes facing `aspect`"),
+        value("moisture_min", &C::moisture_min, Range{0, 1, ""},
+              "the terrain's flow moisture (0: ridges, 1: the valley's floor)"),
+        value("moisture_max", &C::moisture_max, Range{0, 1, ""}, "as moisture_min"),
+    };
+    add_overrides(t);
+    return t;
+  }();
+  return table;
+}
+
 const std::vector<Key<BarkOverride>>& bark_keys() {
   using B = BarkOverride;
   static const std::vector<Key<B>> table = {

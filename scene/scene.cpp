@@ -434,6 +434,47 @@ void check_forest_budget(const formats::ForestDesc& f, std::size_t before, std::
   throw InputError(f.where, buf);
 }
 
+// The community's plants (scene/community.h): `variants` trees of each species grown (in
+// parallel), every plant one of them chosen by its number, turned at random and scaled so that
+// its crown's radius is its circle of influence.
+template <class Animated, class OnGround>
+void add_community(const formats::CommunityDesc& d, Scene& s, SceneBuilder& b, double sink,
+                   Progress* progress, std::size_t* done, Animated animated, OnGround on_ground) {
+  const Community c = simulate_community(d, s.terrain);
+  std::vector<SceneBuilder::GrowRequest> requests;
+  for (std::size_t k = 0; k < d.species.size(); ++k) {
+    const formats::CommunitySpecies& sp = d.species[k];
+    for (int v = 0; v < sp.variants; ++v) {
+      requests.push_back({sp.species,
+                          derive_key(derive_key(d.seed, k), static_cast<std::uint64_t>(v)),
+                          animated(sp.species, 0.0), sp.where, sink});
+    }
+  }
+  const std::vector<int> prototypes = b.prototypes_for(requests, progress, done);
+  std::vector<std::size_t> first(d.species.size(), 0);
+  std::vector<TreeLook> looks;
+  for (std::size_t k = 0; k < d.species.size(); ++k) {
+    const formats::CommunitySpecies& sp = d.species[k];
+    if (k > 0) first[k] = first[k - 1] + static_cast<std::size_t>(d.species[k - 1].variants);
+    looks.push_back(b.look_for(b.species(sp.species), sp.bark, sp.leaf, sp.treemaker, sp.where));
+  }
+  for (const Plant& p : c.plants) {
+    const formats::CommunitySpecies& sp = d.species[static_cast<std::size_t>(p.species)];
+    Rng rng(derive_key(d.seed ^ 0x91a47u, p.id));
+    const auto variant = static_cast<int>(rng.uniform() * sp.variants);
+    const int prototype =
+        prototypes[first[static_cast<std::size_t>(p.species)] + static_cast<std::size_t>(variant)];
+    const float crown = s.prototypes[static_cast<std::size_t>(prototype)].extent.radius;
+    formats::Placement pl;
+    pl.position = {p.position.x, p.position.y, 0.0};
+    pl.rotation = 360.0 * rng.uniform();
+    pl.scale = p.radius / std::max(0.1, static_cast<double>(crown));
+    s.community.push_back({s.instances.size(), p.species, variant, p.age, p.radius});
+    b.add_instance(prototype, on_ground(pl), looks[static_cast<std::size_t>(p.species)],
+                   sp.species);
+  }
+}
+
 // The ground plane, the terrain's object and the material they share, and the meadow.
 void add_ground_and_meadow(const formats::SceneDesc& desc, Scene& s, SceneBuilder& b) {
   if (desc.ground.enabled || desc.terrain.enabled) {
@@ -483,6 +524,8 @@ std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
   b.set_lod(desc.render, placed_camera(desc.camera, scene->terrain));
   std::size_t total = desc.trees.size(), done = 0;
   for (const formats::ForestDesc& f : desc.forests) total += static_cast<std::size_t>(f.variants);
+  for (const formats::CommunitySpecies& c : desc.community.species)
+    total += static_cast<std::size_t>(c.variants);
   if (progress) progress->set_total(total);
   // The animation's clock: seconds of wind for models that sway, years of growth for the fractal
   // model (formats/scene_desc.h, AnimationDesc).
@@ -538,6 +581,8 @@ std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
       b.add_instance(variants[static_cast<size_t>(i % f.variants)], on_ground(pl), look, f.species);
     }
   }
+  if (desc.community.enabled)
+    add_community(desc.community, *scene, b, sink, progress, &done, animated, on_ground);
   for (const formats::MeshDesc& m : desc.meshes) {
     formats::MeshDesc placed = m;
     placed.placement = on_ground(m.placement);

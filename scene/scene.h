@@ -17,6 +17,7 @@
 #include "generator/geometry/tree_geometry.h"
 #include "materials/treemaker_weights.h"
 #include "materials/material.h"
+#include "scene/community.h"
 #include "scene/lod.h"
 #include "scene/meadow.h"
 #include "scene/terrain.h"
@@ -86,6 +87,14 @@ struct Scene {
   bool has_ground = false;
   materials::Material ground;
   std::uint32_t ground_object_id = 0, ground_material_id = 0;
+  // The community's plants (scene/community.h) in the order of their instances, which follow the
+  // trees' and the forests'.
+  struct CommunityPlant {
+    std::size_t instance = 0;
+    int species = 0, variant = 0;
+    double age = 0.0, radius = 0.0;
+  };
+  std::vector<CommunityPlant> community;
   Meadow meadow;    // empty: none
   Terrain terrain;  // empty: none (the ground plane alone)
   std::uint32_t terrain_object_id = 0;

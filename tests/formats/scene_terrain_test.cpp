@@ -58,4 +58,42 @@ TEST(SceneTerrain, BadValuesAreRefusedAtTheirPosition) {
   expect_scene_error("[terrain]\n[camera]\nabove_ground = -1\n", 3, 16, "out of range [0, 100000]");
 }
 
+TEST(SceneCommunity, IsReadWithItsSpecies) {
+  const SceneDesc s = parse_scene(
+      "[community]\narea = [[-10, -20], [30, 40]]\nyears = 60\nseed = 3\n"
+      "[[community.species]]\nspecies = \"aspen.toml\"\nradius = 5\nshade_tolerance = 0.5\n"
+      "altitude_max = 120\n[[community.species]]\nspecies = \"fir.toml\"\nsown = 0.01\n",
+      "scenes/s.toml");
+  ASSERT_TRUE(s.community.enabled);
+  EXPECT_EQ(s.community.area[1], -20.0);
+  EXPECT_EQ(s.community.years, 60.0);
+  EXPECT_EQ(s.community.seed, 3u);
+  ASSERT_EQ(s.community.species.size(), 2u);
+  EXPECT_EQ(s.community.species[0].species, "scenes/aspen.toml");
+  EXPECT_EQ(s.community.species[0].radius, 5.0);
+  EXPECT_EQ(s.community.species[0].shade_tolerance, 0.5);
+  EXPECT_EQ(s.community.species[0].altitude_max, 120.0);
+  EXPECT_EQ(s.community.species[0].where.line, 5);
+  EXPECT_EQ(s.community.species[1].sown, 0.01);
+  EXPECT_EQ(s.community.species[1].radius, 4.0);  // the default
+}
+
+TEST(SceneCommunity, BadTablesAreRefusedAtTheirPlace) {
+  expect_scene_error("[community]\nyears = 10\n", 1, 1,
+                     "[community] needs [[community.species]] (at least one)");
+  expect_scene_error("[community]\n[[community.species]]\nradius = 3\n", 2, 1,
+                     "needs a species file");
+  expect_scene_error(
+      "[community]\n[[community.species]]\nspecies = \"a.toml\"\naltitude_min = 50\n"
+      "altitude_max = 10\n",
+      2, 1, "altitude_min 50 exceeds altitude_max 10");
+  expect_scene_error("[community]\n[[community.species]]\nspecies = \"a.toml\"\nbogus = 1\n", 4, 1,
+                     "unknown key 'bogus' in [[community.species]]");
+  expect_scene_error(
+      "[community]\n[[community.species]]\nspecies = \"a.toml\"\nshade_tolerance = 1\n", 4, 19,
+      "out of range [0, 0.999]");
+  expect_scene_error("[community]\nyears = 1e30\n[[community.species]]\nspecies = \"a.toml\"\n", 2,
+                     9, "out of range [1, 2000]");
+}
+
 }  // namespace arbor::formats

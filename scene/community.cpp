@@ -1,0 +1,277 @@
+// The plant community's simulation (scene/community.h).
+#include "scene/community.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+#include "common/error.h"
+#include "common/math.h"
+#include "common/range.h"
+#include "common/rng.h"
+
+namespace arbor::scene {
+
+namespace {
+
+constexpr std::size_t kMostAlive = 4'000'000;
+
+// 0 outside [lo, hi], rising to 1 over `soft` inside it (over half the band if it is narrower):
+// a plant never stands outside its stated band.
+double band(double v, double lo, double hi, double soft) {
+  if (!(v >= lo && v <= hi)) return 0.0;
+  soft = std::min(soft, 0.5 * (hi - lo));
+  if (soft <= 0.0) return 1.0;
+  return std::min({1.0, (v - lo) / soft, (hi - v) / soft});
+}
+
+// Plants on a grid of cells of side `cell`, for the neighbours of a circle.
+class Grid {
+ public:
+  Grid(const std::vector<Plant>& plants, double cell) : cell_(cell) {
+    for (std::size_t i = 0; i < plants.size(); ++i) cells_[key(plants[i].position)].push_back(i);
+  }
+  template <class F>
+  void near(glm::dvec2 p, F f) const {
+    const auto cx = static_cast<std::int64_t>(std::floor(p.x / cell_));
+    const auto cy = static_cast<std::int64_t>(std::floor(p.y / cell_));
+    for (std::int64_t y = cy - 1; y <= cy + 1; ++y)
+      for (std::int64_t x = cx - 1; x <= cx + 1; ++x) {
+        const auto it = cells_.find(pack(x, y));
+        if (it != cells_.end())
+          for (const std::size_t i : it->second) f(i);
+      }
+  }
+
+ private:
+  static std::uint64_t pack(std::int64_t x, std::int64_t y) {
+    return (static_cast<std::uint64_t>(x) << 32) ^ (static_cast<std::uint64_t>(y) & 0xffffffffu);
+  }
+  std::uint64_t key(glm::dvec2 p) const {
+    return pack(static_cast<std::int64_t>(std::floor(p.x / cell_)),
+                static_cast<std::int64_t>(std::floor(p.y / cell_)));
+  }
+  double cell_;
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells_;
+};
+
+// Whether plant a dominates plant b: the larger circle, then the older, then the first.
+bool dominates(const Plant& a, const Plant& b) {
+  if (a.radius != b.radius) return a.radius > b.radius;
+  if (a.age != b.age) return a.age > b.age;
+  return a.id < b.id;
+}
+
+// InputError at a species whose habitat is nowhere in the area: it could never establish. The
+// habitat is looked at on a 257 × 257 grid over the area (on a terrain, finer than its cells
+// where the area is under 257 cells across).
+void check_habitats(const formats::CommunityDesc& d, const Terrain& terrain,
+                    const std::vector<float>& moisture) {
+  constexpr int kSteps = 256;
+  const double w = d.area[2] - d.area[0], h = d.area[3] - d.area[1];
+  for (const formats::CommunitySpecies& s : d.species) {
+    double best = 0.0, lo = 1e300, hi = -1e300, steepest = 0.0;
+    for (int j = 0; j <= kSteps && best == 0.0; ++j)
+      for (int i = 0; i <= kSteps; ++i) {
+        const double x = d.area[0] + w * i / kSteps, y = d.area[1] + h * j / kSteps;
+        best = std::max(best, habitat(s, terrain, moisture, x, y));
+        const double z = terrain.empty() ? 0.0 : terrain.height(x, y);
+        lo = std::min(lo, z);
+        hi = std::max(hi, z);
+        steepest = std::max(steepest, terrain.empty() ? 0.0 : terrain.slope(x, y));
+      }
+    if (best > 0.0) continue;
+    throw InputError(s.where,
+                     "[[community.species]] " + s.species +
+                         ": no place in the community's area suits its habitat "
+                         "(altitude [" +
+                         short_number(s.altitude_min) + ", " + short_number(s.altitude_max) +
+                         "] m, slopes to " + short_number(s.slope_max) + "°, moisture [" +
+                         short_number(s.moisture_min) + ", " + short_number(s.moisture_max) +
+                         "]); the area's ground lies at [" + short_number(std::round(lo)) + ", " +
+                         short_number(std::round(hi)) + "] m with slopes to " +
+                         short_number(std::round(steepest)) + "°");
+  }
+}
+
+}  // namespace
+
+double circle_radius(const formats::CommunitySpecies& s, double growth) {
+  return s.radius * std::max(0.05, 1.0 - std::exp(-3.0 * growth / s.maturity));
+}
+
+std::vector<float> flow_moisture(const Terrain& terrain) {
+  const int nx = terrain.columns(), ny = terrain.rows();
+  const std::size_t n = static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny);
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  auto z = [&](std::size_t k) {
+    return terrain.at(static_cast<int>(k % nx), static_cast<int>(k / nx));
+  };
+  // Highest first, ties by index: each vertex has passed on its area before its receiver does.
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return z(a) != z(b) ? z(a) > z(b) : a < b; });
+  std::vector<double> area(n, 1.0);
+  for (const std::size_t k : order) {
+    const int i = static_cast<int>(k % nx), j = static_cast<int>(k / nx);
+    std::size_t low = k;
+    double drop = 0.0;
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int di = -1; di <= 1; ++di) {
+        const int a = i + di, b = j + dj;
+        if ((di == 0 && dj == 0) || a < 0 || b < 0 || a >= nx || b >= ny) continue;
+        const double d = (z(k) - terrain.at(a, b)) / std::hypot(di, dj);
+        if (d > drop) {
+          drop = d;
+          low = static_cast<std::size_t>(b) * nx + a;
+        }
+      }
+    if (low != k) area[low] += area[k];
+  }
+  const double top = std::log(*std::max_element(area.begin(), area.end()));
+  std::vector<float> m(n);
+  for (std::size_t k = 0; k < n; ++k)
+    m[k] = top > 0.0 ? static_cast<float>(std::log(area[k]) / top) : 0.5f;
+  return m;
+}
+
+double habitat(const formats::CommunitySpecies& s, const Terrain& terrain,
+               const std::vector<float>& moisture, double x, double y) {
+  double altitude = 0.0, slope = 0.0, wet = 0.5, facing = 1.0;
+  const glm::dvec2 o = terrain.origin(), e = terrain.extent();
+  if (!terrain.empty() && x >= o.x && y >= o.y && x <= o.x + e.x && y <= o.y + e.y) {
+    altitude = terrain.height(x, y);
+    slope = terrain.slope(x, y);
+    const int i = static_cast<int>(std::lround((x - o.x) / terrain.spacing()));
+    const int j = static_cast<int>(std::lround((y - o.y) / terrain.spacing()));
+    wet = moisture[static_cast<std::size_t>(j) * terrain.columns() + i];
+    const glm::vec3 n = terrain.normal(x, y);
+    if (std::hypot(n.x, n.y) > 1e-6) {
+      // The way the slope faces, clockwise from north (+y).
+      const double aspect = std::atan2(n.x, n.y) * 180.0 / kPi;
+      facing = 0.5 * (1.0 + std::cos((aspect - s.aspect) * kPi / 180.0));
+    }
+  }
+  const double width = s.altitude_max - s.altitude_min;
+  return band(altitude, s.altitude_min, s.altitude_max, 0.05 * width) *
+         band(slope, -5.0, s.slope_max, 5.0) * band(wet, s.moisture_min, s.moisture_max, 0.05) *
+         (1.0 - s.aspect_preference + s.aspect_preference * facing);
+}
+
+Community simulate_community(const formats::CommunityDesc& d, const Terrain& terrain) {
+  Community c;
+  const std::vector<float> moisture =
+      terrain.empty() ? std::vector<float>{} : flow_moisture(terrain);
+  check_habitats(d, terrain, moisture);
+  const double w = d.area[2] - d.area[0], h = d.area[3] - d.area[1];
+  double largest = 0.0;
+  for (const formats::CommunitySpecies& s : d.species) largest = std::max(largest, s.radius);
+  std::uint64_t next_id = 0;
+  std::vector<Plant>& plants = c.plants;
+  const auto years = static_cast<int>(std::lround(d.years));
+  for (int year = 0; year < years; ++year) {
+    // Establishment: seedlings anywhere, seeds near their parents; each takes by its habitat.
+    std::vector<Plant> born;
+    auto try_at = [&](int species, glm::dvec2 p, Rng& rng) {
+      if (p.x < d.area[0] || p.y < d.area[1] || p.x >= d.area[2] || p.y >= d.area[3]) return;
+      const formats::CommunitySpecies& s = d.species[static_cast<std::size_t>(species)];
+      if (rng.uniform() >= habitat(s, terrain, moisture, p.x, p.y)) return;
+      Plant plant;
+      plant.species = species;
+      plant.position = p;
+      plant.radius = circle_radius(s, 0.0);
+      born.push_back(plant);
+    };
+    for (std::size_t k = 0; k < d.species.size(); ++k) {
+      Rng rng(derive_key(derive_key(d.seed ^ 0xc0aa17u, static_cast<std::uint64_t>(year)), k));
+      const double expected =
+          (d.species[k].seedlings + (year == 0 ? d.species[k].sown : 0.0)) * w * h;
+      auto count = static_cast<std::uint64_t>(expected);
+      if (rng.uniform() < expected - static_cast<double>(count)) ++count;
+      for (std::uint64_t i = 0; i < count; ++i)
+        try_at(static_cast<int>(k), {d.area[0] + w * rng.uniform(), d.area[1] + h * rng.uniform()},
+               rng);
+    }
+    for (const Plant& parent : plants) {
+      const formats::CommunitySpecies& s = d.species[static_cast<std::size_t>(parent.species)];
+      if (parent.age < 0.5 * s.maturity || parent.dominated) continue;
+      Rng rng(
+          derive_key(derive_key(d.seed ^ 0x5eed5u, parent.id), static_cast<std::uint64_t>(year)));
+      const double expected = s.seeds;
+      auto count = static_cast<std::uint64_t>(expected);
+      if (rng.uniform() < expected - static_cast<double>(count)) ++count;
+      for (std::uint64_t i = 0; i < count; ++i) {
+        const double r = -s.dispersal * std::log(std::max(rng.uniform(), 1e-300));
+        const double phi = 2.0 * kPi * rng.uniform();
+        try_at(parent.species, parent.position + r * glm::dvec2(std::cos(phi), std::sin(phi)), rng);
+      }
+    }
+    for (Plant& p : born) {
+      p.id = next_id++;
+      plants.push_back(p);
+    }
+    if (plants.size() > kMostAlive) {
+      throw InputError(d.where,
+                       "[community] would have more than 4·10⁶ plants alive at once "
+                       "(year " +
+                           std::to_string(year + 1) +
+                           "); lower its species' seedlings or seeds, or its area");
+    }
+    // Growth, then competition: where two circles overlap the smaller plant is dominated.
+    for (Plant& p : plants) {
+      const formats::CommunitySpecies& s = d.species[static_cast<std::size_t>(p.species)];
+      p.age += 1.0;
+      p.growth += p.dominated ? 0.25 : 1.0;
+      p.radius = circle_radius(s, p.growth);
+      p.dominated = false;
+    }
+    // A plant dominated by one of a species no taller than its own (its peers: its kind, or the
+    // understory under which it is itself understory) has lost its light and dies; one dominated
+    // only by taller species lives on in the shade if it tolerates it.
+    std::vector<char> by_peer(plants.size(), 0);
+    {
+      const Grid grid(plants, 2.0 * largest);
+      for (std::size_t i = 0; i < plants.size(); ++i) {
+        Plant& p = plants[i];
+        const double layer = d.species[static_cast<std::size_t>(p.species)].radius;
+        grid.near(p.position, [&](std::size_t j) {
+          if (j == i || by_peer[i]) return;
+          const Plant& q = plants[j];
+          const double reach = p.radius + q.radius;
+          const glm::dvec2 v = p.position - q.position;
+          if (v.x * v.x + v.y * v.y >= reach * reach || !dominates(q, p)) return;
+          p.dominated = true;
+          by_peer[i] = d.species[static_cast<std::size_t>(q.species)].radius <= layer;
+        });
+      }
+    }
+    // Death: the dominated unless they tolerate the shade, and the old.
+    std::vector<Plant> kept;
+    kept.reserve(plants.size());
+    for (std::size_t i = 0; i < plants.size(); ++i) {
+      const Plant& p = plants[i];
+      const formats::CommunitySpecies& s = d.species[static_cast<std::size_t>(p.species)];
+      Rng rng(derive_key(derive_key(d.seed ^ 0xdea7u, p.id), static_cast<std::uint64_t>(year)));
+      const double u = rng.uniform();
+      if (by_peer[i] || (p.dominated && u >= s.shade_tolerance)) continue;
+      if (p.age > s.lifespan && rng.uniform() < 0.1) continue;
+      kept.push_back(p);
+    }
+    plants.swap(kept);
+    CommunityYear census;
+    census.alive = plants.size();
+    for (const Plant& p : plants) {
+      census.mean_radius += p.radius;
+      census.mean_biomass += p.radius * p.radius * p.radius;
+    }
+    if (!plants.empty()) {
+      census.mean_radius /= static_cast<double>(plants.size());
+      census.mean_biomass /= static_cast<double>(plants.size());
+    }
+    c.years.push_back(census);
+  }
+  return c;
+}
+
+}  // namespace arbor::scene
