@@ -159,55 +159,121 @@ double habitat(const formats::CommunitySpecies& s, const Terrain& terrain,
          (1.0 - s.aspect_preference + s.aspect_preference * facing);
 }
 
+namespace {
+
+// One year's establishment: seedlings anywhere, seeds near their parents; each takes by its
+// habitat. The newly born, their ids not yet given.
+std::vector<Plant> establish(const formats::CommunityDesc& d, const Terrain& terrain,
+                             const std::vector<float>& moisture, const std::vector<Plant>& plants,
+                             int year) {
+  const double w = d.area[2] - d.area[0], h = d.area[3] - d.area[1];
+  std::vector<Plant> born;
+  auto try_at = [&](int species, glm::dvec2 p, Rng& rng) {
+    if (p.x < d.area[0] || p.y < d.area[1] || p.x >= d.area[2] || p.y >= d.area[3]) return;
+    const formats::CommunitySpecies& s = d.species[static_cast<std::size_t>(species)];
+    if (rng.uniform() >= habitat(s, terrain, moisture, p.x, p.y)) return;
+    Plant plant;
+    plant.species = species;
+    plant.position = p;
+    plant.radius = circle_radius(s, 0.0);
+    born.push_back(plant);
+  };
+  // A whole number of draws with the fraction's chance of one more.
+  auto draws = [](double expected, Rng& rng) {
+    auto count = static_cast<std::uint64_t>(expected);
+    if (rng.uniform() < expected - static_cast<double>(count)) ++count;
+    return count;
+  };
+  for (std::size_t k = 0; k < d.species.size(); ++k) {
+    Rng rng(derive_key(derive_key(d.seed ^ 0xc0aa17u, static_cast<std::uint64_t>(year)), k));
+    const double expected =
+        (d.species[k].seedlings + (year == 0 ? d.species[k].sown : 0.0)) * w * h;
+    for (std::uint64_t i = draws(expected, rng); i > 0; --i)
+      try_at(static_cast<int>(k), {d.area[0] + w * rng.uniform(), d.area[1] + h * rng.uniform()},
+             rng);
+  }
+  for (const Plant& parent : plants) {
+    const formats::CommunitySpecies& s = d.species[static_cast<std::size_t>(parent.species)];
+    if (parent.age < 0.5 * s.maturity || parent.dominated) continue;
+    Rng rng(derive_key(derive_key(d.seed ^ 0x5eed5u, parent.id), static_cast<std::uint64_t>(year)));
+    for (std::uint64_t i = draws(s.seeds, rng); i > 0; --i) {
+      const double r = -s.dispersal * std::log(std::max(rng.uniform(), 1e-300));
+      const double phi = 2.0 * kPi * rng.uniform();
+      try_at(parent.species, parent.position + r * glm::dvec2(std::cos(phi), std::sin(phi)), rng);
+    }
+  }
+  return born;
+}
+
+// Competition: where two circles overlap the smaller plant is dominated (Plant::dominated set).
+// A plant dominated by one of a species no taller than its own (its peers: its kind, or the
+// understory under which it is itself understory) has lost its light: true in the result. One
+// dominated only by taller species lives on in the shade if it tolerates it.
+std::vector<char> compete(const formats::CommunityDesc& d, std::vector<Plant>& plants,
+                          double largest) {
+  std::vector<char> by_peer(plants.size(), 0);
+  const Grid grid(plants, 2.0 * largest);
+  for (std::size_t i = 0; i < plants.size(); ++i) {
+    Plant& p = plants[i];
+    const double layer = d.species[static_cast<std::size_t>(p.species)].radius;
+    grid.near(p.position, [&](std::size_t j) {
+      if (j == i || by_peer[i]) return;
+      const Plant& q = plants[j];
+      const double reach = p.radius + q.radius;
+      const glm::dvec2 v = p.position - q.position;
+      if (v.x * v.x + v.y * v.y >= reach * reach || !dominates(q, p)) return;
+      p.dominated = true;
+      by_peer[i] = d.species[static_cast<std::size_t>(q.species)].radius <= layer;
+    });
+  }
+  return by_peer;
+}
+
+// Death: the dominated by peers, the dominated that do not tolerate the shade, and the old.
+std::vector<Plant> survivors(const formats::CommunityDesc& d, const std::vector<Plant>& plants,
+                             const std::vector<char>& by_peer, int year) {
+  std::vector<Plant> kept;
+  kept.reserve(plants.size());
+  for (std::size_t i = 0; i < plants.size(); ++i) {
+    const Plant& p = plants[i];
+    const formats::CommunitySpecies& s = d.species[static_cast<std::size_t>(p.species)];
+    Rng rng(derive_key(derive_key(d.seed ^ 0xdea7u, p.id), static_cast<std::uint64_t>(year)));
+    const double u = rng.uniform();
+    if (by_peer[i] || (p.dominated && u >= s.shade_tolerance)) continue;
+    if (p.age > s.lifespan && rng.uniform() < 0.1) continue;
+    kept.push_back(p);
+  }
+  return kept;
+}
+
+CommunityYear census_of(const std::vector<Plant>& plants) {
+  CommunityYear census;
+  census.alive = plants.size();
+  for (const Plant& p : plants) {
+    census.mean_radius += p.radius;
+    census.mean_biomass += p.radius * p.radius * p.radius;
+  }
+  if (!plants.empty()) {
+    census.mean_radius /= static_cast<double>(plants.size());
+    census.mean_biomass /= static_cast<double>(plants.size());
+  }
+  return census;
+}
+
+}  // namespace
+
 Community simulate_community(const formats::CommunityDesc& d, const Terrain& terrain) {
   Community c;
   const std::vector<float> moisture =
       terrain.empty() ? std::vector<float>{} : flow_moisture(terrain);
   check_habitats(d, terrain, moisture);
-  const double w = d.area[2] - d.area[0], h = d.area[3] - d.area[1];
   double largest = 0.0;
   for (const formats::CommunitySpecies& s : d.species) largest = std::max(largest, s.radius);
   std::uint64_t next_id = 0;
   std::vector<Plant>& plants = c.plants;
   const auto years = static_cast<int>(std::lround(d.years));
   for (int year = 0; year < years; ++year) {
-    // Establishment: seedlings anywhere, seeds near their parents; each takes by its habitat.
-    std::vector<Plant> born;
-    auto try_at = [&](int species, glm::dvec2 p, Rng& rng) {
-      if (p.x < d.area[0] || p.y < d.area[1] || p.x >= d.area[2] || p.y >= d.area[3]) return;
-      const formats::CommunitySpecies& s = d.species[static_cast<std::size_t>(species)];
-      if (rng.uniform() >= habitat(s, terrain, moisture, p.x, p.y)) return;
-      Plant plant;
-      plant.species = species;
-      plant.position = p;
-      plant.radius = circle_radius(s, 0.0);
-      born.push_back(plant);
-    };
-    for (std::size_t k = 0; k < d.species.size(); ++k) {
-      Rng rng(derive_key(derive_key(d.seed ^ 0xc0aa17u, static_cast<std::uint64_t>(year)), k));
-      const double expected =
-          (d.species[k].seedlings + (year == 0 ? d.species[k].sown : 0.0)) * w * h;
-      auto count = static_cast<std::uint64_t>(expected);
-      if (rng.uniform() < expected - static_cast<double>(count)) ++count;
-      for (std::uint64_t i = 0; i < count; ++i)
-        try_at(static_cast<int>(k), {d.area[0] + w * rng.uniform(), d.area[1] + h * rng.uniform()},
-               rng);
-    }
-    for (const Plant& parent : plants) {
-      const formats::CommunitySpecies& s = d.species[static_cast<std::size_t>(parent.species)];
-      if (parent.age < 0.5 * s.maturity || parent.dominated) continue;
-      Rng rng(
-          derive_key(derive_key(d.seed ^ 0x5eed5u, parent.id), static_cast<std::uint64_t>(year)));
-      const double expected = s.seeds;
-      auto count = static_cast<std::uint64_t>(expected);
-      if (rng.uniform() < expected - static_cast<double>(count)) ++count;
-      for (std::uint64_t i = 0; i < count; ++i) {
-        const double r = -s.dispersal * std::log(std::max(rng.uniform(), 1e-300));
-        const double phi = 2.0 * kPi * rng.uniform();
-        try_at(parent.species, parent.position + r * glm::dvec2(std::cos(phi), std::sin(phi)), rng);
-      }
-    }
-    for (Plant& p : born) {
+    for (Plant& p : establish(d, terrain, moisture, plants, year)) {
       p.id = next_id++;
       plants.push_back(p);
     }
@@ -218,7 +284,6 @@ Community simulate_community(const formats::CommunityDesc& d, const Terrain& ter
                            std::to_string(year + 1) +
                            "); lower its species' seedlings or seeds, or its area");
     }
-    // Growth, then competition: where two circles overlap the smaller plant is dominated.
     for (Plant& p : plants) {
       const formats::CommunitySpecies& s = d.species[static_cast<std::size_t>(p.species)];
       p.age += 1.0;
@@ -226,50 +291,9 @@ Community simulate_community(const formats::CommunityDesc& d, const Terrain& ter
       p.radius = circle_radius(s, p.growth);
       p.dominated = false;
     }
-    // A plant dominated by one of a species no taller than its own (its peers: its kind, or the
-    // understory under which it is itself understory) has lost its light and dies; one dominated
-    // only by taller species lives on in the shade if it tolerates it.
-    std::vector<char> by_peer(plants.size(), 0);
-    {
-      const Grid grid(plants, 2.0 * largest);
-      for (std::size_t i = 0; i < plants.size(); ++i) {
-        Plant& p = plants[i];
-        const double layer = d.species[static_cast<std::size_t>(p.species)].radius;
-        grid.near(p.position, [&](std::size_t j) {
-          if (j == i || by_peer[i]) return;
-          const Plant& q = plants[j];
-          const double reach = p.radius + q.radius;
-          const glm::dvec2 v = p.position - q.position;
-          if (v.x * v.x + v.y * v.y >= reach * reach || !dominates(q, p)) return;
-          p.dominated = true;
-          by_peer[i] = d.species[static_cast<std::size_t>(q.species)].radius <= layer;
-        });
-      }
-    }
-    // Death: the dominated unless they tolerate the shade, and the old.
-    std::vector<Plant> kept;
-    kept.reserve(plants.size());
-    for (std::size_t i = 0; i < plants.size(); ++i) {
-      const Plant& p = plants[i];
-      const formats::CommunitySpecies& s = d.species[static_cast<std::size_t>(p.species)];
-      Rng rng(derive_key(derive_key(d.seed ^ 0xdea7u, p.id), static_cast<std::uint64_t>(year)));
-      const double u = rng.uniform();
-      if (by_peer[i] || (p.dominated && u >= s.shade_tolerance)) continue;
-      if (p.age > s.lifespan && rng.uniform() < 0.1) continue;
-      kept.push_back(p);
-    }
-    plants.swap(kept);
-    CommunityYear census;
-    census.alive = plants.size();
-    for (const Plant& p : plants) {
-      census.mean_radius += p.radius;
-      census.mean_biomass += p.radius * p.radius * p.radius;
-    }
-    if (!plants.empty()) {
-      census.mean_radius /= static_cast<double>(plants.size());
-      census.mean_biomass /= static_cast<double>(plants.size());
-    }
-    c.years.push_back(census);
+    const std::vector<char> by_peer = compete(d, plants, largest);
+    plants = survivors(d, plants, by_peer, year);
+    c.years.push_back(census_of(plants));
   }
   return c;
 }
