@@ -11,6 +11,7 @@
 #include "app/commands/compare.h"
 #include "app/commands/export.h"
 #include "app/commands/grow.h"
+#include "app/commands/inspect.h"
 #include "app/commands/merge.h"
 #include "app/commands/plan.h"
 #include "app/commands/render.h"
@@ -74,12 +75,14 @@ int main(int argc, char** argv) {
   MergeRequest merge;
   PlanRequest plan;
   ExportRequest exp;
+  InspectRequest inspect;
   CLI::App* grow_cmd = add_grow_command(app, grow);
   CLI::App* render_cmd = add_render_command(app, render);
   CLI::App* compare_cmd = add_compare_command(app, compare);
   CLI::App* merge_cmd = add_merge_command(app, merge);
   CLI::App* plan_cmd = add_plan_command(app, plan);
   CLI::App* export_cmd = add_export_command(app, exp);
+  CLI::App* inspect_cmd = add_inspect_command(app, inspect);
 
   arbor::remove_temporaries_on_signal();
   try {
@@ -94,13 +97,14 @@ int main(int argc, char** argv) {
   try {
     // The OCIO config of this run: $OCIO, or arbor's own beside the executable.
     render.ocio_config = compare.ocio_config = merge.ocio_config = exp.ocio_config =
-        arbor::imaging::default_ocio_config();
+        inspect.ocio_config = arbor::imaging::default_ocio_config();
     if (*grow_cmd) return grow_command(grow);
     if (*render_cmd) return render_command(render);
     if (*compare_cmd) return compare_command(compare);
     if (*merge_cmd) return merge_command(merge);
     if (*export_cmd) return export_command(exp);
     if (*plan_cmd) return plan_command(plan);
+    if (*inspect_cmd) return inspect_command(inspect);
   } catch (const arbor::InputError& e) {
     std::fprintf(stderr, "%s%s\n", e.where().path.empty() ? "arbor: " : "", e.what());
     return 2;

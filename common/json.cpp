@@ -69,4 +69,10 @@ JsonObject& JsonObject::object(const std::string& key, const JsonObject& value) 
   return raw(key, value.str());
 }
 
+JsonObject& JsonObject::objects(const std::string& key, const std::vector<JsonObject>& values) {
+  std::string list = "[";
+  for (std::size_t i = 0; i < values.size(); ++i) list += (i ? ", " : "") + values[i].str();
+  return raw(key, list + "]");
+}
+
 }  // namespace arbor

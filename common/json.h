@@ -21,6 +21,7 @@ class JsonObject {
   JsonObject& numbers(const std::string& key, const std::vector<double>& values, int digits = 9);
   JsonObject& integers(const std::string& key, const std::vector<long long>& values);
   JsonObject& object(const std::string& key, const JsonObject& value);
+  JsonObject& objects(const std::string& key, const std::vector<JsonObject>& values);
   std::string str() const { return "{" + body_ + "}"; }
 
  private:

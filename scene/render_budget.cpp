@@ -20,7 +20,6 @@ namespace {
 // Outside the film (which states its own, FilmCosts): calibrated, see render_budget.h.
 constexpr std::uint64_t kBytesPerPixel = 72;   // image and beauty, PNG included
 constexpr std::uint64_t kBytesPerChannel = 8;  // each EXR channel: its pixels and encoding
-constexpr std::uint64_t kBytesPerInstance = 1024;
 // A distinct grass blade: its arrays (136 bytes), Embree's copy of its normals and its BVH
 // (bench/meadow.sh measures the whole).
 constexpr std::uint64_t kBytesPerBlade = 400;

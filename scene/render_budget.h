@@ -19,9 +19,14 @@ struct FilmCosts {
   std::uint64_t treemaker_extras = 0;  // the treemaker AOVs' values
 };
 
+// One placed tree: its Embree instance, placement and materials (calibrated, see below). A
+// community's plants are known only once simulated: the estimate counts trees and forests, and
+// `arbor inspect` multiplies this by the instances built.
+constexpr std::uint64_t kBytesPerInstance = 1024;
+
 struct MemoryEstimate {
   std::uint64_t image_bytes = 0;     // the film, its AOVs and the encoded outputs
-  std::uint64_t instance_bytes = 0;  // one Embree instance and placement per tree
+  std::uint64_t instance_bytes = 0;  // kBytesPerInstance per tree and forest instance
   std::uint64_t instances = 0;
   std::uint64_t meadow_bytes = 0;   // the meadow's distinct blades and its tiles' instances
   std::uint64_t terrain_bytes = 0;  // the terrain's vertices and Embree's grid over them
