@@ -17,4 +17,16 @@ inline std::string file_name(const std::string& path) {
   return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
+// "species/quaking_aspen.toml" → "quaking_aspen": what the compositing ids call a file's things.
+inline std::string file_stem(const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  const std::size_t dot = name.find_last_of('.');
+  if (dot != std::string::npos && dot > 0) name.erase(dot);
+  for (char& c : name) {
+    if (static_cast<unsigned char>(c) < 0x20) c = '_';  // names travel one to a line, tab-separated
+  }
+  return name;
+}
+
 }  // namespace arbor

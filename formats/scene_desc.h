@@ -284,6 +284,22 @@ struct CommunityDesc {
   SourceLocation where;
 };
 
+// Rocks (scene/rocks.h; docs/landscape.md, "Rocks"): boulders and stones of a few noise-displaced
+// shapes, instanced, their sizes from a power law, placed on rock faces and scree and partly
+// buried.
+struct RocksDesc {
+  bool enabled = false;
+  SourceLocation where;
+  double density = 0.02;                  // rocks per m² where the ground is all rock
+  double size_min = 0.3, size_max = 3.0;  // metres: a rock's diameter
+  double exponent = 2.5;                  // the sizes' density falls as size^-exponent
+  double buried = 0.3;                    // the share of a rock's height below the ground
+  int variants = 8;                       // distinct shapes
+  std::uint64_t seed = 1;
+  std::optional<std::array<double, 4>> area;  // x0, y0, x1, y1; none: the terrain's square
+  Rgb albedo{0.30, 0.29, 0.26};
+};
+
 struct MeshMaterialDesc {
   std::string kind = "diffuse";  // "bark" | "leaf" | "diffuse"
   Rgb albedo{0.5, 0.5, 0.5};     // bark, diffuse
@@ -347,6 +363,7 @@ struct SceneDesc {
   std::vector<TreeDesc> trees;
   std::vector<ForestDesc> forests;
   CommunityDesc community;
+  RocksDesc rocks;
   std::vector<MeshDesc> meshes;
   OutputDesc output;
   AnimationDesc animation;

@@ -79,6 +79,18 @@ void read_table(const KeyValue& v, const std::vector<Key<D>>& keys, D& d) {
   read_keys(v.reader, v.table(), v.name, "[" + v.name + "]", keys, d);
 }
 
+// [rocks]: its keys, and a size band that is not empty.
+void read_rocks(const KeyValue& v, SceneDesc& s) {
+  s.rocks.enabled = true;
+  s.rocks.where = v.reader.at(v.table().source());
+  read_table(v, rocks_keys(), s.rocks);
+  if (s.rocks.size_min > s.rocks.size_max) {
+    throw InputError(s.rocks.where, "rocks.size_min " + short_number(s.rocks.size_min) +
+                                        " exceeds rocks.size_max " +
+                                        short_number(s.rocks.size_max));
+  }
+}
+
 // Each table of an array of tables ([[tree]], …) read by `keys` into a new element of `list`,
 // which `check` then checks across its keys.
 template <class D, class Check>
@@ -146,6 +158,8 @@ const std::vector<Key<SceneDesc>>& scene_keys() {
                     throw InputError(s.community.where,
                                      "[community] needs [[community.species]] (at least one)");
                 }),
+      custom<S>("rocks", KeyKind::Table,
+                "boulders and stones on rock faces and scree (docs/landscape.md)", read_rocks),
       custom<S>("mesh", KeyKind::Table, "[[mesh]]: a Wavefront OBJ placed in the scene",
                 [](const KeyValue& v, S& s) {
                   read_array(v, mesh_keys(), s.meshes, [](const MeshDesc& d) {
@@ -198,6 +212,10 @@ SceneDesc parse_scene(const std::string& text, const std::string& path) {
     }
     s.meadow.tile = terrain_spacing(s.terrain);
     check_meadow(s.meadow);
+  }
+  if (s.rocks.enabled && !s.rocks.area && !s.terrain.enabled) {
+    throw InputError(s.rocks.where,
+                     "[rocks] needs an area ([[x0, y0], [x1, y1]]) without a [terrain] to lie on");
   }
   if (s.camera.above_ground && !s.terrain.enabled) {
     throw InputError(s.camera.above_ground_where,

@@ -335,6 +335,7 @@ const std::vector<Key<OutputDesc>>& output_keys();
 const std::vector<Key<AnimationDesc>>& animation_keys();
 const std::vector<Key<TreeDesc>>& tree_keys();
 const std::vector<Key<ForestDesc>>& forest_keys();
+const std::vector<Key<RocksDesc>>& rocks_keys();                     // scene_keys_land.cpp
 const std::vector<Key<CommunityDesc>>& community_keys();             // scene_keys_land.cpp
 const std::vector<Key<CommunitySpecies>>& community_species_keys();  // scene_keys_trees.cpp
 const std::vector<Key<MeshDesc>>& mesh_keys();

@@ -93,4 +93,33 @@ const std::vector<Key<CommunityDesc>>& community_keys() {
   return table;
 }
 
+const std::vector<Key<RocksDesc>>& rocks_keys() {
+  using R = RocksDesc;
+  static const std::vector<Key<R>> table = {
+      value("density", &R::density, Range{0, 100, "per m²"},
+            "rocks per m² where the ground is all rock; half that on the soil below it (scree), "
+            "a twentieth elsewhere"),
+      value("size_min", &R::size_min, Range{0.01, 100, "metres"}, "the smallest rock's diameter"),
+      value("size_max", &R::size_max, Range{0.01, 100, "metres"}, "the largest rock's diameter"),
+      value("exponent", &R::exponent, Range{1.01, 6, ""},
+            "the sizes' power law: a size's density falls as size^-exponent"),
+      value("buried", &R::buried, Range{0, 0.9, ""}, "the share of a rock's height below ground"),
+      value("variants", &R::variants, Range{1, 64, "shapes"}, "distinct shapes, instanced"),
+      value("seed", &R::seed, Range{0, 0x1p63, ""}, "the seed of the shapes and the placement"),
+      custom<R>(
+          "area", KeyKind::Area,
+          "[[x0, y0], [x1, y1]]: the rectangle they lie in (needed without a [terrain])",
+          [](const KeyValue& v, R& r) { r.area = v.area(); },
+          [](const R& r) {
+            if (!r.area) return std::string("the terrain's square");
+            const std::array<double, 4>& a = *r.area;
+            return "[[" + short_number(a[0]) + ", " + short_number(a[1]) + "], [" +
+                   short_number(a[2]) + ", " + short_number(a[3]) + "]]";
+          })
+          .shows("the terrain's square"),
+      value("albedo", &R::albedo, kUnitAlbedo, "the rock's albedo (lichen and noise vary it)"),
+  };
+  return table;
+}
+
 }  // namespace arbor::formats

@@ -65,6 +65,10 @@ std::string scene_key_reference() {
        key_docs(community_keys())},
       {"[[community.species]]", "One species of the community, its habitat and its growth.",
        key_docs(community_species_keys())},
+      {"[rocks]",
+       "Boulders and stones of a few noise-displaced shapes, instanced, on rock faces and scree "
+       "and partly buried (docs/landscape.md, \"Rocks\").",
+       key_docs(rocks_keys())},
       {"[tree.bark], [forest.bark]", "The species' bark overridden; unset keys keep the species'.",
        key_docs(bark_keys())},
       {"[tree.leaf], [forest.leaf]",

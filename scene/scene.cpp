@@ -21,6 +21,7 @@
 #include "common/math.h"
 #include "common/progress.h"
 #include "common/rng.h"
+#include "common/strings.h"
 #include "formats/obj_mesh.h"
 #include "formats/species_file.h"
 #include "generator/grow.h"
@@ -30,18 +31,6 @@
 namespace arbor::scene {
 
 namespace {
-
-// "species/quaking_aspen.toml" → "quaking_aspen": what the compositing ids call a file's things.
-std::string file_stem(const std::string& path) {
-  const std::size_t slash = path.find_last_of('/');
-  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-  const std::size_t dot = name.find_last_of('.');
-  if (dot != std::string::npos && dot > 0) name.erase(dot);
-  for (char& c : name) {
-    if (static_cast<unsigned char>(c) < 0x20) c = '_';  // names travel one to a line, tab-separated
-  }
-  return name;
-}
 
 glm::vec3 to_vec3(const Rgb& c) { return glm::vec3(c[0], c[1], c[2]); }
 
@@ -475,7 +464,7 @@ void add_community(const formats::CommunityDesc& d, Scene& s, SceneBuilder& b, d
   }
 }
 
-// The ground plane, the terrain's object and the material they share, and the meadow.
+// The ground plane, the terrain's object and the material they share, the meadow and the rocks.
 void add_ground_and_meadow(const formats::SceneDesc& desc, Scene& s, SceneBuilder& b) {
   if (desc.ground.enabled || desc.terrain.enabled) {
     s.has_ground = desc.ground.enabled;
@@ -498,6 +487,13 @@ void add_ground_and_meadow(const formats::SceneDesc& desc, Scene& s, SceneBuilde
     s.meadow.front_id = b.material_named("meadow/blade front");
     s.meadow.back_id = b.material_named("meadow/blade back");
     s.stats.geometry_bytes += s.meadow.bytes();
+  }
+  if (desc.rocks.enabled) {
+    s.rocks = place_rocks(desc.rocks, s.terrain);
+    s.object_names.emplace_back("rocks");
+    s.rocks.object_id = static_cast<std::uint32_t>(s.object_names.size());
+    s.rocks.material_id = b.material_named("rocks");
+    s.stats.geometry_bytes += s.rocks.bytes();
   }
 }
 

@@ -20,6 +20,7 @@
 #include "scene/community.h"
 #include "scene/lod.h"
 #include "scene/meadow.h"
+#include "scene/rocks.h"
 #include "scene/terrain.h"
 
 namespace arbor {
@@ -97,12 +98,13 @@ struct Scene {
   std::vector<CommunityPlant> community;
   Meadow meadow;    // empty: none
   Terrain terrain;  // empty: none (the ground plane alone)
+  Rocks rocks;      // empty: none
   std::uint32_t terrain_object_id = 0;
   // The names of the compositing ids (id k is names[k - 1]; 0 is nothing, the sky): objects are
   // "<species>.<n>" (the n-th tree of that species in scene order), "<mesh file stem>.<n>",
-  // "ground", "terrain" and "meadow"; materials "<species>/bark", "<species>/leaf front",
+  // "ground", "terrain", "meadow" and "rocks"; materials "<species>/bark", "<species>/leaf front",
   // "<species>/leaf back", "<mesh file stem>/<OBJ material or group>", "ground", "meadow/blade
-  // front" and "meadow/blade back". Names are unique; one name, one id.
+  // front", "meadow/blade back" and "rocks". Names are unique; one name, one id.
   std::vector<std::string> object_names, material_names;
   SceneStats stats;
   // The textures the materials point to.

@@ -443,6 +443,8 @@ PbrtExport write_pbrt_scene(const scene::Scene& scene, const scene::RenderInput&
   // Refused rather than left out: a landscape without its ground would be another picture.
   if (!scene.terrain.empty())
     throw InputError({input.scene, 0, 0}, "the pbrt-v4 export does not write a [terrain] yet");
+  if (!scene.rocks.empty())
+    throw InputError({input.scene, 0, 0}, "the pbrt-v4 export does not write [rocks] yet");
   const std::vector<float> linear = color.chromaticities("scene_linear");
   PbrtExport result;
   const PbrtColorSpace space = pbrt_color_space_of(color);

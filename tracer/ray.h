@@ -35,7 +35,7 @@ struct SurfaceHit {
   generator::BarkCoordinates bark;   // for curves and grids
   glm::vec3 tangent{0.0f};           // along the limb (curves and grids), for bump mapping
   std::int32_t leaf = -1;            // Skeleton leaf index for leaf hits
-  glm::vec2 uv{0.0f};                // over the unit leaf, for leaf hits
+  glm::vec2 uv{0.0f};                // over the unit leaf, for leaf hits; a rock's pattern
   glm::vec3 color{1.0f};             // the primitive's colour (multiplies its material's albedo)
   float crown_height = 0.5f;         // leaf hits: height in the prototype's bounds, 0 to 1
   glm::vec2 terrain{0.0f};           // terrain hits: the ground's (soil, rock) cover
@@ -48,6 +48,7 @@ struct WorldHit {
   int grass = -1;     // meadow placement (scene::Meadow::placements) of a blade; -1 otherwise
   bool ground = false;
   bool mesh = false;       // a [[mesh]] face
+  bool rock = false;       // a rock's face (its pattern's coordinates in surface.uv)
   bool mesh_front = true;  // the side a mesh face's counter-clockwise normal faces
   const materials::Material* material = nullptr;
   // Compositing ids (Scene::object_names / material_names, 1-based).
@@ -67,6 +68,7 @@ struct WorldHit {
     p.uv = surface.uv;
     p.color = surface.color;
     if (ground) p.ground = glm::vec2(surface.position.x, surface.position.y);
+    if (rock) p.ground = surface.uv;
     p.terrain = surface.terrain;
     p.height = surface.position.z;
     p.leaf_back = mesh ? !mesh_front : surface.material == generator::kMaterialLeafBack;

@@ -197,9 +197,19 @@ void print_text(const InspectRequest& a, const formats::SceneDesc& desc, const s
                 grouped(s.meadow.placed_blades()).c_str(),
                 grouped(s.meadow.distinct_blades()).c_str());
   }
+  if (!s.rocks.empty()) {
+    std::array<std::uint64_t, 4> by{};  // under 0.5 m, 0.5 to 1 m, 1 to 2 m, over 2 m
+    for (const scene::RockPlacement& r : s.rocks.placements)
+      ++by[r.diameter < 0.5f ? 0 : r.diameter < 1.0f ? 1 : r.diameter < 2.0f ? 2 : 3];
+    std::printf(
+        "rocks     %s of %zu shapes: %s under 0.5 m across, %s 0.5 to 1 m, %s 1 to 2 m, %s over "
+        "2 m\n",
+        grouped(s.rocks.placements.size()).c_str(), s.rocks.shapes.size(), grouped(by[0]).c_str(),
+        grouped(by[1]).c_str(), grouped(by[2]).c_str(), grouped(by[3]).c_str());
+  }
   std::printf(
       "memory    about %s before Embree's structures: geometry %s (trees, meshes, terrain, "
-      "meadow), instances %s, image %s\n",
+      "meadow, rocks), instances %s, image %s\n",
       megabytes(s.stats.geometry_bytes + memory.instance_bytes + memory.image_bytes).c_str(),
       megabytes(s.stats.geometry_bytes).c_str(), megabytes(memory.instance_bytes).c_str(),
       megabytes(memory.image_bytes).c_str());

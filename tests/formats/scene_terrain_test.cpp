@@ -96,4 +96,28 @@ TEST(SceneCommunity, BadTablesAreRefusedAtTheirPlace) {
                      9, "out of range [1, 2000]");
 }
 
+TEST(SceneRocks, AreReadAndBadValuesRefusedAtTheirPlace) {
+  const SceneDesc s = parse_scene(
+      "[terrain]\n[rocks]\ndensity = 0.1\nsize_min = 0.5\nsize_max = 4\nexponent = 3\n"
+      "buried = 0.2\nvariants = 4\nseed = 9\n",
+      "s.toml");
+  ASSERT_TRUE(s.rocks.enabled);
+  EXPECT_EQ(s.rocks.density, 0.1);
+  EXPECT_EQ(s.rocks.size_max, 4.0);
+  EXPECT_EQ(s.rocks.exponent, 3.0);
+  EXPECT_EQ(s.rocks.variants, 4);
+  EXPECT_FALSE(s.rocks.area.has_value());
+  const SceneDesc flat = parse_scene("[rocks]\narea = [[-5, -5], [5, 5]]\n", "s.toml");
+  ASSERT_TRUE(flat.rocks.area.has_value());
+  EXPECT_EQ((*flat.rocks.area)[2], 5.0);
+  expect_scene_error("[rocks]\ndensity = 1\n", 1, 1,
+                     "[rocks] needs an area ([[x0, y0], [x1, y1]]) without a [terrain]");
+  expect_scene_error("[terrain]\n[rocks]\nsize_min = 5\nsize_max = 2\n", 2, 1,
+                     "rocks.size_min 5 exceeds rocks.size_max 2");
+  expect_scene_error("[terrain]\n[rocks]\nexponent = 1\n", 3, 12, "out of range [1.01, 6]");
+  expect_scene_error("[terrain]\n[rocks]\ndensity = nan\n", 3, 11, "density");
+  expect_scene_error("[terrain]\n[rocks]\nboulders = 3\n", 3, 1,
+                     "unknown key 'boulders' in [rocks]");
+}
+
 }  // namespace arbor::formats

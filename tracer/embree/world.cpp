@@ -77,6 +77,7 @@ World::World(const scene::Scene& scene, const EmbreeDevice& device)
     map_id(mesh_of_geometry_, attach(top_.get(), g), i);
   }
   if (!scene.terrain.empty()) attach_terrain(scene.terrain);
+  if (!scene.rocks.empty()) attach_rocks(scene.rocks);
   if (scene.has_ground) {
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
     const float s = kGroundHalfSize;
@@ -122,6 +123,27 @@ void World::attach_terrain(const scene::Terrain& t) {
   terrain_geometry_ = attach(top_.get(), inst);
 }
 
+void World::attach_rocks(const scene::Rocks& rocks) {
+  for (const scene::RockShape& shape : rocks.shapes) {
+    SceneHandle one = new_scene(device_);
+    RTCGeometry g = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+    fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, shape.positions.data(), sizeof(glm::vec3),
+         shape.positions.size());
+    fill(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, shape.indices.data(),
+         3 * sizeof(std::uint32_t), shape.indices.size() / 3);
+    attach(one.get(), g);
+    rtcCommitScene(one.get());
+    rock_shapes_.push_back(std::move(one));
+  }
+  for (std::size_t i = 0; i < rocks.placements.size(); ++i) {
+    const scene::RockPlacement& p = rocks.placements[i];
+    RTCGeometry g = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(g, rock_shapes_[static_cast<std::size_t>(p.shape)].get());
+    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &p.to_world[0][0]);
+    map_id(rock_of_geometry_, attach(top_.get(), g), i);
+  }
+}
+
 void World::calibrate_leaves(const std::vector<PrototypeLod>& lods) {
   for (std::size_t p = 0; p < lods.size(); ++p) {
     if (lods[p].card_scale == 1.0f) continue;
@@ -147,6 +169,7 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
   rtcIntersect1(top_.get(), &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   hit.grass = -1;  // a blade's describe_grass sets it
+  hit.rock = false;
   SurfaceHit& s = hit.surface;
   s.terrain = glm::vec2(0.0f);
   if (terrain_ && rh.hit.instID[0] == terrain_geometry_) {
@@ -214,6 +237,11 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
     return true;
   }
   const unsigned inst_id = rh.hit.instID[0];
+  if (inst_id < rock_of_geometry_.size() && rock_of_geometry_[inst_id] >= 0) {
+    describe_rock(ray, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, rock_of_geometry_[inst_id],
+                  hit);
+    return true;
+  }
   if (inst_id < grass_of_geometry_.size() && grass_of_geometry_[inst_id] >= 0) {
     describe_grass(ray, rh.hit.primID, rh.hit.u, rh.ray.tfar, grass_of_geometry_[inst_id], hit);
     return true;
@@ -268,6 +296,45 @@ void World::describe_terrain(const Ray& ray, float t_hit, glm::vec3 ng, WorldHit
   hit.material = &scene_.ground;
   hit.object_id = scene_.terrain_object_id;
   hit.material_id = scene_.ground_material_id;
+}
+
+void World::describe_rock(const Ray& ray, unsigned primitive, float u, float v, float t, int rock,
+                          WorldHit& hit) const {
+  const scene::Rocks& rocks = scene_.rocks;
+  const scene::RockPlacement& p = rocks.placements[static_cast<std::size_t>(rock)];
+  const scene::RockShape& shape = rocks.shapes[static_cast<std::size_t>(p.shape)];
+  const std::uint32_t* tri = &shape.indices[3 * static_cast<std::size_t>(primitive)];
+  // A turn and a uniform scale: normals turn with the placement.
+  const glm::mat3 turn(p.to_world);
+  const glm::vec3 a = turn * shape.positions[tri[0]], b = turn * shape.positions[tri[1]],
+                  c = turn * shape.positions[tri[2]];
+  SurfaceHit& s = hit.surface;
+  const TriangleSide side = side_seen(a, b, c, ray.direction);
+  s.kind = SurfaceKind::None;
+  s.t = t;
+  s.primitive = primitive;
+  s.position = ray.origin + ray.direction * t;
+  s.geometric_normal = side.normal;
+  glm::vec3 n = (1.0f - u - v) * shape.normals[tri[0]] + u * shape.normals[tri[1]] +
+                v * shape.normals[tri[2]];
+  n = glm::normalize(turn * n);
+  s.shading_normal = glm::dot(n, s.geometric_normal) < 0.0f ? -n : n;
+  s.tangent = glm::normalize(b - a);
+  s.leaf = -1;
+  // The rock's pattern in the plane the face is most nearly in (so it does not stretch down the
+  // rock's sides), offset per rock so that two rocks of one shape differ.
+  const glm::vec3 an = glm::abs(s.shading_normal), q = s.position;
+  s.uv = an.z >= an.x && an.z >= an.y ? glm::vec2(q.x, q.y)
+         : an.x >= an.y               ? glm::vec2(q.y + 17.0f, q.z)
+                                      : glm::vec2(q.x - 29.0f, q.z);
+  s.terrain = glm::vec2(0.0f, 1.0f);  // all rock
+  hit.ground = false;
+  hit.mesh = false;
+  hit.rock = true;
+  hit.instance = -1;
+  hit.material = &rocks.material;
+  hit.object_id = rocks.object_id;
+  hit.material_id = rocks.material_id;
 }
 
 void World::describe_grass(const Ray& ray, unsigned blade, float u, float t, int placement,

@@ -60,6 +60,11 @@ class World {
   void attach_terrain(const scene::Terrain& terrain);
   // Fills `hit` for a hit on the terrain.
   void describe_terrain(const Ray& ray, float t, glm::vec3 ng, WorldHit& hit) const;
+  // Puts the rocks into Embree: each shape a scene of its own, each rock an instance of it.
+  void attach_rocks(const scene::Rocks& rocks);
+  // Fills `hit` for a hit on triangle `primitive` of rock `rock` (world-space ray).
+  void describe_rock(const Ray& ray, unsigned primitive, float u, float v, float t, int rock,
+                     WorldHit& hit) const;
   // Fills `hit` for a hit on `blade` of meadow placement `placement` (world-space ray).
   void describe_grass(const Ray& ray, unsigned blade, float u, float t, int placement,
                       WorldHit& hit) const;
@@ -75,9 +80,11 @@ class World {
   // crowns' cover (lod_calibration.h); instance i is geometry i of the top scene.
   std::vector<scene::InstanceLod> lod_;
   std::vector<int> mesh_of_geometry_;
-  SceneHandle terrain_;              // the terrain's own scene (none: null)
-  unsigned terrain_geometry_ = ~0u;  // its instance's Embree geometry id in the top scene  //
-                                     // Embree geometry id in the top scene → mesh
+  std::vector<SceneHandle> rock_shapes_;  // one per rock shape
+  std::vector<int> rock_of_geometry_;     // Embree geometry id in the top scene → rock
+  SceneHandle terrain_;                   // the terrain's own scene (none: null)
+  unsigned terrain_geometry_ = ~0u;       // its instance's Embree geometry id in the top scene  //
+                                          // Embree geometry id in the top scene → mesh
   double build_seconds_ = 0.0;
   RayLog* log_ = nullptr;
 };
