@@ -4,7 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <unordered_map>
+#include <array>
+#include <cstdint>
 
 #include "common/error.h"
 #include "common/math.h"
@@ -26,34 +27,55 @@ double band(double v, double lo, double hi, double soft) {
   return std::min({1.0, (v - lo) / soft, (hi - v) / soft});
 }
 
-// Plants on a grid of cells of side `cell`, for the neighbours of a circle.
+// Plants on a grid of cells of side `cell` over the community's area, for the neighbours of a
+// circle: each cell's plants stored together (position and radius beside the index), so a search
+// reads memory in order.
 class Grid {
  public:
-  Grid(const std::vector<Plant>& plants, double cell) : cell_(cell) {
-    for (std::size_t i = 0; i < plants.size(); ++i) cells_[key(plants[i].position)].push_back(i);
+  struct Entry {
+    double x, y, radius;
+    std::size_t index;
+  };
+  Grid(const std::vector<Plant>& plants, const std::array<double, 4>& area, double cell)
+      : x0_(area[0]), y0_(area[1]), cell_(cell) {
+    nx_ = static_cast<std::int64_t>(std::floor((area[2] - area[0]) / cell)) + 1;
+    ny_ = static_cast<std::int64_t>(std::floor((area[3] - area[1]) / cell)) + 1;
+    start_.assign(static_cast<std::size_t>(nx_ * ny_) + 1, 0);
+    std::vector<std::size_t> of(plants.size());
+    for (std::size_t i = 0; i < plants.size(); ++i) {
+      of[i] = cell_of(plants[i].position);
+      ++start_[of[i] + 1];
+    }
+    std::partial_sum(start_.begin(), start_.end(), start_.begin());
+    entries_.resize(plants.size());
+    std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
+    for (std::size_t i = 0; i < plants.size(); ++i)
+      entries_[fill[of[i]]++] = {plants[i].position.x, plants[i].position.y, plants[i].radius, i};
   }
   template <class F>
   void near(glm::dvec2 p, F f) const {
-    const auto cx = static_cast<std::int64_t>(std::floor(p.x / cell_));
-    const auto cy = static_cast<std::int64_t>(std::floor(p.y / cell_));
-    for (std::int64_t y = cy - 1; y <= cy + 1; ++y)
-      for (std::int64_t x = cx - 1; x <= cx + 1; ++x) {
-        const auto it = cells_.find(pack(x, y));
-        if (it != cells_.end())
-          for (const std::size_t i : it->second) f(i);
+    const auto cx = static_cast<std::int64_t>(std::floor((p.x - x0_) / cell_));
+    const auto cy = static_cast<std::int64_t>(std::floor((p.y - y0_) / cell_));
+    for (std::int64_t y = std::max<std::int64_t>(cy - 1, 0); y <= std::min(cy + 1, ny_ - 1); ++y)
+      for (std::int64_t x = std::max<std::int64_t>(cx - 1, 0); x <= std::min(cx + 1, nx_ - 1);
+           ++x) {
+        const auto c = static_cast<std::size_t>(y * nx_ + x);
+        for (std::size_t k = start_[c]; k < start_[c + 1]; ++k) f(entries_[k]);
       }
   }
 
  private:
-  static std::uint64_t pack(std::int64_t x, std::int64_t y) {
-    return (static_cast<std::uint64_t>(x) << 32) ^ (static_cast<std::uint64_t>(y) & 0xffffffffu);
+  std::size_t cell_of(glm::dvec2 p) const {
+    const std::int64_t x = std::clamp<std::int64_t>(
+        static_cast<std::int64_t>(std::floor((p.x - x0_) / cell_)), 0, nx_ - 1);
+    const std::int64_t y = std::clamp<std::int64_t>(
+        static_cast<std::int64_t>(std::floor((p.y - y0_) / cell_)), 0, ny_ - 1);
+    return static_cast<std::size_t>(y * nx_ + x);
   }
-  std::uint64_t key(glm::dvec2 p) const {
-    return pack(static_cast<std::int64_t>(std::floor(p.x / cell_)),
-                static_cast<std::int64_t>(std::floor(p.y / cell_)));
-  }
-  double cell_;
-  std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells_;
+  double x0_, y0_, cell_;
+  std::int64_t nx_ = 0, ny_ = 0;
+  std::vector<std::size_t> start_;  // cell c's entries are [start_[c], start_[c + 1])
+  std::vector<Entry> entries_;
 };
 
 // Whether plant a dominates plant b: the larger circle, then the older, then the first.
@@ -212,16 +234,20 @@ std::vector<Plant> establish(const formats::CommunityDesc& d, const Terrain& ter
 std::vector<char> compete(const formats::CommunityDesc& d, std::vector<Plant>& plants,
                           double largest) {
   std::vector<char> by_peer(plants.size(), 0);
-  const Grid grid(plants, 2.0 * largest);
+  // Cells of the largest circle's diameter, or larger on a vast area (at most 2²⁴ of them).
+  const double cell = std::max(
+      2.0 * largest, std::sqrt((d.area[2] - d.area[0]) * (d.area[3] - d.area[1]) / 0x1p24));
+  const Grid grid(plants, d.area, cell);
   for (std::size_t i = 0; i < plants.size(); ++i) {
     Plant& p = plants[i];
     const double layer = d.species[static_cast<std::size_t>(p.species)].radius;
-    grid.near(p.position, [&](std::size_t j) {
-      if (j == i || by_peer[i]) return;
-      const Plant& q = plants[j];
-      const double reach = p.radius + q.radius;
-      const glm::dvec2 v = p.position - q.position;
-      if (v.x * v.x + v.y * v.y >= reach * reach || !dominates(q, p)) return;
+    grid.near(p.position, [&](const Grid::Entry& e) {
+      if (e.index == i || by_peer[i]) return;
+      const double reach = p.radius + e.radius;
+      const double dx = p.position.x - e.x, dy = p.position.y - e.y;
+      if (dx * dx + dy * dy >= reach * reach) return;
+      const Plant& q = plants[e.index];
+      if (!dominates(q, p)) return;
       p.dominated = true;
       by_peer[i] = d.species[static_cast<std::size_t>(q.species)].radius <= layer;
     });

@@ -429,7 +429,10 @@ void check_forest_budget(const formats::ForestDesc& f, std::size_t before, std::
 template <class Animated, class OnGround>
 void add_community(const formats::CommunityDesc& d, Scene& s, SceneBuilder& b, double sink,
                    Progress* progress, std::size_t* done, Animated animated, OnGround on_ground) {
+  const auto start = std::chrono::steady_clock::now();
   const Community c = simulate_community(d, s.terrain);
+  s.stats.simulation_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::vector<SceneBuilder::GrowRequest> requests;
   for (std::size_t k = 0; k < d.species.size(); ++k) {
     const formats::CommunitySpecies& sp = d.species[k];

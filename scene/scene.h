@@ -77,8 +77,9 @@ struct MeshObject {
 struct SceneStats {
   std::size_t prototypes = 0, instances = 0;
   std::size_t curve_segments = 0, triangles = 0;  // over prototypes (not multiplied by instances)
-  std::size_t geometry_bytes = 0;  // arbor's arrays of trees and meshes (not Embree's BVH)
-  double build_seconds = 0.0;      // growing trees and building their geometry
+  std::size_t geometry_bytes = 0;   // arbor's arrays of trees and meshes (not Embree's BVH)
+  double build_seconds = 0.0;       // growing trees and building their geometry, everything
+  double simulation_seconds = 0.0;  // of which the community's simulation
 };
 
 struct Scene {

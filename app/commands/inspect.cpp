@@ -167,7 +167,8 @@ void print_json(const InspectRequest& a, const formats::SceneDesc& desc, const s
               .integer("image_bytes", static_cast<unsigned long long>(memory.image_bytes))
               .integer("meadow_bytes", static_cast<unsigned long long>(memory.meadow_bytes))
               .integer("terrain_bytes", static_cast<unsigned long long>(memory.terrain_bytes)))
-      .number("build_seconds", s.stats.build_seconds, 4);
+      .number("build_seconds", s.stats.build_seconds, 4)
+      .number("simulation_seconds", s.stats.simulation_seconds, 4);
   std::vector<JsonObject> list;
   list.reserve(trees.size());
   for (const Placed& p : trees) list.push_back(instance_json(p));
@@ -213,7 +214,8 @@ void print_text(const InspectRequest& a, const formats::SceneDesc& desc, const s
       megabytes(s.stats.geometry_bytes + memory.instance_bytes + memory.image_bytes).c_str(),
       megabytes(s.stats.geometry_bytes).c_str(), megabytes(memory.instance_bytes).c_str(),
       megabytes(memory.image_bytes).c_str());
-  std::printf("built in %.2f s\n", s.stats.build_seconds);
+  std::printf("built in %.2f s (the community's simulation %.2f s of it)\n", s.stats.build_seconds,
+              s.stats.simulation_seconds);
   if (!a.instances) return;
   std::printf("\n# species\tprototype\tvariant\tage\tx\ty\tz\trotation\tscale\tground\theight\n");
   for (const Placed& p : trees) {
