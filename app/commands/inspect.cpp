@@ -159,6 +159,10 @@ void print_json(const InspectRequest& a, const formats::SceneDesc& desc, const s
                   .integer("blades", static_cast<unsigned long long>(s.meadow.placed_blades()))
                   .integer("distinct_blades",
                            static_cast<unsigned long long>(s.meadow.distinct_blades())))
+      .object("rocks",
+              JsonObject()
+                  .integer("rocks", static_cast<unsigned long long>(s.rocks.placements.size()))
+                  .integer("shapes", static_cast<unsigned long long>(s.rocks.shapes.size())))
       .object(
           "memory",
           JsonObject()

@@ -73,6 +73,7 @@ TEST(Inspect, ListsEveryInstanceStandingOnTheTerrain) {
   const std::vector<Instance> all = instances_of(r.out);
   ASSERT_GT(all.size(), 60u) << r.out.substr(0, 2000);
   EXPECT_EQ(json_count(r.out, "black_spruce"), static_cast<long long>(all.size()));
+  EXPECT_NE(r.out.find("\"rocks\": {\"rocks\": 0, \"shapes\": 0}"), std::string::npos);
   std::size_t aged = 0, on_slopes = 0;
   for (const Instance& i : all) {
     EXPECT_NEAR(i.z, i.ground, 0.01);
