@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <tuple>
 #include <variant>
 
@@ -22,6 +23,7 @@
 #include "imaging/image_output.h"
 #include "scene/scene.h"
 #include "tracer/lights/sky.h"
+#include "tracer/pbrt_landscape.h"
 
 namespace arbor::tracer {
 
@@ -254,7 +256,9 @@ std::string camera_text(const scene::RenderInput& input, const PbrtColorSpace& s
       "# two sides (one reflectance, the mean of front and back) and their cuticle, bark\n"
       "# roughness (Oren-Nayar) and relief, albedo maps, the ground's patches beyond 128 m of the\n"
       "# camera (their mean albedo there; nearer, an image), the [meadow]'s grass blades, the\n"
-      "# transparent sky, the AOVs, arbor's sampling (pbrt samples its own way).\n";
+      "# terrain's cover and the rocks' lichen as arbor computes them (the terrain's albedo is\n"
+      "# baked into an image, the rocks' is their mean), the transparent sky, the AOVs, arbor's\n"
+      "# sampling (pbrt samples its own way).\n";
   text += "ColorSpace \"" + std::string(space.name) + "\"\n";
   // pbrt's camera space is left-handed: mirroring x keeps arbor's right-handed image unmirrored.
   const scene::CameraSpec& cam = input.camera;
@@ -385,14 +389,17 @@ void write_meshes(const scene::Scene& built,
   }
 }
 
-// The ground: the plane z = 0, 10 km each way, in material `ground`; with patches, the square
-// around `centre` in their baked image (ground_image) and the rest around it in `ground`.
-std::string ground_text(const std::string& ground, bool patches, glm::vec2 centre,
+// The ground: the plane z = 0, 10 km each way, in material `ground` (on a terrain, a millimetre
+// below, as arbor's World has it, so the terrain's edge wins where they meet); with patches, the
+// square around `centre` in their baked image (ground_image) and the rest around it in `ground`.
+std::string ground_text(const std::string& ground, bool patches, bool terrain, glm::vec2 centre,
                         const std::string& ground_image) {
   if (!patches) {
-    return "AttributeBegin # ground: the plane z = 0, 10 km each way\n  NamedMaterial \"" + ground +
-           "\"\n  Shape \"trianglemesh\" \"point3 P\" [ -1e4 -1e4 0  1e4 -1e4 0  1e4 1e4 0  -1e4 "
-           "1e4 0 ]"
+    const std::string z = terrain ? "-0.001" : "0";
+    return "AttributeBegin # ground: the plane z = " + z + ", 10 km each way\n  NamedMaterial \"" +
+           ground + "\"\n  Shape \"trianglemesh\" \"point3 P\" [ -1e4 -1e4 " + z + "  1e4 -1e4 " +
+           z + "  1e4 1e4 " + z + "  -1e4 1e4 " + z +
+           " ]"
            " \"integer indices\" [ 0 1 2 0 2 3 ]\nAttributeEnd\n";
   }
   const float x0 = centre.x - kGroundHalf, x1 = centre.x + kGroundHalf;
@@ -424,6 +431,43 @@ std::string ground_text(const std::string& ground, bool patches, glm::vec2 centr
          "]\nAttributeEnd\n";
 }
 
+// The terrain: its mesh (OUT.terrain.ply) and albedo image (OUT.terrain.exr) written, and the
+// pbrt text that names them.
+std::string terrain_text(const scene::Scene& scene, const Colors& colors,
+                         const PbrtColorSpace& space, const std::string& out, PbrtExport& result) {
+  const materials::GroundMaterial* ground = scene.ground.as<materials::GroundMaterial>();
+  if (!ground) throw std::logic_error("a terrain whose material is not the ground's");
+  const std::string mesh = terrain_mesh_path_for(out), albedo = terrain_albedo_path_for(out);
+  std::size_t clamped = 0;
+  const imaging::Image img = terrain_albedo(scene.terrain, *ground, colors.to_pbrt, clamped);
+  if (clamped > 0) {
+    result.clamped.push_back("the terrain's albedo (" + std::to_string(clamped) + " of " +
+                             std::to_string(img.beauty.size()) + " texels)");
+  }
+  imaging::OutputSpec output;
+  output.colorspace = "Linear";
+  output.pixel_type = imaging::PixelType::Half;
+  imaging::ExrMetadata meta;
+  meta.scene =
+      "arbor terrain albedo for pbrt-v4 (its soil, rock and ground), linear in pbrt's "
+      "colour space " +
+      std::string(space.name);
+  meta.chromaticities = space.chromaticities;
+  meta.render_attributes = false;
+  imaging::write_exr(img, output, meta, albedo);
+  result.written.push_back(albedo);
+  write_terrain_ply(scene.terrain, mesh);
+  result.written.push_back(mesh);
+  return "# the terrain: its grid's triangles (" + file_name(mesh) +
+         "), its albedo by slope, curvature and altitude baked (" + file_name(albedo) +
+         ")\nTexture \"terrain albedo\" \"spectrum\" \"imagemap\" \"string filename\" \"" +
+         file_name(albedo) +
+         "\"\nMakeNamedMaterial \"terrain\" \"string type\" \"diffuse\" \"texture "
+         "reflectance\" \"terrain albedo\"\nAttributeBegin # terrain\n  NamedMaterial \"terrain\"\n"
+         "  Shape \"plymesh\" \"string filename\" \"" +
+         file_name(mesh) + "\"\nAttributeEnd\n";
+}
+
 }  // namespace
 
 PbrtColorSpace pbrt_color_space_of(const imaging::ColorPipeline& color) {
@@ -440,11 +484,6 @@ PbrtColorSpace pbrt_color_space_of(const imaging::ColorPipeline& color) {
 PbrtExport write_pbrt_scene(const scene::Scene& scene, const scene::RenderInput& input,
                             const imaging::ColorPipeline& color, const std::string& out,
                             int sky_resolution) {
-  // Refused rather than left out: a landscape without its ground would be another picture.
-  if (!scene.terrain.empty())
-    throw InputError({input.scene, 0, 0}, "the pbrt-v4 export does not write a [terrain] yet");
-  if (!scene.rocks.empty())
-    throw InputError({input.scene, 0, 0}, "the pbrt-v4 export does not write [rocks] yet");
   const std::vector<float> linear = color.chromaticities("scene_linear");
   PbrtExport result;
   const PbrtColorSpace space = pbrt_color_space_of(color);
@@ -473,19 +512,31 @@ PbrtExport write_pbrt_scene(const scene::Scene& scene, const scene::RenderInput&
     mesh_materials.push_back(names);
   }
   const std::string ground = scene.has_ground ? materials.name_of(scene.ground, "ground") : "";
+  // The rocks' lichen-spotted pattern has no pbrt counterpart: its mean.
+  const materials::GroundMaterial* rock = scene.rocks.material.as<materials::GroundMaterial>();
+  const std::string rock_material =
+      scene.rocks.empty() || !rock
+          ? ""
+          : materials.name_of(materials::DiffuseMaterial{mean_rock_albedo(*rock)}, "rocks");
   text += "\n" + materials.text() + "\n";
   write_trees(scene, trees, text, file);
   write_meshes(scene, mesh_materials, text, file);
   const materials::GroundMaterial* patched = scene.ground.as<materials::GroundMaterial>();
-  const bool ground_patches = scene.has_ground && patched && patched->cover > 0.0f;
+  // On a terrain the ground under the camera is the terrain's (its albedo image holds the
+  // patches); the plane around it takes their mean.
+  const bool ground_patches =
+      scene.has_ground && scene.terrain.empty() && patched && patched->cover > 0.0f;
   // Centred on the camera, on a whole metre (the same export twice gives the same files).
   const glm::vec2 ground_centre(std::round(static_cast<float>(input.camera.position[0])),
                                 std::round(static_cast<float>(input.camera.position[1])));
-  if (scene.has_ground) text += ground_text(ground, ground_patches, ground_centre, ground_path);
+  if (scene.has_ground)
+    text += ground_text(ground, ground_patches, !scene.terrain.empty(), ground_centre, ground_path);
+  if (!scene.terrain.empty()) text += terrain_text(scene, colors, space, out, result);
+  if (!scene.rocks.empty()) text += rocks_text(scene.rocks, rock_material);
 
   // The sky goes first: a failed write of the scene leaves at most a new sky beside the old
   // scene, never a scene naming a sky that is not there.
-  result.written.push_back(out);
+  result.written.insert(result.written.begin(), out);
   if (!sky.empty()) {
     write_sky_exr(sky, colors, space, sky_resolution, scene.has_ground, sky_path);
     result.written.push_back(sky_path);
