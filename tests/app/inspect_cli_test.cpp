@@ -1,6 +1,9 @@
 // End-to-end tests of `arbor inspect`: what it reports is what the scene builds (every instance,
-// the terrain under it, the counts), it writes nothing, and bad scenes are refused.
+// the terrain under it, the counts), it writes nothing, and bad scenes are refused; a landscape
+// renders bit for bit at any thread count.
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <regex>
 #include <string>
 #include <vector>
@@ -101,4 +104,46 @@ TEST(Inspect, RefusesABadSceneAtItsPlace) {
             std::string::npos)
       << r.err;
   EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+// A whole landscape — terrain, a community grown from seed, rocks, a meadow on the slope, the
+// camera standing on the ground — builds and renders the same image bit for bit at one and two
+// threads (growth, the simulation's placement, the rocks and the render all run in parallel).
+TEST(Landscape, RendersBitForBitAtOneAndTwoThreads) {
+  const std::string dir = ::testing::TempDir();
+  const std::string scene = write_temp(
+      "landscape_threads.toml",
+      landscape_scene() +
+          "[rocks]\ndensity = 0.02\nsize_min = 0.3\nsize_max = 2\n"
+          "[meadow]\ndensity = 300\narea = [[-75, -80], [-55, -60]]\nheight = 0.3\n"
+          "[render]\nwidth = 48\nheight = 32\nspp = 4\n"
+          "[camera]\nposition = [-70, -75, 0]\nabove_ground = 6\nlook_at = [0, 0, 10]\n"
+          "[output]\naovs = [\"depth\"]\npixel_type = \"float\"\n");
+  const CliRun one = run_arbor("render " + scene + " --threads 1 -o " + dir + "land1.exr");
+  ASSERT_EQ(one.code, 0) << one.err;
+  ASSERT_EQ(run_arbor("render " + scene + " --threads 2 -o " + dir + "land2.exr").code, 0);
+  OIIO::ImageBuf a(dir + "land1.exr"), b(dir + "land2.exr");
+  ASSERT_TRUE(a.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+  ASSERT_TRUE(b.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+  ASSERT_EQ(a.nchannels(), 5);  // RGBA, Z
+  std::vector<float> pa(48 * 32 * 5), pb(pa.size());
+  a.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, pa.data());
+  b.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, pb.data());
+  EXPECT_EQ(std::memcmp(pa.data(), pb.data(), pa.size() * sizeof(float)), 0);
+  // What it builds, listed, is the same too; and it has all its parts.
+  const CliRun i1 = run_arbor("inspect " + scene + " --json --instances");
+  ASSERT_EQ(i1.code, 0) << i1.err;
+  std::smatch rocks, blades;
+  ASSERT_TRUE(std::regex_search(i1.out, rocks, std::regex("\"rocks\": \\{\"rocks\": ([0-9]+)")));
+  EXPECT_GT(std::stoll(rocks[1]), 50);
+  ASSERT_TRUE(std::regex_search(i1.out, blades, std::regex("\"blades\": ([0-9]+)")));
+  EXPECT_GT(std::stoll(blades[1]), 10000);
+  // The depth channel sees the near ground (the camera stands 6 m over it) and the far slopes.
+  float nearest = 1e30f, farthest = 0.0f;
+  for (std::size_t p = 4; p < pa.size(); p += 5) {
+    nearest = std::min(nearest, pa[p]);
+    if (std::isfinite(pa[p])) farthest = std::max(farthest, pa[p]);
+  }
+  EXPECT_LT(nearest, 15.0f);
+  EXPECT_GT(farthest, 30.0f);
 }
