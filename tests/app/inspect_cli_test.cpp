@@ -111,14 +111,14 @@ TEST(Inspect, RefusesABadSceneAtItsPlace) {
 // threads (growth, the simulation's placement, the rocks and the render all run in parallel).
 TEST(Landscape, RendersBitForBitAtOneAndTwoThreads) {
   const std::string dir = ::testing::TempDir();
-  const std::string scene = write_temp(
-      "landscape_threads.toml",
-      landscape_scene() +
-          "[rocks]\ndensity = 0.02\nsize_min = 0.3\nsize_max = 2\n"
-          "[meadow]\ndensity = 300\narea = [[-75, -80], [-55, -60]]\nheight = 0.3\n"
-          "[render]\nwidth = 48\nheight = 32\nspp = 4\n"
-          "[camera]\nposition = [-70, -75, 0]\nabove_ground = 6\nlook_at = [0, 0, 10]\n"
-          "[output]\naovs = [\"depth\"]\npixel_type = \"float\"\n");
+  const std::string scene =
+      write_temp("landscape_threads.toml",
+                 landscape_scene() +
+                     "[rocks]\ndensity = 0.02\nsize_min = 0.3\nsize_max = 2\n"
+                     "[meadow]\ndensity = 300\narea = [[-75, -80], [-55, -60]]\nheight = 0.3\n"
+                     "[render]\nwidth = 48\nheight = 32\nspp = 4\n"
+                     "[camera]\nposition = [-70, -75, 0]\nabove_ground = 6\nlook_at = [0, 0, 10]\n"
+                     "[output]\naovs = [\"depth\"]\npixel_type = \"float\"\n");
   const CliRun one = run_arbor("render " + scene + " --threads 1 -o " + dir + "land1.exr");
   ASSERT_EQ(one.code, 0) << one.err;
   ASSERT_EQ(run_arbor("render " + scene + " --threads 2 -o " + dir + "land2.exr").code, 0);
