@@ -135,6 +135,7 @@ struct TerrainDesc {
   double metres_per_pixel = 1.0;
   double height_scale = 1.0;  // metres per unit of the image's value (a PNG's 0…65535 → 0…1)
   double rock_slope = 35.0;   // degrees: rock on faces steeper than this (soil a band below)
+  double surround = 4.0;      // sides the model continues beyond the square, coarser (0: none)
   Rgb rock_albedo{0.30, 0.29, 0.26};
   Rgb soil_albedo{0.19, 0.15, 0.11};
   SourceLocation where, path_where;  // the table's and the path's positions, for errors found later

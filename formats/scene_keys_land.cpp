@@ -48,6 +48,10 @@ const std::vector<Key<TerrainDesc>>& terrain_keys() {
       value("height_scale", &T::height_scale, Range{1e-6, 1e6, "metres"},
             "metres per unit of the image's value (a PNG's 0 to 65535 read as 0 to 1)")
           .only_for("image"),
+      value("surround", &T::surround, Range{0, 20, ""},
+            "how many sides the model continues beyond the square each way, coarser, to the "
+            "horizon (0: none; the square's edges then fall to its lowest level)")
+          .only_for("hills mountains"),
       value("rock_slope", &T::rock_slope, Range{1, 89, "degrees"},
             "faces steeper than this are rock; soil on the 10° below"),
       value("rock_albedo", &T::rock_albedo, kUnitAlbedo, "the rock's albedo (lichen varies it)"),

@@ -71,6 +71,24 @@ void for_rows(int rows, Row row) {
   for (std::thread& t : pool) t.join();
 }
 
+// The surround's grid around a square of `side` sampled `spacing` apart: `cells` of it along the
+// square's side (the square's edges on its lines), `beyond` more past each edge to reach
+// `surround` sides, `step` metres apart: at least 8 of the square's spacings, and at most about
+// 1024 samples across in all.
+struct SurroundGrid {
+  int cells = 0, beyond = 0;
+  double step = 0.0;
+  int samples() const { return cells + 2 * beyond + 1; }
+};
+SurroundGrid surround_grid(double side, double spacing, double surround) {
+  SurroundGrid g;
+  const double target = std::max(8.0 * spacing, side * (1.0 + 2.0 * surround) / 1024.0);
+  g.cells = std::max(1, static_cast<int>(std::lround(side / target)));
+  g.step = side / g.cells;
+  g.beyond = static_cast<int>(std::ceil(surround * side / g.step - 1e-9));
+  return g;
+}
+
 DecodedImage elevation_header(const formats::TerrainDesc& d, bool pixels) {
   try {
     DecodedImage image = read_image_file(d.path, "elevation image", false);
@@ -110,13 +128,17 @@ std::size_t terrain_vertices(const formats::TerrainDesc& d) {
     return static_cast<std::size_t>(header.width) * static_cast<std::size_t>(header.height);
   }
   const auto n = static_cast<std::size_t>(std::ceil(d.size / d.resolution - 1e-9)) + 1;
-  return n * n;
+  if (d.surround <= 0.0) return n * n;
+  const auto around = static_cast<std::size_t>(
+      surround_grid(d.size, formats::terrain_spacing(d), d.surround).samples());
+  return n * n + around * around;
 }
 
 Terrain::Terrain(const formats::TerrainDesc& d) : rock_slope_(d.rock_slope) {
   // The heights are made in the vertices' z (the one copy Embree renders from), then moved to
   // run from 0 to the relief.
   const bool image = d.kind == formats::TerrainKind::Image;
+  std::function<double(double, double)> raw;  // the procedural model, metres from the corner
   if (image) {
     const DecodedImage pixels = elevation_header(d, true);
     nx_ = pixels.width;
@@ -144,15 +166,18 @@ Terrain::Terrain(const formats::TerrainDesc& d) : rock_slope_(d.rock_slope) {
     const glm::dvec3 offset(1000.0 * rng.uniform(), 1000.0 * rng.uniform(), 100.0 * rng.uniform());
     const bool hills = d.kind == formats::TerrainKind::Hills;
     const double wavelength = d.size / (hills ? 1.5 : 2.0);
+    raw = [hills, wavelength, offset](double x, double y) {
+      return hills ? fbm(x / wavelength, y / wavelength, offset)
+                   : ridged(x / wavelength, y / wavelength, offset);
+    };
     for_rows(ny_, [&](int j) {
-      for (int i = 0; i < nx_; ++i) {
-        const double x = i * spacing_ / wavelength, y = j * spacing_ / wavelength;
-        vertices_[index(i, j)].z =
-            static_cast<float>(hills ? fbm(x, y, offset) : ridged(x, y, offset));
-      }
+      for (int i = 0; i < nx_; ++i)
+        vertices_[index(i, j)].z = static_cast<float>(raw(i * spacing_, j * spacing_));
     });
-    // The edges fall to the lowest level over the outer tenth of the side, so the terrain meets
-    // the ground plane around it without a step.
+  }
+  if (!image && d.surround <= 0.0) {
+    // Without a surround the edges fall to the lowest level over the outer tenth of the side,
+    // so the terrain meets the ground plane around it without a step.
     float lo = vertices_[0].z;
     for (std::size_t k = 0; k + 2 < vertices_.size(); ++k) lo = std::min(lo, vertices_[k].z);
     for_rows(ny_, [&](int j) {
@@ -179,6 +204,86 @@ Terrain::Terrain(const formats::TerrainDesc& d) : rock_slope_(d.rock_slope) {
       v = glm::vec3(origin_.x + i * spacing_, origin_.y + j * spacing_, (v.z - lo) * scale);
     }
   });
+  if (!image && d.surround > 0.0) make_surround(d, raw, lo, scale);
+}
+
+void Terrain::make_surround(const formats::TerrainDesc& d,
+                            const std::function<double(double, double)>& raw, double lo,
+                            double scale) {
+  const SurroundGrid g = surround_grid(extent().x, spacing_, d.surround);
+  auto s = std::make_shared<Terrain>();
+  s->nx_ = s->ny_ = g.samples();
+  s->spacing_ = g.step;
+  s->relief_ = relief_;
+  s->rock_slope_ = rock_slope_;
+  s->origin_ = origin_ - glm::dvec2(g.beyond * g.step);
+  const std::size_t n = static_cast<std::size_t>(s->nx_) * static_cast<std::size_t>(s->ny_);
+  s->vertices_.resize(n + 2);
+  s->shading_heights_.resize(n);
+  const int first = g.beyond, last = g.beyond + g.cells;  // the square's edges, in samples
+  const auto inside = [&](int i, int j) { return i > first && i < last && j > first && j < last; };
+  for_rows(s->ny_, [&](int j) {
+    for (int i = 0; i < s->nx_; ++i) {
+      const double x = s->origin_.x + i * g.step, y = s->origin_.y + j * g.step;
+      const double h = (raw(x - origin_.x, y - origin_.y) - lo) * scale;
+      s->vertices_[s->index(i, j)] =
+          glm::vec3(static_cast<float>(x), static_cast<float>(y), static_cast<float>(h));
+    }
+  });
+  // The lowest level around the square (0 if none is lower), to which the surround's own outer
+  // tenth falls and on which the ground plane lies.
+  double floor = 0.0;
+  for (int j = 0; j < s->ny_; ++j) {
+    for (int i = 0; i < s->nx_; ++i) {
+      if (!inside(i, j)) floor = std::min(floor, static_cast<double>(s->at(i, j)));
+    }
+  }
+  // Sunk under the square: its inner samples well below its lowest point, those on its edge by
+  // a small margin (a two-hundredth of the relief and a quarter metre: the detail the coarser
+  // grid misses along the edge can still rise above it, in a strip a fraction of a metre wide at
+  // the square's very edge; a larger margin left a cliff of that height all round); the skirt
+  // closes the seam where the square is higher.
+  const double margin = 0.005 * relief_ + 0.25, deep = floor - 0.05 * relief_ - 5.0;
+  for (int j = 0; j < s->ny_; ++j) {
+    for (int i = 0; i < s->nx_; ++i) {
+      float& z = s->vertices_[s->index(i, j)].z;
+      const double edge =
+          std::min({i, j, s->nx_ - 1 - i, s->ny_ - 1 - j}) / static_cast<double>(s->nx_ - 1);
+      z = static_cast<float>(floor + (z - floor) * smoothstep(0.0, 0.1, edge));
+      s->shading_heights_[s->index(i, j)] = z;
+      if (inside(i, j))
+        z = static_cast<float>(deep);
+      else if (i >= first && i <= last && j >= first && j <= last)
+        z -= static_cast<float>(margin);
+    }
+  }
+  s->floor_ = floor_ = floor;
+  // The skirt: each edge's vertices in the order that runs left to right seen from outside.
+  const auto wall = [&](int i0, int j0, int di, int dj, int count) {
+    for (int k = 0; k + 1 < count; ++k) {
+      const glm::vec3 a = vertices_[index(i0 + k * di, j0 + k * dj)];
+      const glm::vec3 b = vertices_[index(i0 + (k + 1) * di, j0 + (k + 1) * dj)];
+      const auto base = static_cast<std::uint32_t>(skirt_positions_.size());
+      skirt_positions_.insert(skirt_positions_.end(),
+                              {a, b, glm::vec3(a.x, a.y, static_cast<float>(deep)),
+                               glm::vec3(b.x, b.y, static_cast<float>(deep))});
+      // (a', b', b) and (a', b, a)
+      skirt_indices_.insert(skirt_indices_.end(),
+                            {base + 2, base + 3, base + 1, base + 2, base + 1, base});
+    }
+  };
+  wall(0, 0, 1, 0, nx_);               // south, seen from −y: x grows to the right
+  wall(nx_ - 1, 0, 0, 1, ny_);         // east, seen from +x: y grows
+  wall(nx_ - 1, ny_ - 1, -1, 0, nx_);  // north
+  wall(0, ny_ - 1, 0, -1, ny_);        // west
+  surround_ = std::move(s);
+}
+
+std::size_t Terrain::bytes() const {
+  std::size_t b = vertices_.size() * sizeof(glm::vec3) + shading_heights_.size() * sizeof(float) +
+                  skirt_positions_.size() * sizeof(glm::vec3) +
+                  skirt_indices_.size() * sizeof(std::uint32_t);
+  return surround_ ? b + surround_->bytes() : b;
 }
 
 bool Terrain::cell(double x, double y, int& i, int& j, double& fx, double& fy) const {
@@ -195,7 +300,7 @@ bool Terrain::cell(double x, double y, int& i, int& j, double& fx, double& fy) c
 double Terrain::height(double x, double y) const {
   int i, j;
   double fx, fy;
-  if (!cell(x, y, i, j, fx, fy)) return 0.0;
+  if (!cell(x, y, i, j, fx, fy)) return surround_ ? surround_->height(x, y) : floor_;
   const double h0 = at(i, j), h1 = at(i + 1, j), h2 = at(i + 1, j + 1), h3 = at(i, j + 1);
   // Embree's quad (v0, v1, v2, v3) as the triangles (v0, v1, v3) and (v2, v3, v1).
   if (fx + fy <= 1.0) return h0 + fx * (h1 - h0) + fy * (h3 - h0);
@@ -205,21 +310,24 @@ double Terrain::height(double x, double y) const {
 glm::vec3 Terrain::vertex_normal(int i, int j) const {
   const int il = std::max(i - 1, 0), ir = std::min(i + 1, nx_ - 1);
   const int jd = std::max(j - 1, 0), ju = std::min(j + 1, ny_ - 1);
-  const double dx = (at(ir, j) - at(il, j)) / ((ir - il) * spacing_);
-  const double dy = (at(i, ju) - at(i, jd)) / ((ju - jd) * spacing_);
+  const double dx = (shading_at(ir, j) - shading_at(il, j)) / ((ir - il) * spacing_);
+  const double dy = (shading_at(i, ju) - shading_at(i, jd)) / ((ju - jd) * spacing_);
   return glm::normalize(glm::vec3(static_cast<float>(-dx), static_cast<float>(-dy), 1.0f));
 }
 
 double Terrain::laplacian(int i, int j) const {
   const int il = std::max(i - 1, 0), ir = std::min(i + 1, nx_ - 1);
   const int jd = std::max(j - 1, 0), ju = std::min(j + 1, ny_ - 1);
-  return (at(ir, j) + at(il, j) + at(i, ju) + at(i, jd) - 4.0 * at(i, j)) / (spacing_ * spacing_);
+  return (shading_at(ir, j) + shading_at(il, j) + shading_at(i, ju) + shading_at(i, jd) -
+          4.0 * shading_at(i, j)) /
+         (spacing_ * spacing_);
 }
 
 glm::vec3 Terrain::normal(double x, double y) const {
   int i, j;
   double fx, fy;
-  if (!cell(x, y, i, j, fx, fy)) return {0.0f, 0.0f, 1.0f};
+  if (!cell(x, y, i, j, fx, fy))
+    return surround_ ? surround_->normal(x, y) : glm::vec3(0.0f, 0.0f, 1.0f);
   const auto a = static_cast<float>(fx), b = static_cast<float>(fy);
   const glm::vec3 n =
       (1.0f - a) * (1.0f - b) * vertex_normal(i, j) + a * (1.0f - b) * vertex_normal(i + 1, j) +
@@ -234,7 +342,7 @@ double Terrain::slope(double x, double y) const {
 glm::vec2 Terrain::cover(double x, double y) const {
   int i, j;
   double fx, fy;
-  if (!cell(x, y, i, j, fx, fy)) return glm::vec2(0.0f);
+  if (!cell(x, y, i, j, fx, fy)) return surround_ ? surround_->cover(x, y) : glm::vec2(0.0f);
   // Convexity (ridges, summits: the heights' Laplacian below 0), bilinear over the cell, in 1/m.
   const double convex =
       -((1 - fx) * (1 - fy) * laplacian(i, j) + fx * (1 - fy) * laplacian(i + 1, j) +

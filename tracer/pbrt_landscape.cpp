@@ -49,6 +49,12 @@ std::string terrain_mesh_path_for(const std::string& pbrt_path) {
 std::string terrain_albedo_path_for(const std::string& pbrt_path) {
   return stem_of(pbrt_path) + ".terrain.exr";
 }
+std::string surround_mesh_path_for(const std::string& pbrt_path) {
+  return stem_of(pbrt_path) + ".surround.ply";
+}
+std::string surround_albedo_path_for(const std::string& pbrt_path) {
+  return stem_of(pbrt_path) + ".surround.exr";
+}
 
 void write_terrain_ply(const scene::Terrain& t, const std::string& path) {
   const int nx = t.columns(), ny = t.rows();

@@ -18,6 +18,9 @@ namespace arbor::tracer {
 // The terrain's mesh beside OUT.pbrt: OUT.terrain.ply; its albedo: OUT.terrain.exr.
 std::string terrain_mesh_path_for(const std::string& pbrt_path);
 std::string terrain_albedo_path_for(const std::string& pbrt_path);
+// The surround's: OUT.surround.ply and OUT.surround.exr.
+std::string surround_mesh_path_for(const std::string& pbrt_path);
+std::string surround_albedo_path_for(const std::string& pbrt_path);
 
 // Writes `t` as a binary little-endian PLY at `path` (atomically): every vertex of its grid with
 // its smooth normal and uv = its place in the square, (0, 0) at the corner (x0, y0); each cell

@@ -392,10 +392,10 @@ void write_meshes(const scene::Scene& built,
 // The ground: the plane z = 0, 10 km each way, in material `ground` (on a terrain, a millimetre
 // below, as arbor's World has it, so the terrain's edge wins where they meet); with patches, the
 // square around `centre` in their baked image (ground_image) and the rest around it in `ground`.
-std::string ground_text(const std::string& ground, bool patches, bool terrain, glm::vec2 centre,
-                        const std::string& ground_image) {
+std::string ground_text(const std::string& ground, bool patches, bool terrain, double floor,
+                        glm::vec2 centre, const std::string& ground_image) {
   if (!patches) {
-    const std::string z = terrain ? "-0.001" : "0";
+    const std::string z = terrain ? number(floor - 0.001) : "0";
     return "AttributeBegin # ground: the plane z = " + z + ", 10 km each way\n  NamedMaterial \"" +
            ground + "\"\n  Shape \"trianglemesh\" \"point3 P\" [ -1e4 -1e4 " + z + "  1e4 -1e4 " +
            z + "  1e4 1e4 " + z + "  -1e4 1e4 " + z +
@@ -431,41 +431,59 @@ std::string ground_text(const std::string& ground, bool patches, bool terrain, g
          "]\nAttributeEnd\n";
 }
 
-// The terrain: its mesh (OUT.terrain.ply) and albedo image (OUT.terrain.exr) written, and the
-// pbrt text that names them.
-std::string terrain_text(const scene::Scene& scene, const Colors& colors,
-                         const PbrtColorSpace& space, const std::string& out, PbrtExport& result) {
-  const materials::GroundMaterial* ground = scene.ground.as<materials::GroundMaterial>();
-  if (!ground) throw std::logic_error("a terrain whose material is not the ground's");
-  const std::string mesh = terrain_mesh_path_for(out), albedo = terrain_albedo_path_for(out);
+// One grid of the terrain (the square, or its surround): its mesh and albedo image written at
+// `mesh` and `albedo`, and the pbrt text that names them.
+std::string grid_text(const scene::Terrain& grid, const materials::GroundMaterial& ground,
+                      const Colors& colors, const PbrtColorSpace& space, const std::string& mesh,
+                      const std::string& albedo, const std::string& name, PbrtExport& result) {
   std::size_t clamped = 0;
-  const imaging::Image img = terrain_albedo(scene.terrain, *ground, colors.to_pbrt, clamped);
+  const imaging::Image img = terrain_albedo(grid, ground, colors.to_pbrt, clamped);
   if (clamped > 0) {
-    result.clamped.push_back("the terrain's albedo (" + std::to_string(clamped) + " of " +
+    result.clamped.push_back("the " + name + "'s albedo (" + std::to_string(clamped) + " of " +
                              std::to_string(img.beauty.size()) + " texels)");
   }
   imaging::OutputSpec output;
   output.colorspace = "Linear";
   output.pixel_type = imaging::PixelType::Half;
   imaging::ExrMetadata meta;
-  meta.scene =
-      "arbor terrain albedo for pbrt-v4 (its soil, rock and ground), linear in pbrt's "
-      "colour space " +
-      std::string(space.name);
+  meta.scene = "arbor " + name + " albedo for pbrt-v4 (its soil, rock and ground), linear in " +
+               "pbrt's colour space " + std::string(space.name);
   meta.chromaticities = space.chromaticities;
   meta.render_attributes = false;
   imaging::write_exr(img, output, meta, albedo);
   result.written.push_back(albedo);
-  write_terrain_ply(scene.terrain, mesh);
+  write_terrain_ply(grid, mesh);
   result.written.push_back(mesh);
-  return "# the terrain: its grid's triangles (" + file_name(mesh) +
+  return "# the " + name + ": its grid's triangles (" + file_name(mesh) +
          "), its albedo by slope, curvature and altitude baked (" + file_name(albedo) +
-         ")\nTexture \"terrain albedo\" \"spectrum\" \"imagemap\" \"string filename\" \"" +
-         file_name(albedo) +
-         "\"\nMakeNamedMaterial \"terrain\" \"string type\" \"diffuse\" \"texture "
-         "reflectance\" \"terrain albedo\"\nAttributeBegin # terrain\n  NamedMaterial \"terrain\"\n"
-         "  Shape \"plymesh\" \"string filename\" \"" +
-         file_name(mesh) + "\"\nAttributeEnd\n";
+         ")\nTexture \"" + name + " albedo\" \"spectrum\" \"imagemap\" \"string filename\" \"" +
+         file_name(albedo) + "\"\nMakeNamedMaterial \"" + name +
+         "\" \"string type\" \"diffuse\" \"texture reflectance\" \"" + name +
+         " albedo\"\nAttributeBegin # " + name + "\n  NamedMaterial \"" + name +
+         "\"\n  Shape \"plymesh\" \"string filename\" \"" + file_name(mesh) + "\"\nAttributeEnd\n";
+}
+
+// The terrain: the square (OUT.terrain.ply, OUT.terrain.exr), its surround (OUT.surround.ply,
+// OUT.surround.exr) and the skirt between them (rock), each written, and the pbrt text.
+std::string terrain_text(const scene::Scene& scene, const Colors& colors,
+                         const PbrtColorSpace& space, const std::string& out, PbrtExport& result) {
+  const materials::GroundMaterial* ground = scene.ground.as<materials::GroundMaterial>();
+  if (!ground) throw std::logic_error("a terrain whose material is not the ground's");
+  const scene::Terrain& t = scene.terrain;
+  std::string text = grid_text(t, *ground, colors, space, terrain_mesh_path_for(out),
+                               terrain_albedo_path_for(out), "terrain", result);
+  if (!t.surround()) return text;
+  text += grid_text(*t.surround(), *ground, colors, space, surround_mesh_path_for(out),
+                    surround_albedo_path_for(out), "surround", result);
+  text +=
+      "AttributeBegin # the skirt from the terrain's edge down under the surround: rock\n"
+      "  Material \"diffuse\" " +
+      colors.rgb("reflectance", ground->rock_albedo, "the skirt's rock") +
+      "\n  Shape \"trianglemesh\" \"point3 P\" [ ";
+  for (const glm::vec3& p : t.skirt_positions()) text += triple(p) + " ";
+  text += "]\n    \"integer indices\" [ ";
+  for (std::uint32_t i : t.skirt_indices()) text += std::to_string(i) + " ";
+  return text + "]\nAttributeEnd\n";
 }
 
 }  // namespace
@@ -530,7 +548,8 @@ PbrtExport write_pbrt_scene(const scene::Scene& scene, const scene::RenderInput&
   const glm::vec2 ground_centre(std::round(static_cast<float>(input.camera.position[0])),
                                 std::round(static_cast<float>(input.camera.position[1])));
   if (scene.has_ground)
-    text += ground_text(ground, ground_patches, !scene.terrain.empty(), ground_centre, ground_path);
+    text += ground_text(ground, ground_patches, !scene.terrain.empty(), scene.terrain.floor(),
+                        ground_centre, ground_path);
   if (!scene.terrain.empty()) text += terrain_text(scene, colors, space, out, result);
   if (!scene.rocks.empty()) text += rocks_text(scene.rocks, rock_material);
 

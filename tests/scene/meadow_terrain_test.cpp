@@ -23,6 +23,7 @@ Terrain steep_mountains() {
   t.resolution = 4;
   t.relief = 120;
   t.seed = 3;
+  t.surround = 0;  // the square alone: its blades
   return Terrain(t);
 }
 

@@ -23,6 +23,7 @@ Terrain steep_mountains(double relief = 120) {
   t.resolution = 2;
   t.relief = relief;
   t.seed = 3;
+  t.surround = 0;  // the square alone, whose edges fall to its lowest level
   return Terrain(t);
 }
 

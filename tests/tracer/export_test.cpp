@@ -542,17 +542,30 @@ TEST(PbrtExport, TheTerrainIsItsGridWithItsAlbedoAndTheRocksAreInstances) {
   EXPECT_GT(rock, 30);  // both in the sample, so a flipped image shows
   EXPECT_GT(meadow, 30);
 
-  // The plane around it a millimetre below the terrain's edge.
+  // The plane around it a millimetre below the lowest level (the surround's lowest point).
   bool plane = false;
   for (const Statement& s : pbrt) {
     if (s.directive != "Shape" || s.args.at(0) != "trianglemesh") continue;
     const std::vector<double> p = numbers(s, "point3 P");
     if (p.size() == 12 && p[0] == -1e4) {
       plane = true;
-      EXPECT_EQ(p[2], -0.001);
+      EXPECT_NEAR(p[2], t.floor() - 0.001, 1e-5);
     }
   }
   EXPECT_TRUE(plane);
+  // The surround as a mesh of its own, and the skirt that closes the seam.
+  ASSERT_NE(t.surround(), nullptr);
+  const Ply around = read_ply(dir + "scene.surround.ply");
+  EXPECT_EQ(around.vertices,
+            static_cast<std::size_t>(t.surround()->columns()) * t.surround()->rows());
+  ASSERT_NE(find(pbrt, "Texture", "surround albedo"), nullptr);
+  std::size_t skirt_points = 0;
+  for (const Statement& s : pbrt) {
+    if (s.directive != "Shape" || s.args.at(0) != "trianglemesh") continue;
+    const std::vector<double> p = numbers(s, "point3 P");
+    if (p.size() == 3 * t.skirt_positions().size()) skirt_points = p.size() / 3;
+  }
+  EXPECT_EQ(skirt_points, 4u * (nx - 1) * 4);
 
   // The rocks: each shape an object, each placement an instance of it under its transform.
   const scene::Rocks& rocks = built->rocks;

@@ -2,6 +2,7 @@
 // states (so what is placed by it stands on what is seen), on the steepest terrain arbor makes;
 // every tree of a forest on it has its base on that surface; terrain hits carry the ground's
 // material, a shading normal that is the smooth one and the rock cover of steep faces.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -18,9 +19,11 @@
 namespace arbor::tracer {
 namespace {
 
-// Mountains of 400 m relief over 600 m, at 2 m: slopes past 60° on the ridges.
+// Mountains of 400 m relief over 600 m, at 2 m: slopes past 60° on the ridges; the square alone
+// (seen from below: the surround's sunk cells would hide it; TerrainWorld.TheSurround* test it).
 const char* const kMountains =
-    "[terrain]\nkind = \"mountains\"\nsize = 600\nrelief = 400\nresolution = 2\nseed = 3\n";
+    "[terrain]\nkind = \"mountains\"\nsize = 600\nrelief = 400\nresolution = 2\nseed = 3\n"
+    "surround = 0\n";
 
 // The height Embree renders at (x, y): a ray from far below, straight up, and its first hit
 // (the terrain is seen from both sides); NaN when it hits nothing or not the terrain.
@@ -163,6 +166,68 @@ TEST(TerrainWorld, ATreeOnASlopeMeetsItAllRound) {
       EXPECT_LT(hit.surface.t, glm::length(to - from)) << species << " azimuth " << k;
     }
   }
+}
+
+// The surround meets the square without a gap: rays from above at the seam, from inside and
+// outside, at angles from steep to grazing, all meet the terrain, and on its stated surface
+// (Terrain::height, within float precision) or on the skirt at the edge, never on the surround's
+// cells sunk under the square (a ray through a crack would). Mountains of 400 m relief, whose
+// ridges the surround's coarser grid misses most.
+TEST(TerrainWorld, TheSurroundMeetsTheSquareWithoutAGap) {
+  const formats::SceneDesc desc = formats::parse_scene(
+      "[terrain]\nkind = \"mountains\"\nsize = 600\nrelief = 400\nresolution = 2\nseed = 3\n"
+      "[ground]\nenabled = false\n",
+      "surround.toml");
+  const EmbreeDevice device;
+  const TestWorld w(desc, device);
+  const scene::Terrain& t = w.scene->terrain;
+  ASSERT_NE(t.surround(), nullptr);
+  Rng rng(11);
+  int skirt = 0, surface = 0, below = 0, missed = 0;
+  for (int k = 0; k < 20000; ++k) {
+    // A point on the seam (one of the four edges), and a ray to it from above, from any side.
+    const double u = -300.0 + 600.0 * rng.uniform(), off = -3.0 + 6.0 * rng.uniform();
+    const int side = static_cast<int>(4.0 * rng.uniform());
+    const double e = 300.0 + off;
+    const double x = side == 0 ? u : side == 1 ? e : side == 2 ? -u : -e;
+    const double y = side == 0 ? e : side == 1 ? -u : side == 2 ? -e : u;
+    const double elevation = (2.0 + 80.0 * rng.uniform()) * 3.14159265358979 / 180.0;
+    const double azimuth = 2.0 * 3.14159265358979 * rng.uniform();
+    const glm::vec3 to(static_cast<float>(std::cos(elevation) * std::cos(azimuth)),
+                       static_cast<float>(std::cos(elevation) * std::sin(azimuth)),
+                       static_cast<float>(std::sin(elevation)));
+    const glm::vec3 target(static_cast<float>(x), static_cast<float>(y),
+                           static_cast<float>(t.height(x, y)));
+    Ray ray;
+    ray.origin = target + 500.0f * to;
+    ray.direction = -to;
+    // From above the ground (a grazing ray's start can be inside a mountain in front of it).
+    if (ray.origin.z < t.height(ray.origin.x, ray.origin.y) + 1.0) {
+      --k;
+      continue;
+    }
+    WorldHit hit;
+    if (!w.world.intersect(ray, hit)) {
+      ++missed;
+      continue;
+    }
+    const glm::vec3 p = hit.surface.position;
+    const bool at_edge = std::abs(std::max(std::abs(p.x), std::abs(p.y)) - 300.0f) < 1e-2f;
+    if (at_edge && std::abs(hit.surface.shading_normal.z) < 1e-3f) {
+      ++skirt;
+      const double ex = std::clamp(static_cast<double>(p.x), -299.9999, 299.9999);
+      const double ey = std::clamp(static_cast<double>(p.y), -299.9999, 299.9999);
+      EXPECT_LE(p.z, t.height(ex, ey) + 1e-2);  // under the square's edge
+    } else if (p.z >= t.height(p.x, p.y) - 1e-2) {
+      ++surface;
+    } else {
+      ++below;
+    }
+  }
+  EXPECT_EQ(missed, 0);
+  EXPECT_EQ(below, 0);
+  EXPECT_GT(skirt, 0);  // the seam is there to be closed
+  EXPECT_GT(surface, 19000);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include "tracer/embree/world.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <chrono>
 #include <cstring>
 
@@ -81,9 +82,9 @@ World::World(const scene::Scene& scene, const EmbreeDevice& device)
   if (scene.has_ground) {
     RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
     const float s = kGroundHalfSize;
-    // On a terrain, the plane is its lowest level (0) around it, a hair below so that the
-    // terrain's edge, which falls to 0, wins where they meet.
-    const float z = scene.terrain.empty() ? 0.0f : -1e-3f;
+    // On a terrain, the plane is its lowest level around it (0, or its surround's lowest), a
+    // hair below so that the terrain's edge, which falls to it, wins where they meet.
+    const float z = scene.terrain.empty() ? 0.0f : ground_level();
     const float corners[12] = {-s, -s, z, s, -s, z, s, s, z, -s, s, z};
     const unsigned tris[6] = {0, 1, 2, 0, 2, 3};
     fill(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, corners, 3 * sizeof(float), 4);
@@ -115,6 +116,26 @@ void World::attach_terrain(const scene::Terrain& t) {
   grid->width = static_cast<unsigned short>(t.columns());
   grid->height = static_cast<unsigned short>(t.rows());
   attach(terrain_.get(), g);
+  if (const scene::Terrain* around = t.surround()) {
+    // The surround's grid (geometry 1) and the skirt (kSkirtGeometry) beside the square's.
+    RTCGeometry s = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_GRID);
+    rtcSetSharedGeometryBuffer(s, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                               around->vertices().data(), 0, sizeof(glm::vec3),
+                               static_cast<std::size_t>(around->columns()) * around->rows());
+    auto* sg = static_cast<RTCGrid*>(
+        rtcSetNewGeometryBuffer(s, RTC_BUFFER_TYPE_GRID, 0, RTC_FORMAT_GRID, sizeof(RTCGrid), 1));
+    sg->startVertexID = 0;
+    sg->stride = static_cast<unsigned>(around->columns());
+    sg->width = static_cast<unsigned short>(around->columns());
+    sg->height = static_cast<unsigned short>(around->rows());
+    attach(terrain_.get(), s);
+    RTCGeometry w = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+    fill(w, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, t.skirt_positions().data(),
+         sizeof(glm::vec3), t.skirt_positions().size());
+    fill(w, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, t.skirt_indices().data(),
+         3 * sizeof(std::uint32_t), t.skirt_indices().size() / 3);
+    if (attach(terrain_.get(), w) != kSkirtGeometry) throw std::logic_error("the skirt's id");
+  }
   rtcCommitScene(terrain_.get());
   RTCGeometry inst = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_INSTANCE);
   rtcSetGeometryInstancedScene(inst, terrain_.get());
@@ -173,7 +194,8 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
   SurfaceHit& s = hit.surface;
   s.terrain = glm::vec2(0.0f);
   if (terrain_ && rh.hit.instID[0] == terrain_geometry_) {
-    describe_terrain(ray, rh.ray.tfar, glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z), hit);
+    describe_terrain(ray, rh.ray.tfar, glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z),
+                     rh.hit.geomID == kSkirtGeometry, hit);
     return true;
   }
   if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && rh.hit.geomID < mesh_of_geometry_.size() &&
@@ -229,7 +251,7 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
     s.kind = SurfaceKind::None;
     s.t = rh.ray.tfar;
     s.position = ray.origin + ray.direction * s.t;
-    s.position.z = scene_.terrain.empty() ? 0.0f : -1e-3f;
+    s.position.z = scene_.terrain.empty() ? 0.0f : ground_level();
     s.geometric_normal = ray.direction.z < 0.0f ? glm::vec3(0, 0, 1) : glm::vec3(0, 0, -1);
     s.shading_normal = s.geometric_normal;
     s.tangent = glm::vec3(1, 0, 0);
@@ -271,16 +293,18 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
   return true;
 }
 
-void World::describe_terrain(const Ray& ray, float t_hit, glm::vec3 ng, WorldHit& hit) const {
+void World::describe_terrain(const Ray& ray, float t_hit, glm::vec3 ng, bool skirt,
+                             WorldHit& hit) const {
   const scene::Terrain& t = scene_.terrain;
   SurfaceHit& s = hit.surface;
   s.kind = SurfaceKind::None;
   s.t = t_hit;
   s.position = ray.origin + ray.direction * s.t;
-  // The facet's normal and the smooth one (both up, z > 0), turned to the side the ray came from.
+  // The facet's normal and the smooth one (both up, z > 0; the skirt's, a wall, its facet's),
+  // turned to the side the ray came from.
   ng = glm::normalize(ng);
   if (ng.z < 0.0f) ng = -ng;
-  glm::vec3 n = t.normal(s.position.x, s.position.y);
+  glm::vec3 n = skirt ? ng : t.normal(s.position.x, s.position.y);
   if (glm::dot(ng, ray.direction) > 0.0f) {
     ng = -ng;
     n = -n;
@@ -289,7 +313,7 @@ void World::describe_terrain(const Ray& ray, float t_hit, glm::vec3 ng, WorldHit
   s.shading_normal = n;
   s.tangent = glm::normalize(glm::cross(glm::vec3(0, 1, 0), n));
   s.leaf = -1;
-  s.terrain = t.cover(s.position.x, s.position.y);
+  s.terrain = skirt ? glm::vec2(0.0f, 1.0f) : t.cover(s.position.x, s.position.y);
   hit.ground = true;
   hit.mesh = false;
   hit.instance = -1;

@@ -59,7 +59,10 @@ class World {
   // Puts the terrain into Embree: its grid in a compact scene of its own, instanced in the top.
   void attach_terrain(const scene::Terrain& terrain);
   // Fills `hit` for a hit on the terrain.
-  void describe_terrain(const Ray& ray, float t, glm::vec3 ng, WorldHit& hit) const;
+  void describe_terrain(const Ray& ray, float t, glm::vec3 ng, bool skirt, WorldHit& hit) const;
+  // The ground plane's height on a terrain: a millimetre under its lowest level.
+  float ground_level() const { return static_cast<float>(scene_.terrain.floor()) - 1e-3f; }
+  static constexpr unsigned kSkirtGeometry = 2;  // in the terrain's scene: square, surround, skirt
   // Puts the rocks into Embree: each shape a scene of its own, each rock an instance of it.
   void attach_rocks(const scene::Rocks& rocks);
   // Fills `hit` for a hit on triangle `primitive` of rock `rock` (world-space ray).
