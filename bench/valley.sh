@@ -7,6 +7,9 @@
 # machine's name and cores go into bench/results/valley.json with every run.
 #
 #   bench/valley.sh [ARBOR (build/app/arbor)] [ROUNDS (1)] [WIDTH (1280)] [HEIGHT (720)] [SPP (64)]
+#
+# With VALLEY_PNG=path, the last round's render is also written there as a PNG (docs/images/
+# valley.png is made so, at the full size).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 arbor=${1:-$root/build/app/arbor} rounds=${2:-1} width=${3:-1280} height=${4:-720} spp=${5:-64}
@@ -28,7 +31,7 @@ print(json.dumps({"run": "inspect", "wall_s": float(wall), "cpu_s": float(user) 
                   "rocks": j["rocks"]["rocks"], "blades": j["meadow"]["blades"]}))
 PY
   /usr/bin/time -f "%e %U %S %M" -o "$tmp/t" "$arbor" render "$scene" --width "$width" \
-    --height "$height" --spp "$spp" -o "$tmp/valley.exr" 2> "$tmp/log"
+    --height "$height" --spp "$spp" -o "$tmp/valley.exr" ${VALLEY_PNG:+--png "$VALLEY_PNG"} 2> "$tmp/log"
   python3 - "$tmp/t" "$tmp/log" "$width" "$height" "$spp" >> "$tmp/runs" <<'PY'
 import json, re, sys
 wall, user, sys_, rss = open(sys.argv[1]).read().split()

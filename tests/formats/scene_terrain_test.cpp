@@ -15,7 +15,8 @@ TEST(SceneTerrain, ItsKeysAreRead) {
   EXPECT_FALSE(none.terrain.enabled);
   const SceneDesc s = parse_scene(
       "[terrain]\nkind = \"mountains\"\nsize = 2000\nrelief = 350\nseed = 7\nresolution = 4\n"
-      "rock_slope = 40\nrock_albedo = [0.3, 0.3, 0.3]\n[camera]\nposition = [1, 2, 3]\n"
+      "rock_slope = 40\nrock_albedo = [0.3, 0.3, 0.3]\nsurround = 2.5\n[camera]\nposition = [1, 2, "
+      "3]\n"
       "above_ground = 1.7\n",
       "s.toml");
   EXPECT_TRUE(s.terrain.enabled);
@@ -25,6 +26,8 @@ TEST(SceneTerrain, ItsKeysAreRead) {
   EXPECT_EQ(s.terrain.seed, 7u);
   EXPECT_EQ(s.terrain.resolution, 4.0);
   EXPECT_EQ(s.terrain.rock_slope, 40.0);
+  EXPECT_EQ(s.terrain.surround, 2.5);
+  EXPECT_EQ(none.terrain.surround, 4.0);  // the default: far hills to the horizon
   ASSERT_TRUE(s.camera.above_ground.has_value());
   EXPECT_EQ(*s.camera.above_ground, 1.7);
   EXPECT_EQ(s.camera.focus_distance, 0.0);  // measured once the eye stands on the terrain
@@ -56,6 +59,11 @@ TEST(SceneTerrain, BadValuesAreRefusedAtTheirPosition) {
   expect_scene_error("[terrain]\nresolution = 4\n[meadow]\ndensity = 100\ntile = 2\n", 5, 8,
                      "meadow.tile is the terrain's cell on a [terrain] (4 m); leave it out");
   expect_scene_error("[terrain]\n[camera]\nabove_ground = -1\n", 3, 16, "out of range [0, 100000]");
+  // An image has no model to continue beyond its square.
+  expect_scene_error(
+      "[terrain]\nkind = \"image\"\nsurround = 2\npath = \"d.png\"\n", 3, 12,
+      "terrain.surround belongs to terrain.kind = \"hills\" or \"mountains\", not \"image\"");
+  expect_scene_error("[terrain]\nsurround = 50\n", 2, 12, "out of range [0, 20]");
 }
 
 TEST(SceneCommunity, IsReadWithItsSpecies) {

@@ -230,5 +230,36 @@ TEST(TerrainWorld, TheSurroundMeetsTheSquareWithoutAGap) {
   EXPECT_GT(surface, 19000);
 }
 
+// The ground plane reaches the horizon: seen from 2 km up, a ray a degree below the horizon meets
+// it 115 km out, past its 10 km quad (it used to escape, a black band under the sky), and is
+// occluded there; a ray above the horizon escapes. With a terrain, at the plane's level under it.
+TEST(TerrainWorld, TheGroundPlaneReachesTheHorizon) {
+  for (const char* terrain : {"", "[terrain]\nkind = \"hills\"\nsize = 200\nrelief = 20\n"}) {
+    SCOPED_TRACE(terrain);
+    const formats::SceneDesc desc = formats::parse_scene(terrain, "plane.toml");
+    const EmbreeDevice device;
+    const TestWorld w(desc, device);
+    const float level =
+        static_cast<float>(w.scene->terrain.empty() ? 0.0 : w.scene->terrain.floor());
+    Ray ray;
+    ray.origin = glm::vec3(0.0f, 0.0f, 2000.0f);
+    const float down = 1.0f * 3.14159265f / 180.0f;
+    ray.direction = glm::vec3(std::cos(down), 0.0f, -std::sin(down));
+    WorldHit hit;
+    ASSERT_TRUE(w.world.intersect(ray, hit));
+    EXPECT_TRUE(hit.ground);
+    EXPECT_NEAR(hit.surface.t, (2000.0f - level) / std::sin(down), 10.0f);
+    EXPECT_GT(hit.surface.position.x, 1e5f);
+    EXPECT_NEAR(hit.surface.position.z, level, 0.01f);
+    EXPECT_TRUE(w.world.occluded(ray));
+    Ray shorter = ray;
+    shorter.t_max = 50000.0f;  // a shadow ray that ends before the plane is not occluded by it
+    EXPECT_FALSE(w.world.occluded(shorter));
+    ray.direction.z = -ray.direction.z;
+    EXPECT_FALSE(w.world.intersect(ray, hit));
+    EXPECT_FALSE(w.world.occluded(ray));
+  }
+}
+
 }  // namespace
 }  // namespace arbor::tracer

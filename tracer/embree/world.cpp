@@ -188,11 +188,16 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
   rtcInitIntersectContext(&context);
   RTCRayHit rh = embree_ray_hit(ray);
   rtcIntersect1(top_.get(), &context, &rh);
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   hit.grass = -1;  // a blade's describe_grass sets it
   hit.rock = false;
   SurfaceHit& s = hit.surface;
   s.terrain = glm::vec2(0.0f);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+    const float t = plane_beyond(ray);
+    if (!(t > 0.0f)) return false;
+    describe_plane(ray, t, hit);
+    return true;
+  }
   if (terrain_ && rh.hit.instID[0] == terrain_geometry_) {
     describe_terrain(ray, rh.ray.tfar, glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z),
                      rh.hit.geomID == kSkirtGeometry, hit);
@@ -241,21 +246,7 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
     return true;
   }
   if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID) {
-    // The ground.
-    hit.ground = true;
-    hit.mesh = false;
-    hit.instance = -1;
-    hit.material = &scene_.ground;
-    hit.object_id = scene_.ground_object_id;
-    hit.material_id = scene_.ground_material_id;
-    s.kind = SurfaceKind::None;
-    s.t = rh.ray.tfar;
-    s.position = ray.origin + ray.direction * s.t;
-    s.position.z = scene_.terrain.empty() ? 0.0f : ground_level();
-    s.geometric_normal = ray.direction.z < 0.0f ? glm::vec3(0, 0, 1) : glm::vec3(0, 0, -1);
-    s.shading_normal = s.geometric_normal;
-    s.tangent = glm::vec3(1, 0, 0);
-    s.leaf = -1;
+    describe_plane(ray, rh.ray.tfar, hit);
     return true;
   }
   const unsigned inst_id = rh.hit.instID[0];
@@ -291,6 +282,38 @@ bool World::intersect(const Ray& ray, WorldHit& hit) const {
                     : s.material == generator::kMaterialLeafBack ? inst.leaf_back_id
                                                                  : inst.leaf_front_id;
   return true;
+}
+
+float World::plane_beyond(const Ray& ray) const {
+  // The ground plane goes on past its quad (10 km each way) to the horizon: a ray that left the
+  // quad going down meets it out there (seen from a hill, the gap between the quad's edge and
+  // the horizon was black).
+  if (!scene_.has_ground || !(ray.direction.z < 0.0f)) return -1.0f;
+  const float level = scene_.terrain.empty() ? 0.0f : ground_level();
+  const float t = (level - ray.origin.z) / ray.direction.z;
+  if (!(t > ray.t_min && t < ray.t_max)) return -1.0f;
+  // Only out there: a ray Embree let through inside the quad (one leaving the plane itself,
+  // below its offset) is not the plane's to catch again.
+  const glm::vec3 p = ray.origin + t * ray.direction;
+  return std::max(std::abs(p.x), std::abs(p.y)) >= kGroundHalfSize ? t : -1.0f;
+}
+
+void World::describe_plane(const Ray& ray, float t, WorldHit& hit) const {
+  SurfaceHit& s = hit.surface;
+  hit.ground = true;
+  hit.mesh = false;
+  hit.instance = -1;
+  hit.material = &scene_.ground;
+  hit.object_id = scene_.ground_object_id;
+  hit.material_id = scene_.ground_material_id;
+  s.kind = SurfaceKind::None;
+  s.t = t;
+  s.position = ray.origin + ray.direction * s.t;
+  s.position.z = scene_.terrain.empty() ? 0.0f : ground_level();
+  s.geometric_normal = ray.direction.z < 0.0f ? glm::vec3(0, 0, 1) : glm::vec3(0, 0, -1);
+  s.shading_normal = s.geometric_normal;
+  s.tangent = glm::vec3(1, 0, 0);
+  s.leaf = -1;
 }
 
 void World::describe_terrain(const Ray& ray, float t_hit, glm::vec3 ng, bool skirt,
@@ -402,7 +425,7 @@ bool World::occluded(const Ray& ray) const {
   rtcInitIntersectContext(&context);
   RTCRay r = embree_ray(ray);
   rtcOccluded1(top_.get(), &context, &r);
-  return r.tfar < 0.0f;
+  return r.tfar < 0.0f || plane_beyond(ray) > 0.0f;
 }
 
 }  // namespace arbor::tracer

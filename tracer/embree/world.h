@@ -60,6 +60,11 @@ class World {
   void attach_terrain(const scene::Terrain& terrain);
   // Fills `hit` for a hit on the terrain.
   void describe_terrain(const Ray& ray, float t, glm::vec3 ng, bool skirt, WorldHit& hit) const;
+  // The distance along `ray` to the ground plane beyond its quad (within the ray's extent), or
+  // −1: for a ray Embree found no hit for.
+  float plane_beyond(const Ray& ray) const;
+  // Fills `hit` for a hit on the ground plane at `t`.
+  void describe_plane(const Ray& ray, float t, WorldHit& hit) const;
   // The ground plane's height on a terrain: a millimetre under its lowest level.
   float ground_level() const { return static_cast<float>(scene_.terrain.floor()) - 1e-3f; }
   static constexpr unsigned kSkirtGeometry = 2;  // in the terrain's scene: square, surround, skirt
