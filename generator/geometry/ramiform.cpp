@@ -29,6 +29,19 @@ class ParentSurface {
   ParentSurface(const TreeGeometry& g, std::int32_t limb) : g_(g) {
     for (std::size_t i = 0; i < g.curves.size(); ++i)
       if (g.curves.segments[i].limb == limb) segments_.push_back(i);
+    // Each segment's coarse axis points, once, and the sphere about them (a lower bound on the
+    // distance to any of them), so a projection measures only the segments that can be nearest.
+    for (std::size_t i : segments_) {
+      Coarse k;
+      glm::dvec3 mean(0.0);
+      for (int j = 0; j <= kCoarse; ++j) {
+        k.points[j] = glm::dvec3(glm::vec3(g.curves.position(i, static_cast<float>(j / 16.0))));
+        mean += k.points[j];
+      }
+      k.centre = mean / double(kCoarse + 1);
+      for (const glm::dvec3& q : k.points) k.reach = std::max(k.reach, glm::length(q - k.centre));
+      coarse_.push_back(k);
+    }
     for (std::size_t i = 0; i < g.grids.grids.size(); ++i)
       if (g.grids.grids[i].limb == limb) grid_ = i;
     if (grid_) {
@@ -67,11 +80,22 @@ class ParentSurface {
     const auto distance = [&](std::size_t i, double u) {
       return glm::length(p - glm::dvec3(glm::vec3(c.position(i, static_cast<float>(u)))));
     };
+    // The three segments whose coarse axis points come nearest p (ties by index): measured in
+    // the order of their spheres' lower bounds, until no bound is below the third nearest yet
+    // (the same three, and the same distances, as measuring every segment).
+    std::vector<std::pair<double, std::size_t>> bounds;  // (lower bound, index in segments_)
+    for (std::size_t n = 0; n < segments_.size(); ++n)
+      bounds.emplace_back(glm::length(p - coarse_[n].centre) - coarse_[n].reach - 1e-9, n);
+    std::sort(bounds.begin(), bounds.end());
     std::vector<std::pair<double, std::size_t>> near;  // (coarse distance to the axis, segment)
-    for (std::size_t i : segments_) {
+    for (const auto& [bound, n] : bounds) {
+      if (near.size() >= 3) {
+        std::nth_element(near.begin(), near.begin() + 2, near.end());
+        if (bound > near[2].first) break;
+      }
       double d = 1e300;
-      for (int k = 0; k <= 16; ++k) d = std::min(d, distance(i, k / 16.0));
-      near.emplace_back(d, i);
+      for (const glm::dvec3& q : coarse_[n].points) d = std::min(d, glm::length(p - q));
+      near.emplace_back(d, segments_[n]);
     }
     std::sort(near.begin(), near.end());
     double best = 1e300, lo = 0.0, hi = 0.0;
@@ -79,13 +103,21 @@ class ParentSurface {
     std::size_t best_seg = 0;
     for (std::size_t n = 0; n < std::min<std::size_t>(3, near.size()); ++n) {
       const std::size_t i = near[n].second;
+      // Golden-section search for the nearest axis point: each step keeps one of its two inner
+      // points (at the exact ratio they coincide), so it measures one new distance a step.
+      constexpr double kRatio = 0.6180339887498949;  // (√5 − 1) / 2
       double a0 = 0.0, b0 = 1.0;
-      for (int k = 0; k < 32; ++k) {  // golden-section search for the nearest axis point
-        const double a = b0 - 0.618034 * (b0 - a0), b = a0 + 0.618034 * (b0 - a0);
-        if (distance(i, a) < distance(i, b)) {
+      double a = b0 - kRatio * (b0 - a0), b = a0 + kRatio * (b0 - a0);
+      double da = distance(i, a), db = distance(i, b);
+      for (int k = 0; k < 32; ++k) {
+        if (da < db) {
           b0 = b;
+          b = a, db = da;
+          a = b0 - kRatio * (b0 - a0), da = distance(i, a);
         } else {
           a0 = a;
+          a = b, da = db;
+          b = a0 + kRatio * (b0 - a0), db = distance(i, b);
         }
       }
       const double u = 0.5 * (a0 + b0);
@@ -168,6 +200,13 @@ class ParentSurface {
 
   const TreeGeometry& g_;
   std::vector<std::size_t> segments_;
+  static constexpr int kCoarse = 16;  // a segment's coarse axis points: u = 0, 1/16, …, 1
+  struct Coarse {
+    std::array<glm::dvec3, kCoarse + 1> points{};
+    glm::dvec3 centre{0.0};
+    double reach = 0.0;
+  };
+  std::vector<Coarse> coarse_;  // by segments_
   std::optional<std::size_t> grid_;
   std::vector<glm::dvec3> centres_;
   mutable glm::dvec3 axis_{0.0};  // the axis point of the last projection
