@@ -1,17 +1,13 @@
 // Tests of the pbrt-v4 scene writer (`arbor export`): pbrt-v4's equal-area map, the colour space,
 // and a whole exported scene read back: its syntax, camera, lights, objects and the sky image's
-// irradiance and orientation.
+// irradiance and orientation (the landscape's parts: export_landscape_test.cpp).
 #include "tracer/pbrt_scene.h"
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <map>
-#include <set>
-#include <sstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,6 +16,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "imaging/color.h"
+#include "pbrt_reading.h"
 #include "scene/scene.h"
 #include "tracer/lights/sky.h"
 #include "tracer/test_world.h"
@@ -27,156 +24,9 @@
 namespace arbor::tracer {
 namespace {
 
+using namespace pbrt_reading;  // NOLINT: the tests' reader of pbrt files
+
 constexpr double kPi = 3.14159265358979323846;
-
-// `arbor export`'s library part: the scene built, then written as pbrt-v4 sees it.
-void export_scene(const std::string& scene_path, const std::string& out, int sky_resolution) {
-  const formats::SceneDesc desc = formats::load_scene(scene_path);
-  write_pbrt_scene(*scene::build_scene(desc, kOcioConfig), scene::render_input(desc),
-                   imaging::ColorPipeline(kOcioConfig), out, sky_resolution);
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// A pbrt-v4 file as statements: a directive and its arguments (quoted strings, numbers, or
-// bracketed lists); comments dropped. Fails the test on anything pbrt's tokenizer would refuse.
-struct Statement {
-  std::string directive;
-  std::vector<std::string> args;  // strings without their quotes; a list as "[", items, "]"
-};
-std::vector<Statement> parse_pbrt(const std::string& text) {
-  std::vector<std::string> tokens;
-  for (std::size_t i = 0; i < text.size();) {
-    const char c = text[i];
-    if (c == '#') {
-      i = text.find('\n', i);
-      if (i == std::string::npos) break;
-    } else if (std::isspace(static_cast<unsigned char>(c))) {
-      ++i;
-    } else if (c == '"') {
-      const std::size_t end = text.find('"', i + 1);
-      EXPECT_NE(end, std::string::npos) << "unterminated string at " << i;
-      if (end == std::string::npos) break;
-      tokens.push_back("\"" + text.substr(i + 1, end - i - 1));
-      i = end + 1;
-    } else if (c == '[' || c == ']') {
-      tokens.emplace_back(1, c);
-      ++i;
-    } else {
-      std::size_t end = i;
-      while (end < text.size() && !std::isspace(static_cast<unsigned char>(text[end])) &&
-             text[end] != '[' && text[end] != ']' && text[end] != '"')
-        ++end;
-      tokens.push_back(text.substr(i, end - i));
-      i = end;
-    }
-  }
-  std::vector<Statement> out;
-  int depth = 0;
-  for (const std::string& t : tokens) {
-    const bool word = std::isalpha(static_cast<unsigned char>(t[0])) && t != "true" && t != "false";
-    if (word && depth == 0) {
-      out.push_back({t, {}});
-      continue;
-    }
-    EXPECT_FALSE(out.empty()) << "argument before any directive: " << t;
-    if (out.empty()) continue;
-    if (t == "[") ++depth;
-    if (t == "]") --depth;
-    EXPECT_GE(depth, 0);
-    EXPECT_LE(depth, 1) << "nested list";
-    if (t[0] != '"' && t != "[" && t != "]") {
-      char* end = nullptr;
-      std::strtod(t.c_str(), &end);
-      EXPECT_EQ(*end, '\0') << "not a number: " << t << " in " << out.back().directive;
-    }
-    out.back().args.push_back(t[0] == '"' ? t.substr(1) : t);
-  }
-  EXPECT_EQ(depth, 0);
-  const std::set<std::string> known = {"ColorSpace",
-                                       "Scale",
-                                       "LookAt",
-                                       "Camera",
-                                       "Film",
-                                       "PixelFilter",
-                                       "Sampler",
-                                       "Integrator",
-                                       "WorldBegin",
-                                       "LightSource",
-                                       "MakeNamedMaterial",
-                                       "NamedMaterial",
-                                       "Material",
-                                       "ObjectBegin",
-                                       "ObjectEnd",
-                                       "ObjectInstance",
-                                       "AttributeBegin",
-                                       "AttributeEnd",
-                                       "Shape",
-                                       "Transform",
-                                       "Texture"};
-  const std::set<std::string> types = {"float", "integer", "point3", "point2", "normal",
-                                       "rgb",   "string",  "bool",   "texture"};
-  for (const Statement& s : out) {
-    EXPECT_TRUE(known.count(s.directive)) << s.directive;
-    // Parameter lists: "type name" then one value or a bracketed list.
-    std::size_t i = 0;
-    if (s.directive == "Camera" || s.directive == "Film" || s.directive == "PixelFilter" ||
-        s.directive == "Sampler" || s.directive == "Integrator" || s.directive == "LightSource" ||
-        s.directive == "Shape" || s.directive == "MakeNamedMaterial" || s.directive == "Material" ||
-        s.directive == "Texture") {
-      i = s.directive == "Texture" ? 3 : 1;  // Texture "name" "type" "class" params
-      while (i < s.args.size()) {
-        const std::string& decl = s.args[i];
-        const std::size_t space = decl.find(' ');
-        EXPECT_NE(space, std::string::npos)
-            << s.directive << ": parameter without a type: " << decl;
-        if (space == std::string::npos) break;
-        EXPECT_TRUE(types.count(decl.substr(0, space))) << s.directive << ": type of " << decl;
-        ++i;
-        if (i < s.args.size() && s.args[i] == "[") {
-          while (i < s.args.size() && s.args[i] != "]") ++i;
-        }
-        ++i;
-      }
-    }
-  }
-  return out;
-}
-
-std::vector<double> numbers(const Statement& s, const std::string& param) {
-  std::vector<double> v;
-  for (std::size_t i = 0; i < s.args.size(); ++i) {
-    if (s.args[i] != param) continue;
-    ++i;
-    const bool list = s.args[i] == "[";
-    for (i += list ? 1 : 0; i < s.args.size() && s.args[i] != "]"; ++i) {
-      v.push_back(std::stod(s.args[i]));
-      if (!list) break;
-    }
-    break;
-  }
-  return v;
-}
-
-const Statement* find(const std::vector<Statement>& all, const std::string& directive,
-                      const std::string& first = "") {
-  for (const Statement& s : all) {
-    if (s.directive == directive && (first.empty() || (!s.args.empty() && s.args[0] == first)))
-      return &s;
-  }
-  return nullptr;
-}
-
-std::size_t count(const std::vector<Statement>& all, const std::string& directive) {
-  std::size_t n = 0;
-  for (const Statement& s : all) n += s.directive == directive;
-  return n;
-}
 
 }  // namespace
 
@@ -343,10 +193,6 @@ TEST(PbrtExport, WritesTheWholeSceneAndASkyWithItsIrradiance) {
             std::cos(15.0 * kPi / 180.0));
 }
 
-}  // namespace arbor::tracer
-
-namespace arbor::tracer {
-
 // The ground's patches near the camera are an image pbrt reads as a texture: each texel is
 // arbor's ground albedo at its place (row 0 at the square's +y edge, as pbrt's flipped v reads
 // it), and the square sits on the camera; farther out, the patches' mean.
@@ -411,210 +257,6 @@ TEST(PbrtExport, GroundPatchesNearTheCameraAreAnImage) {
   const double g = numbers(*outer, "rgb reflectance").at(1);
   EXPECT_GT(g, 0.1);
   EXPECT_LT(g, 0.15);
-}
-
-// A binary little-endian PLY as pbrt-v4 reads ours: the counts, the vertices' eight floats and
-// the faces' corners.
-struct Ply {
-  std::size_t vertices = 0, faces = 0;
-  std::vector<float> vertex;           // x y z nx ny nz u v, each vertex
-  std::vector<std::uint32_t> corners;  // three a face
-};
-Ply read_ply(const std::string& path) {
-  Ply ply;
-  const std::string bytes = slurp(path);
-  const std::size_t end = bytes.find("end_header\n");
-  EXPECT_NE(end, std::string::npos);
-  if (end == std::string::npos) return ply;
-  std::istringstream header(bytes.substr(0, end));
-  std::string line, properties;
-  while (std::getline(header, line)) {
-    if (line.rfind("element vertex ", 0) == 0) ply.vertices = std::stoul(line.substr(15));
-    if (line.rfind("element face ", 0) == 0) ply.faces = std::stoul(line.substr(13));
-    if (line.rfind("property", 0) == 0) properties += line.substr(9) + ";";
-  }
-  EXPECT_EQ(properties,
-            "float x;float y;float z;float nx;float ny;float nz;float u;float v;"
-            "list uchar int vertex_indices;");
-  const char* at = bytes.data() + end + 11;
-  EXPECT_EQ(bytes.size() - (end + 11), ply.vertices * 32 + ply.faces * 13);
-  if (bytes.size() - (end + 11) != ply.vertices * 32 + ply.faces * 13) return ply;
-  ply.vertex.resize(ply.vertices * 8);
-  std::memcpy(ply.vertex.data(), at, ply.vertices * 32);  // this machine is little-endian
-  at += ply.vertices * 32;
-  for (std::size_t f = 0; f < ply.faces; ++f, at += 13) {
-    EXPECT_EQ(at[0], 3);
-    for (int c = 0; c < 3; ++c) {
-      std::uint32_t v;
-      std::memcpy(&v, at + 1 + 4 * c, 4);
-      ply.corners.push_back(v);
-    }
-  }
-  return ply;
-}
-
-TEST(PbrtExport, TheTerrainIsItsGridWithItsAlbedoAndTheRocksAreInstances) {
-  const std::string dir = ::testing::TempDir() + "pbrt_terrain/";
-  std::system(("mkdir -p " + dir).c_str());
-  const std::string scene_path = dir + "scene.toml";
-  std::ofstream(scene_path)
-      << "[render]\nwidth = 40\nheight = 30\nspp = 4\n"
-         "[camera]\nposition = [-40.0, -45.0, 2.0]\nabove_ground = 1.7\nlook_at = [0.0, 0.0, "
-         "10.0]\n"
-         "[sky]\nmodel = \"constant\"\ncolor = [0.5, 0.5, 0.5]\n"
-         "[ground]\nalbedo = [0.2, 0.3, 0.1]\n"
-         "[terrain]\nkind = \"mountains\"\nsize = 100\nrelief = 30\nresolution = 1\nseed = 5\n"
-         "[rocks]\ndensity = 0.05\nsize_min = 0.5\nsize_max = 2\n";
-  const std::string pbrt_out = dir + "scene.pbrt";
-  export_scene(scene_path, pbrt_out, 16);
-  const std::vector<Statement> pbrt = parse_pbrt(slurp(pbrt_out));
-  const formats::SceneDesc desc = formats::load_scene(scene_path);
-  const std::unique_ptr<const scene::Scene> built = scene::build_scene(desc, kOcioConfig);
-  const scene::Terrain& t = built->terrain;
-  const int nx = t.columns(), ny = t.rows();
-
-  // The mesh: every vertex of the grid, the cells split as Embree splits them.
-  const Statement* shape = find(pbrt, "Shape", "plymesh");
-  ASSERT_NE(shape, nullptr);
-  EXPECT_NE(std::find(shape->args.begin(), shape->args.end(), "scene.terrain.ply"),
-            shape->args.end());
-  const Ply ply = read_ply(dir + "scene.terrain.ply");
-  ASSERT_EQ(ply.vertices, static_cast<std::size_t>(nx) * ny);
-  ASSERT_EQ(ply.faces, 2u * (nx - 1) * (ny - 1));
-  ASSERT_EQ(ply.corners.size(), 3 * ply.faces);
-  for (std::size_t v = 0; v < ply.vertices; v += 97) {
-    const glm::vec3 p = t.vertices()[v], n = t.normal(p.x, p.y);
-    for (int k = 0; k < 3; ++k) {
-      EXPECT_EQ(ply.vertex[8 * v + k], p[k]) << v;
-      EXPECT_NEAR(ply.vertex[8 * v + 3 + k], n[k], 1e-6f) << v;
-    }
-    EXPECT_NEAR(ply.vertex[8 * v + 6], (p.x - t.origin().x) / t.extent().x, 1e-6) << v;
-    EXPECT_NEAR(ply.vertex[8 * v + 7], (p.y - t.origin().y) / t.extent().y, 1e-6) << v;
-  }
-  // Any point of any face is on the surface Terrain::height states (what stands on it stands
-  // on what pbrt renders), and faces turn up.
-  for (std::size_t f = 0; f < ply.faces; f += 13) {
-    glm::vec3 c[3];
-    for (int k = 0; k < 3; ++k) {
-      const float* q = &ply.vertex[8 * ply.corners[3 * f + k]];
-      c[k] = glm::vec3(q[0], q[1], q[2]);
-    }
-    EXPECT_GT(glm::cross(c[1] - c[0], c[2] - c[0]).z, 0.0f) << f;
-    const glm::vec3 inside = 0.5f * c[0] + 0.3f * c[1] + 0.2f * c[2];
-    EXPECT_NEAR(inside.z, t.height(inside.x, inside.y), 2e-3) << f;
-  }
-
-  // The albedo: the ground's with soil and rock, each texel the mean of its 2 × 2 points, row 0
-  // at +y; half floats.
-  const Statement* texture = find(pbrt, "Texture", "terrain albedo");
-  ASSERT_NE(texture, nullptr);
-  EXPECT_NE(std::find(texture->args.begin(), texture->args.end(), "scene.terrain.exr"),
-            texture->args.end());
-  auto in = OIIO::ImageInput::open(dir + "scene.terrain.exr");
-  ASSERT_TRUE(in);
-  const OIIO::ImageSpec spec = in->spec();
-  ASSERT_EQ(spec.width, 200);  // half the 1 m grid spacing over 100 m
-  ASSERT_EQ(spec.height, 200);
-  std::vector<float> px(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
-  ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
-  const materials::GroundMaterial& ground = *built->ground.as<materials::GroundMaterial>();
-  int rock = 0, meadow = 0;
-  for (int row = 0; row < 200; row += 7) {
-    for (int column = 0; column < 200; column += 5) {
-      glm::vec3 expected(0.0f);
-      float rockiness = 0.0f;
-      for (int s = 0; s < 4; ++s) {
-        materials::SurfacePoint p;
-        const double x = t.origin().x + (column + 0.25 + 0.5 * (s & 1)) * 0.5;
-        const double y = t.origin().y + 100.0 - (row + 0.25 + 0.5 * (s >> 1)) * 0.5;
-        p.ground = glm::vec2(static_cast<float>(x), static_cast<float>(y));
-        p.terrain = t.cover(x, y);
-        rockiness += p.terrain.y / 4.0f;
-        expected += ground.albedo_at(p) / 4.0f;
-      }
-      const float* q = &px[(static_cast<std::size_t>(row) * 200 + column) * spec.nchannels];
-      for (int k = 0; k < 3; ++k)
-        EXPECT_NEAR(q[k], expected[k], 2e-3f * expected[k] + 1e-5f) << row << "," << column;
-      rock += rockiness > 0.99f;
-      meadow += rockiness < 0.01f;
-    }
-  }
-  EXPECT_GT(rock, 30);  // both in the sample, so a flipped image shows
-  EXPECT_GT(meadow, 30);
-
-  // The plane around it a millimetre below the lowest level (the surround's lowest point).
-  bool plane = false;
-  for (const Statement& s : pbrt) {
-    if (s.directive != "Shape" || s.args.at(0) != "trianglemesh") continue;
-    const std::vector<double> p = numbers(s, "point3 P");
-    if (p.size() == 12 && p[0] == -1e4) {
-      plane = true;
-      EXPECT_NEAR(p[2], t.floor() - 0.001, 1e-5);
-    }
-  }
-  EXPECT_TRUE(plane);
-  // The surround as a mesh of its own, and the skirt that closes the seam.
-  ASSERT_NE(t.surround(), nullptr);
-  const Ply around = read_ply(dir + "scene.surround.ply");
-  EXPECT_EQ(around.vertices,
-            static_cast<std::size_t>(t.surround()->columns()) * t.surround()->rows());
-  ASSERT_NE(find(pbrt, "Texture", "surround albedo"), nullptr);
-  std::size_t skirt_points = 0;
-  for (const Statement& s : pbrt) {
-    if (s.directive != "Shape" || s.args.at(0) != "trianglemesh") continue;
-    const std::vector<double> p = numbers(s, "point3 P");
-    if (p.size() == 3 * t.skirt_positions().size()) skirt_points = p.size() / 3;
-  }
-  EXPECT_EQ(skirt_points, 4u * (nx - 1) * 4);
-
-  // The rocks: each shape an object, each placement an instance of it under its transform.
-  const scene::Rocks& rocks = built->rocks;
-  ASSERT_GT(rocks.placements.size(), 50u);
-  std::map<std::string, std::size_t> shapes;  // object → its points
-  std::vector<std::pair<std::string, std::vector<double>>> instances;
-  std::string object, transform_of_next;
-  std::vector<double> transform;
-  for (const Statement& s : pbrt) {
-    if (s.directive == "ObjectBegin") object = s.args.at(0);
-    if (s.directive == "ObjectEnd") object.clear();
-    if (s.directive == "Shape" && object.rfind("rock", 0) == 0)
-      shapes[object] = numbers(s, "point3 P").size() / 3;
-    if (s.directive == "Transform") {
-      transform.clear();
-      for (const std::string& a : s.args)
-        if (a != "[" && a != "]") transform.push_back(std::stod(a));
-    }
-    if (s.directive == "ObjectInstance" && s.args.at(0).rfind("rock", 0) == 0)
-      instances.emplace_back(s.args.at(0), transform);
-  }
-  ASSERT_EQ(shapes.size(), rocks.shapes.size());
-  for (std::size_t k = 0; k < rocks.shapes.size(); ++k)
-    EXPECT_EQ(shapes["rock" + std::to_string(k + 1)], rocks.shapes[k].positions.size());
-  ASSERT_EQ(instances.size(), rocks.placements.size());
-  for (std::size_t i = 0; i < instances.size(); i += 7) {
-    const scene::RockPlacement& r = rocks.placements[i];
-    EXPECT_EQ(instances[i].first, "rock" + std::to_string(r.shape + 1));
-    ASSERT_EQ(instances[i].second.size(), 16u);
-    for (int c = 0; c < 16; ++c)
-      EXPECT_NEAR(instances[i].second[c], r.to_world[c / 4][c % 4],
-                  1e-5 * (1.0 + std::abs(r.to_world[c / 4][c % 4])))
-          << i;
-  }
-  // Their material: the rock's mean, grey-green lichen on grey rock.
-  const Statement* material = nullptr;
-  for (const Statement& s : pbrt) {
-    const std::string name = s.args.empty() ? "" : s.args[0];
-    if (s.directive == "MakeNamedMaterial" && name.size() >= 5 &&
-        name.compare(name.size() - 5, 5, "rocks") == 0)
-      material = &s;
-  }
-  ASSERT_NE(material, nullptr);
-  const std::vector<double> albedo = numbers(*material, "rgb reflectance");
-  ASSERT_EQ(albedo.size(), 3u);
-  for (int k = 0; k < 3; ++k) {
-    EXPECT_GT(albedo[k], 0.25);
-    EXPECT_LT(albedo[k], 0.40);
-  }
 }
 
 }  // namespace arbor::tracer
