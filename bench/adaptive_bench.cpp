@@ -15,7 +15,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 #include "imaging/color.h"
 #include "scene/scene.h"
 #include "tracer/embree/world.h"
@@ -28,9 +28,8 @@ using namespace arbor;
 
 const std::string kOcioConfig = std::string(ARBOR_SOURCE_DIR) + "/imaging/ocio/config.ocio";
 
-formats::SceneDesc view(int spp, int threads) {
-  formats::SceneDesc s =
-      formats::load_scene(std::string(ARBOR_SOURCE_DIR) + "/scenes/default.toml");
+spec::SceneDesc view(int spp, int threads) {
+  spec::SceneDesc s = formats::load_scene(std::string(ARBOR_SOURCE_DIR) + "/scenes/default.toml");
   s.render.width = 120;
   s.render.height = 90;
   s.render.spp = spp;
@@ -39,13 +38,12 @@ formats::SceneDesc view(int spp, int threads) {
   return s;
 }
 
-imaging::Image render(const formats::SceneDesc& s) {
+imaging::Image render(const spec::SceneDesc& s) {
   const tracer::EmbreeDevice device("threads=" + std::to_string(s.render.threads));
   const std::unique_ptr<const scene::Scene> scene = scene::build_scene(s, kOcioConfig);
   const tracer::World world(*scene, device);
   const imaging::ColorPipeline color(kOcioConfig);
-  const tracer::Sky sky(scene::sky_spec(s.sky), scene::sun_spec(s.sun),
-                        color.xyz_to_scene_linear());
+  const tracer::Sky sky(s.sky, s.sun, color.xyz_to_scene_linear());
   imaging::RenderStats stats;
   return tracer::render_image(scene::render_input(s), world, sky,
                               color.to_output(s.output.colorspace), stats);
@@ -53,7 +51,7 @@ imaging::Image render(const formats::SceneDesc& s) {
 
 const imaging::Image& reference() {
   static const imaging::Image ref = [] {
-    formats::SceneDesc s = view(1024, 2);
+    spec::SceneDesc s = view(1024, 2);
     s.render.seed = 99;
     return render(s);
   }();
@@ -84,7 +82,7 @@ void report(benchmark::State& state, const imaging::Image& img) {
 
 void uniform(benchmark::State& state) {
   reference();
-  const formats::SceneDesc s = view(static_cast<int>(state.range(0)), 1);
+  const spec::SceneDesc s = view(static_cast<int>(state.range(0)), 1);
   imaging::Image img;
   for (auto _ : state) img = render(s);
   report(state, img);
@@ -92,7 +90,7 @@ void uniform(benchmark::State& state) {
 
 void adaptive(benchmark::State& state) {
   reference();
-  formats::SceneDesc s = view(static_cast<int>(state.range(1)), 1);
+  spec::SceneDesc s = view(static_cast<int>(state.range(1)), 1);
   s.render.noise_threshold = static_cast<double>(state.range(0)) / 1000.0;
   s.render.min_spp = 16;
   imaging::Image img;

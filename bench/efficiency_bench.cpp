@@ -24,7 +24,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 #include "formats/species_file.h"
 #include "generator/export/export_mesh.h"
 #include "generator/geometry/tree_geometry.h"
@@ -41,8 +41,8 @@ namespace {
 const std::string kSource = ARBOR_SOURCE_DIR;
 const std::string kOcioConfig = kSource + "/imaging/ocio/config.ocio";
 
-arbor::formats::SceneDesc default_scene() {
-  arbor::formats::SceneDesc s =
+arbor::spec::SceneDesc default_scene() {
+  arbor::spec::SceneDesc s =
       arbor::formats::load_scene(kSource + "/bench/scenes/issue13_default.toml");
   s.render.width = 240;
   s.render.height = 180;
@@ -50,16 +50,16 @@ arbor::formats::SceneDesc default_scene() {
   return s;
 }
 
-arbor::formats::SceneDesc default_glossy() {
-  arbor::formats::SceneDesc s = default_scene();
+arbor::spec::SceneDesc default_glossy() {
+  arbor::spec::SceneDesc s = default_scene();
   s.trees.at(0).leaf.cuticle_ior.reset();  // the species' own cuticle
   return s;
 }
 
 // The default scene's tree as an OBJ (written once per process) in a [[mesh]].
-arbor::formats::SceneDesc default_triangles() {
-  arbor::formats::SceneDesc s = default_scene();
-  const arbor::formats::TreeDesc tree = s.trees.at(0);
+arbor::spec::SceneDesc default_triangles() {
+  arbor::spec::SceneDesc s = default_scene();
+  const arbor::spec::TreeDesc tree = s.trees.at(0);
   const arbor::generator::Species species = arbor::formats::load_species(tree.species);
   arbor::generator::GrowOptions grow;
   grow.seed = tree.seed;
@@ -68,9 +68,9 @@ arbor::formats::SceneDesc default_triangles() {
   const std::string obj = "/tmp/arbor_scene_bench_tree.obj";
   arbor::generator::write_obj(arbor::generator::tessellate(geometry), obj,
                               {species.name, species.bark, species.leaf});
-  arbor::formats::MeshDesc mesh;
+  arbor::spec::MeshDesc mesh;
   mesh.path = obj;
-  arbor::formats::MeshMaterialDesc bark, leaf;
+  arbor::spec::MeshMaterialDesc bark, leaf;
   bark.kind = "bark";
   bark.albedo = species.bark.albedo;
   leaf.kind = "leaf";
@@ -85,22 +85,22 @@ arbor::formats::SceneDesc default_triangles() {
   return s;
 }
 
-arbor::formats::SceneDesc willow() {
-  arbor::formats::SceneDesc s = default_scene();
+arbor::spec::SceneDesc willow() {
+  arbor::spec::SceneDesc s = default_scene();
   s.trees.at(0).species = kSource + "/species/weeping_willow.toml";
   s.camera.position = {16.0, -22.0, 3.0};
   s.camera.look_at = {0.0, 0.0, 5.5};
   return s;
 }
 
-arbor::formats::SceneDesc forest() {
-  arbor::formats::SceneDesc s = arbor::formats::load_scene(kSource + "/scenes/forest_10000.toml");
+arbor::spec::SceneDesc forest() {
+  arbor::spec::SceneDesc s = arbor::formats::load_scene(kSource + "/scenes/forest_10000.toml");
   s.render.spp = 8;
   return s;
 }
 
-void scene(benchmark::State& state, arbor::formats::SceneDesc (*make)()) {
-  arbor::formats::SceneDesc s = make();
+void scene(benchmark::State& state, arbor::spec::SceneDesc (*make)()) {
+  arbor::spec::SceneDesc s = make();
   s.render.threads = 2;
   s.render.noise_threshold = 0;
   const arbor::tracer::EmbreeDevice device("threads=2");
@@ -111,8 +111,7 @@ void scene(benchmark::State& state, arbor::formats::SceneDesc (*make)()) {
   const double build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
   const arbor::imaging::ColorPipeline color(kOcioConfig);
-  const arbor::tracer::Sky sky(arbor::scene::sky_spec(s.sky), arbor::scene::sun_spec(s.sun),
-                               color.xyz_to_scene_linear());
+  const arbor::tracer::Sky sky(s.sky, s.sun, color.xyz_to_scene_linear());
   const arbor::imaging::ColorTransform to_output = color.to_output(s.output.colorspace);
   double seconds = 0, variance = 0;
   std::uint64_t samples = 0, rays = 0;

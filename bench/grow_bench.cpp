@@ -11,7 +11,7 @@
 
 #include "generator/grow.h"
 #include "generator/species.h"
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 #include "formats/species_file.h"
 #include "scene/scene.h"
 
@@ -39,7 +39,7 @@ void grow_species(benchmark::State& state, const char* file) {
 // The prototypes of a scene with a forest: species read, variants grown and their geometry built
 // (build_scene with `threads`; Embree is not involved).
 void forest_build(benchmark::State& state) {
-  const arbor::formats::SceneDesc desc =
+  const arbor::spec::SceneDesc desc =
       arbor::formats::load_scene(std::string(ARBOR_SOURCE_DIR) + "/scenes/forest.toml");
   const std::string ocio = std::string(ARBOR_SOURCE_DIR) + "/imaging/ocio/config.ocio";
   std::size_t prototypes = 0;

@@ -28,7 +28,7 @@
 #include "tracer/film.h"
 #include "tracer/exposure.h"
 #include "tracer/render.h"
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 #include "tracer/lights/sky.h"
 #include "imaging/color.h"
 #include "scene/scene.h"
@@ -43,15 +43,14 @@ const std::string kOcioConfig = std::string(ARBOR_SOURCE_DIR) + "/imaging/ocio/c
 
 // The scene built and put in Embree, as `arbor render` does.
 struct BuiltWorld {
-  BuiltWorld(const formats::SceneDesc& desc, const tracer::EmbreeDevice& device)
+  BuiltWorld(const spec::SceneDesc& desc, const tracer::EmbreeDevice& device)
       : scene(scene::build_scene(desc, kOcioConfig)), world(*scene, device) {}
   std::unique_ptr<const scene::Scene> scene;
   tracer::World world;
 };
 
-formats::SceneDesc default_scene() {
-  formats::SceneDesc s =
-      formats::load_scene(std::string(ARBOR_SOURCE_DIR) + "/scenes/default.toml");
+spec::SceneDesc default_scene() {
+  spec::SceneDesc s = formats::load_scene(std::string(ARBOR_SOURCE_DIR) + "/scenes/default.toml");
   s.render.threads = 1;
   // A fixed exposure: the renders measure the path tracer, not the meter (`meter` does).
   s.camera.auto_exposure = false;
@@ -59,7 +58,7 @@ formats::SceneDesc default_scene() {
 }
 
 void raw_embree_rays(benchmark::State& state) {
-  const formats::SceneDesc scene = default_scene();
+  const spec::SceneDesc scene = default_scene();
   const tracer::EmbreeDevice device("threads=1");
   const BuiltWorld built(scene, device);
   const tracer::World& world = built.world;
@@ -97,15 +96,15 @@ void raw_embree_rays(benchmark::State& state) {
 // Renders the default scene's view at 160×120 with `spp` path samples (the treemaker integrator
 // at its own treemaker_spp) for every iteration; rays/s, samples/s and spp counters.
 void render_frames(benchmark::State& state, int spp, bool treemaker) {
-  formats::SceneDesc scene = default_scene();
+  spec::SceneDesc scene = default_scene();
   scene.render.width = 160;
   scene.render.height = 120;
   scene.render.spp = spp;
-  if (treemaker) scene.render.integrator = formats::Integrator::Treemaker;
+  if (treemaker) scene.render.integrator = spec::Integrator::Treemaker;
   const tracer::EmbreeDevice device("threads=1");
   const BuiltWorld built(scene, device);
   const tracer::World& world = built.world;
-  const tracer::Sky sky(scene::sky_spec(scene.sky), scene::sun_spec(scene.sun),
+  const tracer::Sky sky(scene.sky, scene.sun,
                         imaging::ColorPipeline(kOcioConfig).xyz_to_scene_linear());
   std::uint64_t rays = 0, samples = 0;
   for (auto _ : state) {
@@ -127,10 +126,10 @@ void path_tracer(benchmark::State& state) { render_frames(state, 16, false); }
 
 // `[camera] exposure = "auto"`'s meter (tracer/exposure.h) on the default scene at its size.
 void meter(benchmark::State& state) {
-  const formats::SceneDesc scene = default_scene();
+  const spec::SceneDesc scene = default_scene();
   const tracer::EmbreeDevice device("threads=1");
   const BuiltWorld built(scene, device);
-  const tracer::Sky sky(scene::sky_spec(scene.sky), scene::sun_spec(scene.sun),
+  const tracer::Sky sky(scene.sky, scene.sun,
                         imaging::ColorPipeline(kOcioConfig).xyz_to_scene_linear());
   const scene::RenderInput input = scene::render_input(scene);
   tbb::task_arena one(1);  // its rows run on one thread, so CPU time is all of it
@@ -150,14 +149,14 @@ double cpu_seconds() {
 }
 
 void ray_replay(benchmark::State& state) {
-  formats::SceneDesc scene = default_scene();
+  spec::SceneDesc scene = default_scene();
   scene.render.width = 160;
   scene.render.height = 120;
   scene.render.spp = 16;
   const tracer::EmbreeDevice device("threads=1");
   BuiltWorld built(scene, device);
   tracer::World& world = built.world;
-  const tracer::Sky sky(scene::sky_spec(scene.sky), scene::sun_spec(scene.sun),
+  const tracer::Sky sky(scene.sky, scene.sun,
                         imaging::ColorPipeline(kOcioConfig).xyz_to_scene_linear());
   // The render is deterministic: the logged render traced the rays the timed one did, so both
   // timings are over the same `rays`.
@@ -202,7 +201,7 @@ void ray_replay(benchmark::State& state) {
 }
 
 void world_build(benchmark::State& state) {
-  const formats::SceneDesc scene = default_scene();
+  const spec::SceneDesc scene = default_scene();
   const tracer::EmbreeDevice device("threads=1");
   for (auto _ : state) {
     const BuiltWorld built(scene, device);
@@ -211,8 +210,8 @@ void world_build(benchmark::State& state) {
 }
 
 void forest_1000(benchmark::State& state) {
-  formats::SceneDesc scene;
-  formats::ForestDesc f;
+  spec::SceneDesc scene;
+  spec::ForestDesc f;
   f.species = std::string(ARBOR_SOURCE_DIR) + "/species/black_tupelo.toml";
   f.count = 1000;
   f.variants = 8;

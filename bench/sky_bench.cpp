@@ -31,7 +31,7 @@
 #include <tbb/task_arena.h>
 
 #include "common/math.h"
-#include "formats/scene_desc.h"
+#include "spec/scene_desc.h"
 #include "tracer/lights/aerial.h"
 #include "tracer/lights/sky_model.h"
 #include "tracer/lights/nishita.h"
@@ -94,7 +94,7 @@ void accuracy(benchmark::State& state) {
 void shape(benchmark::State& state) {
   Atmosphere a{1.0, atmosphere::dust_for_turbidity(3.0), 1.0, 0.0};
   a.multiple_scattering = state.range(0) != 0;
-  a.ground_albedo = a.multiple_scattering ? formats::mean_albedo({}) : 0.0;
+  a.ground_albedo = a.multiple_scattering ? spec::mean_albedo({}) : 0.0;
   const double elevation = static_cast<double>(state.range(1));
   for (auto _ : state) {
     const NishitaSky m(a, direction(elevation, 0.0), 1.0);
@@ -135,12 +135,12 @@ void aerial(benchmark::State& state) {
 
 void map(benchmark::State& state) {
   setenv("ARBOR_CACHE_DIR", "off", 1);
-  scene::SkySpec sky;
-  sky.model = state.range(0) ? formats::SkyModel::Atmosphere : formats::SkyModel::Nishita;
+  spec::SkyDesc sky;
+  sky.model = state.range(0) ? spec::SkyModel::Atmosphere : spec::SkyModel::Nishita;
   sky.dust_density = 3.0;
   sky.turbidity = 3.0;
-  sky.ground_albedo = formats::mean_albedo({});
-  const scene::SunSpec sun{true, 40.0, 0.0, 3.0, 0.53};
+  sky.ground_albedo = spec::mean_albedo({});
+  const spec::SunDesc sun{true, 40.0, 0.0, 3.0, 0.53};
   const imaging::ColorTransform identity = [](float*) {};
   tbb::task_arena one(1);
   for (auto _ : state) {

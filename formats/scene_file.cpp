@@ -9,7 +9,7 @@
 #include <toml++/toml.h>
 
 #include "common/input_file.h"
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 #include "formats/scene_keys.h"
 #include "formats/scene_meadow.h"
 
@@ -18,13 +18,14 @@ namespace arbor::formats {
 namespace {
 
 // The sky's keys by the model in use, and the atmosphere's rules across them.
-void read_sky(const KeyValue& v, SkyDesc& s) {
+void read_sky(const KeyValue& v, spec::SkyDesc& s) {
   const toml::table& t = v.table();
   if (const toml::node* model = t.get("model"))
-    s.model = static_cast<SkyModel>(v.reader.choice_index(*model, "sky.model", kSkyModelNames));
+    s.model = static_cast<spec::SkyModel>(
+        v.reader.choice_index(*model, "sky.model", spec::kSkyModelNames));
   const ModelInUse model{"sky.model", name_of(s.model)};
   read_keys(v.reader, t, "sky", "[sky]", sky_keys(), s, &model);
-  if (s.model == SkyModel::Atmosphere) {
+  if (s.model == spec::SkyModel::Atmosphere) {
     const toml::node* first = nullptr;  // the aerosols, given by one key (in the table's order)
     for (const char* key : {"dust_density", "turbidity", "visibility"}) {
       const toml::node* n = t.get(key);
@@ -34,29 +35,29 @@ void read_sky(const KeyValue& v, SkyDesc& s) {
                       "sky.dust_density");
       if (n) first = n;
     }
-    if (s.turbidity_given && s.turbidity < kClearestLinkeTurbidity) {
+    if (s.turbidity_given && s.turbidity < spec::kClearestLinkeTurbidity) {
       v.reader.fail(*t.get("turbidity"),
                     "sky.turbidity (Linke's) must be at least 2.21, the turbidity of "
                     "air without aerosols and 1.5 cm of water vapour");
     }
   }
-  if (s.model == SkyModel::Envmap && s.path.empty())
+  if (s.model == spec::SkyModel::Envmap && s.path.empty())
     throw InputError(v.where(), "sky.model = \"envmap\" needs sky.path (an image OIIO reads)");
 }
 
-void read_terrain(const KeyValue& v, TerrainDesc& t) {
+void read_terrain(const KeyValue& v, spec::TerrainDesc& t) {
   const toml::table& table = v.table();
   t.enabled = true;
   t.where = v.reader.at(table.source());
   if (const toml::node* kind = table.get("kind"))
-    t.kind =
-        static_cast<TerrainKind>(v.reader.choice_index(*kind, "terrain.kind", kTerrainKindNames));
-  const ModelInUse model{"terrain.kind", kTerrainKindNames[static_cast<int>(t.kind)]};
+    t.kind = static_cast<spec::TerrainKind>(
+        v.reader.choice_index(*kind, "terrain.kind", spec::kTerrainKindNames));
+  const ModelInUse model{"terrain.kind", spec::kTerrainKindNames[static_cast<int>(t.kind)]};
   read_keys(v.reader, table, "terrain", "[terrain]", terrain_keys(), t, &model);
-  if (t.kind == TerrainKind::Image && t.path.empty())
+  if (t.kind == spec::TerrainKind::Image && t.path.empty())
     throw InputError(t.where,
                      "terrain.kind = \"image\" needs terrain.path (a 16-bit PNG or an EXR)");
-  if (t.kind != TerrainKind::Image && t.size / t.resolution > 32766) {
+  if (t.kind != spec::TerrainKind::Image && t.size / t.resolution > 32766) {
     v.reader.fail(table.get("resolution") ? *table.get("resolution") : v.node,
                   "terrain.size / terrain.resolution must be at most 32766 samples across (" +
                       short_number(std::ceil(t.size / t.resolution)) + " asked)");
@@ -64,12 +65,12 @@ void read_terrain(const KeyValue& v, TerrainDesc& t) {
 }
 
 // Aerial perspective is the air of the nishita or atmosphere sky, seen by the path integrator.
-void check_aerial(const TomlReader& r, const toml::node& n, const SceneDesc& s) {
-  if (s.sky.model != SkyModel::Nishita && s.sky.model != SkyModel::Atmosphere)
+void check_aerial(const TomlReader& r, const toml::node& n, const spec::SceneDesc& s) {
+  if (s.sky.model != spec::SkyModel::Nishita && s.sky.model != spec::SkyModel::Atmosphere)
     r.fail(n,
            "render.aerial_perspective needs sky.model = \"atmosphere\" or \"nishita\" (the "
            "air it models)");
-  if (s.render.integrator != Integrator::Path)
+  if (s.render.integrator != spec::Integrator::Path)
     r.fail(n, "render.aerial_perspective needs render.integrator = \"path\"");
 }
 
@@ -80,7 +81,7 @@ void read_table(const KeyValue& v, const std::vector<Key<D>>& keys, D& d) {
 }
 
 // [rocks]: its keys, and a size band that is not empty.
-void read_rocks(const KeyValue& v, SceneDesc& s) {
+void read_rocks(const KeyValue& v, spec::SceneDesc& s) {
   s.rocks.enabled = true;
   s.rocks.where = v.reader.at(v.table().source());
   read_table(v, rocks_keys(), s.rocks);
@@ -110,8 +111,8 @@ void read_array(const KeyValue& v, const std::vector<Key<D>>& keys, std::vector<
 
 }  // namespace
 
-const std::vector<Key<SceneDesc>>& scene_keys() {
-  using S = SceneDesc;
+const std::vector<Key<spec::SceneDesc>>& scene_keys() {
+  using S = spec::SceneDesc;
   using keys::custom;
   static const std::vector<Key<S>> table = {
       custom<S>("render", KeyKind::Table, "the image and how it is sampled",
@@ -134,14 +135,14 @@ const std::vector<Key<SceneDesc>>& scene_keys() {
                 }),
       custom<S>("tree", KeyKind::Table, "[[tree]]: one tree, as many as wanted",
                 [](const KeyValue& v, S& s) {
-                  read_array(v, tree_keys(), s.trees, [](const TreeDesc& d) {
+                  read_array(v, tree_keys(), s.trees, [](const spec::TreeDesc& d) {
                     if (d.species.empty())
                       throw InputError(d.where, "[[tree]] needs a species (a species file)");
                   });
                 }),
       custom<S>("forest", KeyKind::Table, "[[forest]]: trees of a species scattered over an area",
                 [](const KeyValue& v, S& s) {
-                  read_array(v, forest_keys(), s.forests, [](const ForestDesc& d) {
+                  read_array(v, forest_keys(), s.forests, [](const spec::ForestDesc& d) {
                     if (d.species.empty())
                       throw InputError(d.where, "[[forest]] needs a species (a species file)");
                     if (d.variants > d.count)
@@ -162,7 +163,7 @@ const std::vector<Key<SceneDesc>>& scene_keys() {
                 "boulders and stones on rock faces and scree (docs/landscape.md)", read_rocks),
       custom<S>("mesh", KeyKind::Table, "[[mesh]]: a Wavefront OBJ placed in the scene",
                 [](const KeyValue& v, S& s) {
-                  read_array(v, mesh_keys(), s.meshes, [](const MeshDesc& d) {
+                  read_array(v, mesh_keys(), s.meshes, [](const spec::MeshDesc& d) {
                     if (d.path.empty())
                       throw InputError(d.where, "[[mesh]] needs a path (an OBJ file)");
                   });
@@ -186,10 +187,10 @@ const std::vector<Key<SceneDesc>>& scene_keys() {
   return table;
 }
 
-SceneDesc parse_scene(const std::string& text, const std::string& path) {
+spec::SceneDesc parse_scene(const std::string& text, const std::string& path) {
   const SceneKeyReader reader(path);
   const toml::table root = reader.parse(text);
-  SceneDesc s;
+  spec::SceneDesc s;
   s.path = path;
   const SourceLocation file{path, 0, 0};
   s.camera.look_at_where = s.camera.up_where = file;
@@ -237,11 +238,11 @@ SceneDesc parse_scene(const std::string& text, const std::string& path) {
   return s;
 }
 
-SceneDesc load_scene(const std::string& path) {
-  SceneDesc scene = parse_scene(read_text_input(path, "scene", kMaxTomlBytes), path);
+spec::SceneDesc load_scene(const std::string& path) {
+  spec::SceneDesc scene = parse_scene(read_text_input(path, "scene", kMaxTomlBytes), path);
   // Each input is checked where the scene names it, before anything is read or grown.
   const std::vector<std::string> used = scene_inputs(scene);
-  for (const FileRef& f : scene.files) {
+  for (const spec::FileRef& f : scene.files) {
     if (std::find(used.begin(), used.end(), f.path) == used.end()) continue;
     const std::string problem = input_file_problem(f.path);
     if (!problem.empty()) throw InputError(f.where, f.key + " " + f.path + " " + problem);

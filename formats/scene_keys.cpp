@@ -41,7 +41,7 @@ std::string exact_number(double v) {
   const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf, v);
   return std::string(buf, r.ptr);
 }
-std::string exact_triple(const Vec3d& v) {
+std::string exact_triple(const spec::Vec3d& v) {
   return "[" + exact_number(v[0]) + ", " + exact_number(v[1]) + ", " + exact_number(v[2]) + "]";
 }
 
@@ -56,8 +56,8 @@ constexpr Range kUnit{0, 1, ""};
 
 }  // namespace
 
-const std::vector<Key<RenderSettings>>& render_keys() {
-  using R = RenderSettings;
+const std::vector<Key<spec::RenderSettings>>& render_keys() {
+  using R = spec::RenderSettings;
   static const std::vector<Key<R>> table = {
       value("width", &R::width, kPixels, "the image's width"),
       value("height", &R::height, kPixels, "the image's height"),
@@ -69,9 +69,9 @@ const std::vector<Key<RenderSettings>>& render_keys() {
           "integrator", KeyKind::Choice,
           "\"path\": exact light transport; \"treemaker\": TREE-MAKER's approximate "
           "shading (1990)",
-          [](const KeyValue& v, R& r) { r.integrator = static_cast<Integrator>(v.choice()); },
+          [](const KeyValue& v, R& r) { r.integrator = static_cast<spec::Integrator>(v.choice()); },
           [](const R& r) { return std::string(name_of(r.integrator)); })
-          .of(choices_of(kIntegratorNames))
+          .of(choices_of(spec::kIntegratorNames))
           .shows("\"path\""),
       flag("regularize", &R::regularize,
            "roughen glossy coats after a diffuse bounce (pbrt-v4's rule; biased, off for "
@@ -99,8 +99,8 @@ const std::vector<Key<RenderSettings>>& render_keys() {
   return table;
 }
 
-const std::vector<Key<CameraDesc>>& camera_keys() {
-  using C = CameraDesc;
+const std::vector<Key<spec::CameraDesc>>& camera_keys() {
+  using C = spec::CameraDesc;
   static const std::vector<Key<C>> table = {
       value("position", &C::position, kWorld, "the eye (z up)"),
       custom<C>("look_at", KeyKind::Triple, "the point the camera looks at",
@@ -154,8 +154,8 @@ const std::vector<Key<CameraDesc>>& camera_keys() {
   return table;
 }
 
-const std::vector<Key<SunDesc>>& sun_keys() {
-  using S = SunDesc;
+const std::vector<Key<spec::SunDesc>>& sun_keys() {
+  using S = spec::SunDesc;
   static const std::vector<Key<S>> table = {
       flag("enabled", &S::enabled, "whether the sun shines (the sky still has its light)"),
       value("elevation", &S::elevation, Range{-90, 90, "degrees"}, "above the horizon"),
@@ -167,12 +167,12 @@ const std::vector<Key<SunDesc>>& sun_keys() {
   return table;
 }
 
-const std::vector<Key<SkyDesc>>& sky_keys() {
-  using S = SkyDesc;
+const std::vector<Key<spec::SkyDesc>>& sky_keys() {
+  using S = spec::SkyDesc;
   static const std::vector<Key<S>> table = {
       custom<S>("model", KeyKind::Choice, "the sky's model (docs/rendering.md, \"Lights\")",
-                [](const KeyValue& v, S& s) { s.model = static_cast<SkyModel>(v.choice()); })
-          .of(choices_of(kSkyModelNames))
+                [](const KeyValue& v, S& s) { s.model = static_cast<spec::SkyModel>(v.choice()); })
+          .of(choices_of(spec::kSkyModelNames))
           .shows("\"preetham\""),
       custom<S>("turbidity", KeyKind::Number,
                 "Preetham's turbidity; the atmosphere's: Linke's (at least 2.21, air without "
@@ -221,8 +221,8 @@ const std::vector<Key<SkyDesc>>& sky_keys() {
   return table;
 }
 
-const std::vector<Key<GroundDesc>>& ground_keys() {
-  using G = GroundDesc;
+const std::vector<Key<spec::GroundDesc>>& ground_keys() {
+  using G = spec::GroundDesc;
   static const std::vector<Key<G>> table = {
       flag("enabled", &G::enabled, "whether the ground plane (z = 0) is there"),
       value("albedo", &G::albedo, kUnit, "the soil's albedo"),
@@ -248,8 +248,8 @@ void check_extension(const KeyValue& v, const std::string& path, const char* ext
 
 }  // namespace
 
-const std::vector<Key<OutputDesc>>& output_keys() {
-  using O = OutputDesc;
+const std::vector<Key<spec::OutputDesc>>& output_keys() {
+  using O = spec::OutputDesc;
   static const std::vector<Key<O>> table = {
       custom<O>("exr", KeyKind::File,
                 "the OpenEXR written (beauty, AOVs, variance); the command line's -o wins",
@@ -310,8 +310,8 @@ const std::vector<Key<OutputDesc>>& output_keys() {
   return table;
 }
 
-const std::vector<Key<AnimationDesc>>& animation_keys() {
-  using A = AnimationDesc;
+const std::vector<Key<spec::AnimationDesc>>& animation_keys() {
+  using A = spec::AnimationDesc;
   static const std::vector<Key<A>> table = {
       value("frames", &A::frames, Range{1, 1000000, "frames"}, "how many frames (required)")
           .shows("required"),

@@ -20,7 +20,7 @@
 #include <toml++/toml.h>
 
 #include "common/range.h"
-#include "formats/scene_desc.h"
+#include "spec/scene_desc.h"
 #include "formats/toml_reader.h"
 
 namespace arbor::formats {
@@ -32,11 +32,11 @@ class SceneKeyReader : public TomlReader {
   explicit SceneKeyReader(const std::string& path);
 
   std::string file(const toml::node& n, const std::string& name) const;
-  const std::vector<FileRef>& files() const { return files_; }
+  const std::vector<spec::FileRef>& files() const { return files_; }
 
  private:
   std::string folder_;
-  mutable std::vector<FileRef> files_;
+  mutable std::vector<spec::FileRef> files_;
 };
 
 // A choice key's names (a type's name table, e.g. kSkyModelNames).
@@ -68,7 +68,7 @@ struct KeyValue {
     const std::int64_t hi = range.hi >= 0x1p63 ? INT64_MAX : static_cast<std::int64_t>(range.hi);
     return reader.integer(node, name, static_cast<std::int64_t>(range.lo), hi);
   }
-  Vec3d triple() const { return reader.triple(node, name, range); }
+  spec::Vec3d triple() const { return reader.triple(node, name, range); }
   std::array<double, 4> area() const { return reader.area(node, name); }
   bool flag() const { return reader.boolean(node, name); }
   std::string text() const { return reader.text(node, name); }
@@ -80,9 +80,10 @@ struct KeyValue {
 };
 
 template <class D>
-using KeyField = std::variant<std::monostate, bool D::*, int D::*, std::uint64_t D::*, double D::*,
-                              std::optional<double> D::*, Vec3d D::*, std::optional<Vec3d> D::*,
-                              std::array<double, 4> D::*, std::string D::*>;
+using KeyField =
+    std::variant<std::monostate, bool D::*, int D::*, std::uint64_t D::*, double D::*,
+                 std::optional<double> D::*, spec::Vec3d D::*, std::optional<spec::Vec3d> D::*,
+                 std::array<double, 4> D::*, std::string D::*>;
 
 template <class D>
 struct Key {
@@ -123,7 +124,7 @@ constexpr KeyKind kind_of() {
   if constexpr (std::is_same_v<T, int> || std::is_same_v<T, std::uint64_t>) return KeyKind::Whole;
   if constexpr (std::is_same_v<T, double> || std::is_same_v<T, std::optional<double>>)
     return KeyKind::Number;
-  if constexpr (std::is_same_v<T, Vec3d> || std::is_same_v<T, std::optional<Vec3d>>)
+  if constexpr (std::is_same_v<T, spec::Vec3d> || std::is_same_v<T, std::optional<spec::Vec3d>>)
     return KeyKind::Triple;
   if constexpr (std::is_same_v<T, std::array<double, 4>>) return KeyKind::Area;
   return KeyKind::Text;
@@ -233,7 +234,8 @@ void read_keys(const SceneKeyReader& r, const toml::table& t, std::string_view p
             else if constexpr (std::is_same_v<T, double> ||
                                std::is_same_v<T, std::optional<double>>)
               d.*field = v.number();
-            else if constexpr (std::is_same_v<T, Vec3d> || std::is_same_v<T, std::optional<Vec3d>>)
+            else if constexpr (std::is_same_v<T, spec::Vec3d> ||
+                               std::is_same_v<T, std::optional<spec::Vec3d>>)
               d.*field = v.triple();
             else if constexpr (std::is_same_v<T, std::array<double, 4>>)
               d.*field = v.area();
@@ -247,7 +249,7 @@ void read_keys(const SceneKeyReader& r, const toml::table& t, std::string_view p
 
 // A number exactly, as short as it reads back the same ("0.53", "1e-06"): std::to_chars.
 std::string exact_number(double v);
-std::string exact_triple(const Vec3d& v);
+std::string exact_triple(const spec::Vec3d& v);
 
 // A key's value in `d` at full precision, as the fingerprint and the reference show it
 // ("[0.16, 0.14, 0.1]", "true", "none", "unset"): the field's, or its `show`'s.
@@ -270,9 +272,9 @@ std::string value_text(const Key<D>& key, const D& d) {
             return exact_number(v);
           } else if constexpr (std::is_same_v<T, std::optional<double>>) {
             return v ? exact_number(*v) : "unset";
-          } else if constexpr (std::is_same_v<T, Vec3d>) {
+          } else if constexpr (std::is_same_v<T, spec::Vec3d>) {
             return exact_triple(v);
-          } else if constexpr (std::is_same_v<T, std::optional<Vec3d>>) {
+          } else if constexpr (std::is_same_v<T, std::optional<spec::Vec3d>>) {
             return v ? exact_triple(*v) : "unset";
           } else if constexpr (std::is_same_v<T, std::array<double, 4>>) {
             return "[[" + exact_number(v[0]) + ", " + exact_number(v[1]) + "], [" +
@@ -323,25 +325,25 @@ std::vector<KeyDoc> key_docs(const std::vector<Key<D>>& table, const D& defaults
 }
 
 // The tables (scene_keys.cpp, scene_keys_trees.cpp).
-const std::vector<Key<SceneDesc>>& scene_keys();  // the top level: the tables
-const std::vector<Key<RenderSettings>>& render_keys();
-const std::vector<Key<CameraDesc>>& camera_keys();
-const std::vector<Key<SunDesc>>& sun_keys();
-const std::vector<Key<SkyDesc>>& sky_keys();
-const std::vector<Key<GroundDesc>>& ground_keys();
-const std::vector<Key<TerrainDesc>>& terrain_keys();  // scene_keys_land.cpp
-const std::vector<Key<MeadowDesc>>& meadow_keys();
-const std::vector<Key<OutputDesc>>& output_keys();
-const std::vector<Key<AnimationDesc>>& animation_keys();
-const std::vector<Key<TreeDesc>>& tree_keys();
-const std::vector<Key<ForestDesc>>& forest_keys();
-const std::vector<Key<RocksDesc>>& rocks_keys();                     // scene_keys_land.cpp
-const std::vector<Key<CommunityDesc>>& community_keys();             // scene_keys_land.cpp
-const std::vector<Key<CommunitySpecies>>& community_species_keys();  // scene_keys_trees.cpp
-const std::vector<Key<MeshDesc>>& mesh_keys();
-const std::vector<Key<MeshMaterialDesc>>& mesh_material_keys();
-const std::vector<Key<BarkOverride>>& bark_keys();
-const std::vector<Key<LeafOverride>>& leaf_keys();
-const std::vector<Key<TreemakerOverride>>& treemaker_keys();
+const std::vector<Key<spec::SceneDesc>>& scene_keys();  // the top level: the tables
+const std::vector<Key<spec::RenderSettings>>& render_keys();
+const std::vector<Key<spec::CameraDesc>>& camera_keys();
+const std::vector<Key<spec::SunDesc>>& sun_keys();
+const std::vector<Key<spec::SkyDesc>>& sky_keys();
+const std::vector<Key<spec::GroundDesc>>& ground_keys();
+const std::vector<Key<spec::TerrainDesc>>& terrain_keys();  // scene_keys_land.cpp
+const std::vector<Key<spec::MeadowDesc>>& meadow_keys();
+const std::vector<Key<spec::OutputDesc>>& output_keys();
+const std::vector<Key<spec::AnimationDesc>>& animation_keys();
+const std::vector<Key<spec::TreeDesc>>& tree_keys();
+const std::vector<Key<spec::ForestDesc>>& forest_keys();
+const std::vector<Key<spec::RocksDesc>>& rocks_keys();                     // scene_keys_land.cpp
+const std::vector<Key<spec::CommunityDesc>>& community_keys();             // scene_keys_land.cpp
+const std::vector<Key<spec::CommunitySpecies>>& community_species_keys();  // scene_keys_trees.cpp
+const std::vector<Key<spec::MeshDesc>>& mesh_keys();
+const std::vector<Key<spec::MeshMaterialDesc>>& mesh_material_keys();
+const std::vector<Key<spec::BarkOverride>>& bark_keys();
+const std::vector<Key<spec::LeafOverride>>& leaf_keys();
+const std::vector<Key<spec::TreemakerOverride>>& treemaker_keys();
 
 }  // namespace arbor::formats

@@ -11,16 +11,16 @@ namespace {
 constexpr Range kUnitAlbedo{0, 1, ""};
 }  // namespace
 
-const std::vector<Key<TerrainDesc>>& terrain_keys() {
-  using T = TerrainDesc;
+const std::vector<Key<spec::TerrainDesc>>& terrain_keys() {
+  using T = spec::TerrainDesc;
   static const std::vector<Key<T>> table = {
       custom<T>(
           "kind", KeyKind::Choice,
           "\"hills\": fractional Brownian motion; \"mountains\": ridged noise; \"image\": a "
           "digital elevation model",
-          [](const KeyValue& v, T& t) { t.kind = static_cast<TerrainKind>(v.choice()); },
-          [](const T& t) { return std::string(kTerrainKindNames[static_cast<int>(t.kind)]); })
-          .of(choices_of(kTerrainKindNames))
+          [](const KeyValue& v, T& t) { t.kind = static_cast<spec::TerrainKind>(v.choice()); },
+          [](const T& t) { return std::string(spec::kTerrainKindNames[static_cast<int>(t.kind)]); })
+          .of(choices_of(spec::kTerrainKindNames))
           .shows("\"hills\""),
       value("size", &T::size, Range{10, 50000, "metres"},
             "the square's side, centred on the origin")
@@ -60,8 +60,8 @@ const std::vector<Key<TerrainDesc>>& terrain_keys() {
   return table;
 }
 
-const std::vector<Key<CommunityDesc>>& community_keys() {
-  using C = CommunityDesc;
+const std::vector<Key<spec::CommunityDesc>>& community_keys() {
+  using C = spec::CommunityDesc;
   static const std::vector<Key<C>> table = {
       value("area", &C::area, Range{}, "[[x0, y0], [x1, y1]]: the rectangle it grows in"),
       value("years", &C::years, Range{1, 2000, "years"}, "the years simulated"),
@@ -77,7 +77,7 @@ const std::vector<Key<CommunityDesc>>& community_keys() {
             }
             for (const toml::node& e : *a) {
               const toml::table& t = v.reader.table(e, v.name);
-              CommunitySpecies& s = c.species.emplace_back();
+              spec::CommunitySpecies& s = c.species.emplace_back();
               s.where = v.reader.at(t.source());
               read_keys(v.reader, t, v.name, "[[community.species]]", community_species_keys(), s);
               if (s.species.empty())
@@ -97,8 +97,8 @@ const std::vector<Key<CommunityDesc>>& community_keys() {
   return table;
 }
 
-const std::vector<Key<RocksDesc>>& rocks_keys() {
-  using R = RocksDesc;
+const std::vector<Key<spec::RocksDesc>>& rocks_keys() {
+  using R = spec::RocksDesc;
   static const std::vector<Key<R>> table = {
       value("density", &R::density, Range{0, 100, "per m²"},
             "rocks per m² where the ground is all rock; half that on the soil below it (scree), "

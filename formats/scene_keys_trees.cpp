@@ -58,8 +58,8 @@ void add_overrides(std::vector<Key<D>>& table) {
 
 }  // namespace
 
-const std::vector<Key<TreeDesc>>& tree_keys() {
-  using T = TreeDesc;
+const std::vector<Key<spec::TreeDesc>>& tree_keys() {
+  using T = spec::TreeDesc;
   static const std::vector<Key<T>> table = [] {
     std::vector<Key<T>> t = {
         file("species", &T::species,
@@ -76,8 +76,8 @@ const std::vector<Key<TreeDesc>>& tree_keys() {
   return table;
 }
 
-const std::vector<Key<ForestDesc>>& forest_keys() {
-  using F = ForestDesc;
+const std::vector<Key<spec::ForestDesc>>& forest_keys() {
+  using F = spec::ForestDesc;
   static const std::vector<Key<F>> table = [] {
     std::vector<Key<F>> t = {
         file("species", &F::species, "the species file, as [[tree]]'s").shows("required"),
@@ -93,8 +93,8 @@ const std::vector<Key<ForestDesc>>& forest_keys() {
   return table;
 }
 
-const std::vector<Key<CommunitySpecies>>& community_species_keys() {
-  using C = CommunitySpecies;
+const std::vector<Key<spec::CommunitySpecies>>& community_species_keys() {
+  using C = spec::CommunitySpecies;
   static const std::vector<Key<C>> table = [] {
     std::vector<Key<C>> t = {
         file("species", &C::species, "the species file, as [[tree]]'s").shows("required"),
@@ -138,8 +138,8 @@ const std::vector<Key<CommunitySpecies>>& community_species_keys() {
   return table;
 }
 
-const std::vector<Key<BarkOverride>>& bark_keys() {
-  using B = BarkOverride;
+const std::vector<Key<spec::BarkOverride>>& bark_keys() {
+  using B = spec::BarkOverride;
   static const std::vector<Key<B>> table = {
       value("albedo", &B::albedo, look_range::kColour, "the bark's albedo").shows("the species'"),
       file("bump_map", &B::bump_map, "a height image for the relief").shows("none: procedural"),
@@ -154,8 +154,8 @@ const std::vector<Key<BarkOverride>>& bark_keys() {
   return table;
 }
 
-const std::vector<Key<LeafOverride>>& leaf_keys() {
-  using L = LeafOverride;
+const std::vector<Key<spec::LeafOverride>>& leaf_keys() {
+  using L = spec::LeafOverride;
   static const std::vector<Key<L>> table = {
       value("reflectance", &L::reflectance, look_range::kColour, "the upper side's")
           .shows("the species'"),
@@ -188,8 +188,8 @@ const std::vector<Key<LeafOverride>>& leaf_keys() {
   return table;
 }
 
-const std::vector<Key<TreemakerOverride>>& treemaker_keys() {
-  using W = TreemakerOverride;
+const std::vector<Key<spec::TreemakerOverride>>& treemaker_keys() {
+  using W = spec::TreemakerOverride;
   // The template language's own range for these weights (treemaker-format.md).
   constexpr Range kWeight{0, 10, ""};
   static const std::vector<Key<W>> table = {
@@ -202,8 +202,8 @@ const std::vector<Key<TreemakerOverride>>& treemaker_keys() {
   return table;
 }
 
-const std::vector<Key<MeshMaterialDesc>>& mesh_material_keys() {
-  using M = MeshMaterialDesc;
+const std::vector<Key<spec::MeshMaterialDesc>>& mesh_material_keys() {
+  using M = spec::MeshMaterialDesc;
   static const std::vector<Key<M>> table = {
       custom<M>(
           "kind", KeyKind::Choice, "\"bark\" and \"diffuse\" are Lambertian; \"leaf\" two-sided",
@@ -223,8 +223,8 @@ const std::vector<Key<MeshMaterialDesc>>& mesh_material_keys() {
   return table;
 }
 
-const std::vector<Key<MeshDesc>>& mesh_keys() {
-  using M = MeshDesc;
+const std::vector<Key<spec::MeshDesc>>& mesh_keys() {
+  using M = spec::MeshDesc;
   static const std::vector<Key<M>> table = [] {
     std::vector<Key<M>> t = {
         file("path", &M::path, "the Wavefront OBJ").shows("required"),
@@ -240,7 +240,7 @@ const std::vector<Key<MeshDesc>>& mesh_keys() {
                     for (auto&& [key, node] : v.table()) {
                       const std::string name(key.str());
                       const std::string owner = v.name + "." + name;
-                      MeshMaterialDesc& d = m.materials[name];
+                      spec::MeshMaterialDesc& d = m.materials[name];
                       read_keys(v.reader, v.reader.table(node, owner), owner, owner,
                                 mesh_material_keys(), d);
                       if (d.kind == "leaf" &&
@@ -258,8 +258,8 @@ const std::vector<Key<MeshDesc>>& mesh_keys() {
   return table;
 }
 
-const std::vector<Key<MeadowDesc>>& meadow_keys() {
-  using M = MeadowDesc;
+const std::vector<Key<spec::MeadowDesc>>& meadow_keys() {
+  using M = spec::MeadowDesc;
   static const std::vector<Key<M>> table = {
       value("density", &M::density, Range{0, 50000, "blades per square metre"},
             "grass blades; 0: no meadow"),

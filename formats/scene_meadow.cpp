@@ -8,7 +8,7 @@
 
 namespace arbor::formats {
 
-void check_meadow(const MeadowDesc& m) {
+void check_meadow(const spec::MeadowDesc& m) {
   for (int c = 0; c < 3; ++c) {
     const auto i = static_cast<std::size_t>(c);
     if (m.reflectance[i] + m.transmittance[i] > 1.0 ||

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "formats/scene_desc.h"
+#include "spec/scene_desc.h"
 #include "formats/scene_keys.h"
 
 namespace arbor::formats {
@@ -101,6 +101,8 @@ std::string scene_key_reference() {
   return md;
 }
 
-std::string render_settings_text(const RenderSettings& r) { return values_text(render_keys(), r); }
+std::string render_settings_text(const spec::RenderSettings& r) {
+  return values_text(render_keys(), r);
+}
 
 }  // namespace arbor::formats

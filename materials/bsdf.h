@@ -14,7 +14,16 @@ using Rgb = glm::dvec3;
 using Dir = glm::dvec3;
 
 // What a BSDF's lobes do: the integrator asks these, never which material made the BSDF.
-enum LobeFlags : unsigned { kReflection = 1u, kTransmission = 2u, kDiffuse = 4u, kGlossy = 8u };
+// kSpecular (a delta lobe: no pdf, never hit by light sampling) is reserved: no lobe has one yet,
+// and next-event estimation and regularisation assume so; a lobe that sets it must be handled by
+// both (tracer/path.cpp).
+enum LobeFlags : unsigned {
+  kReflection = 1u,
+  kTransmission = 2u,
+  kDiffuse = 4u,
+  kGlossy = 8u,
+  kSpecular = 16u
+};
 
 struct BsdfSample {
   Rgb value{0.0};  // f(wo, wi), no cosine

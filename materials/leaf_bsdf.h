@@ -20,6 +20,7 @@ struct LeafBsdf {
   BsdfSample sample(const Dir& wo, const glm::dvec3& u) const;
   double reflect_probability() const;  // of the diffuse base: reflect rather than transmit
   double coat_probability(const Dir& wo) const;  // 0 without a coat
+  unsigned flags() const { return kReflection | kTransmission | kDiffuse | (coat ? kGlossy : 0u); }
 };
 
 }  // namespace arbor::materials

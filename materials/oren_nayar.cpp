@@ -34,14 +34,14 @@ double OrenNayar::pdf(const Dir& wo, const Dir& wi) const {
   return same_hemisphere(wo, wi) ? std::fabs(wi.z) / kPi : 0.0;
 }
 
-BsdfSample OrenNayar::sample(const Dir& wo, const glm::dvec2& u) const {
+BsdfSample OrenNayar::sample(const Dir& wo, const glm::dvec3& u) const {
   BsdfSample s;
-  Dir wi = sample_cosine_hemisphere(u);
+  Dir wi = sample_cosine_hemisphere(glm::dvec2(u.y, u.z));
   if (wo.z < 0.0) wi.z = -wi.z;
   s.wi = wi;
   s.pdf = pdf(wo, wi);
   s.value = eval(wo, wi);
-  s.flags = kReflection | kDiffuse;
+  s.flags = flags();
   return s;
 }
 

@@ -12,7 +12,9 @@ struct OrenNayar {
 
   Rgb eval(const Dir& wo, const Dir& wi) const;
   double pdf(const Dir& wo, const Dir& wi) const;  // cosine-weighted
-  BsdfSample sample(const Dir& wo, const glm::dvec2& u) const;
+  // u.y and u.z the direction (u.x, a lobe choice, is unused: one lobe).
+  BsdfSample sample(const Dir& wo, const glm::dvec3& u) const;
+  unsigned flags() const { return kReflection | kDiffuse; }
 };
 
 }  // namespace arbor::materials

@@ -51,11 +51,10 @@ struct SurfaceBsdf {
     return b;
   }
 
+  // Every lobe answers flags(), eval(), pdf() and sample() with one signature each; a lobe added to
+  // the variant without them does not compile.
   unsigned flags() const {
-    if (const LeafBsdf* l = std::get_if<LeafBsdf>(&lobes)) {
-      return kReflection | kTransmission | kDiffuse | (l->coat ? kGlossy : 0u);
-    }
-    return kReflection | kDiffuse;
+    return std::visit([](const auto& b) { return b.flags(); }, lobes);
   }
   // Light may arrive and leave through the surface (both sides of a leaf).
   bool transmits() const { return (flags() & kTransmission) != 0; }
@@ -68,10 +67,8 @@ struct SurfaceBsdf {
   }
   // u chooses the direction, u_lobe the leaf's lobe (reflect or transmit).
   BsdfSample sample(const glm::dvec3& wo, glm::vec2 u, float u_lobe) const {
-    if (const LeafBsdf* l = std::get_if<LeafBsdf>(&lobes)) {
-      return l->sample(wo, glm::dvec3(u_lobe, u.x, u.y));
-    }
-    return std::get<OrenNayar>(lobes).sample(wo, glm::dvec2(u.x, u.y));
+    const glm::dvec3 v(u_lobe, u.x, u.y);
+    return std::visit([&](const auto& b) { return b.sample(wo, v); }, lobes);
   }
 };
 

@@ -88,11 +88,11 @@ bool dominates(const Plant& a, const Plant& b) {
 // InputError at a species whose habitat is nowhere in the area: it could never establish. The
 // habitat is looked at on a 257 × 257 grid over the area (on a terrain, finer than its cells
 // where the area is under 257 cells across).
-void check_habitats(const formats::CommunityDesc& d, const Terrain& terrain,
+void check_habitats(const spec::CommunityDesc& d, const Terrain& terrain,
                     const std::vector<float>& moisture) {
   constexpr int kSteps = 256;
   const double w = d.area[2] - d.area[0], h = d.area[3] - d.area[1];
-  for (const formats::CommunitySpecies& s : d.species) {
+  for (const spec::CommunitySpecies& s : d.species) {
     double best = 0.0, lo = 1e300, hi = -1e300, steepest = 0.0;
     for (int j = 0; j <= kSteps && best == 0.0; ++j)
       for (int i = 0; i <= kSteps; ++i) {
@@ -119,7 +119,7 @@ void check_habitats(const formats::CommunityDesc& d, const Terrain& terrain,
 
 }  // namespace
 
-double circle_radius(const formats::CommunitySpecies& s, double growth) {
+double circle_radius(const spec::CommunitySpecies& s, double growth) {
   return s.radius * std::max(0.05, 1.0 - std::exp(-3.0 * growth / s.maturity));
 }
 
@@ -158,7 +158,7 @@ std::vector<float> flow_moisture(const Terrain& terrain) {
   return m;
 }
 
-double habitat(const formats::CommunitySpecies& s, const Terrain& terrain,
+double habitat(const spec::CommunitySpecies& s, const Terrain& terrain,
                const std::vector<float>& moisture, double x, double y) {
   double altitude = 0.0, slope = 0.0, wet = 0.5, facing = 1.0;
   const glm::dvec2 o = terrain.origin(), e = terrain.extent();
@@ -185,14 +185,14 @@ namespace {
 
 // One year's establishment: seedlings anywhere, seeds near their parents; each takes by its
 // habitat. The newly born, their ids not yet given.
-std::vector<Plant> establish(const formats::CommunityDesc& d, const Terrain& terrain,
+std::vector<Plant> establish(const spec::CommunityDesc& d, const Terrain& terrain,
                              const std::vector<float>& moisture, const std::vector<Plant>& plants,
                              int year) {
   const double w = d.area[2] - d.area[0], h = d.area[3] - d.area[1];
   std::vector<Plant> born;
   auto try_at = [&](int species, glm::dvec2 p, Rng& rng) {
     if (p.x < d.area[0] || p.y < d.area[1] || p.x >= d.area[2] || p.y >= d.area[3]) return;
-    const formats::CommunitySpecies& s = d.species[static_cast<std::size_t>(species)];
+    const spec::CommunitySpecies& s = d.species[static_cast<std::size_t>(species)];
     if (rng.uniform() >= habitat(s, terrain, moisture, p.x, p.y)) return;
     Plant plant;
     plant.species = species;
@@ -215,7 +215,7 @@ std::vector<Plant> establish(const formats::CommunityDesc& d, const Terrain& ter
              rng);
   }
   for (const Plant& parent : plants) {
-    const formats::CommunitySpecies& s = d.species[static_cast<std::size_t>(parent.species)];
+    const spec::CommunitySpecies& s = d.species[static_cast<std::size_t>(parent.species)];
     if (parent.age < 0.5 * s.maturity || parent.dominated) continue;
     Rng rng(derive_key(derive_key(d.seed ^ 0x5eed5u, parent.id), static_cast<std::uint64_t>(year)));
     for (std::uint64_t i = draws(s.seeds, rng); i > 0; --i) {
@@ -231,7 +231,7 @@ std::vector<Plant> establish(const formats::CommunityDesc& d, const Terrain& ter
 // A plant dominated by one of a species no taller than its own (its peers: its kind, or the
 // understory under which it is itself understory) has lost its light: true in the result. One
 // dominated only by taller species lives on in the shade if it tolerates it.
-std::vector<char> compete(const formats::CommunityDesc& d, std::vector<Plant>& plants,
+std::vector<char> compete(const spec::CommunityDesc& d, std::vector<Plant>& plants,
                           double largest) {
   std::vector<char> by_peer(plants.size(), 0);
   // Cells of the largest circle's diameter, or larger on a vast area (at most 2²⁴ of them).
@@ -256,13 +256,13 @@ std::vector<char> compete(const formats::CommunityDesc& d, std::vector<Plant>& p
 }
 
 // Death: the dominated by peers, the dominated that do not tolerate the shade, and the old.
-std::vector<Plant> survivors(const formats::CommunityDesc& d, const std::vector<Plant>& plants,
+std::vector<Plant> survivors(const spec::CommunityDesc& d, const std::vector<Plant>& plants,
                              const std::vector<char>& by_peer, int year) {
   std::vector<Plant> kept;
   kept.reserve(plants.size());
   for (std::size_t i = 0; i < plants.size(); ++i) {
     const Plant& p = plants[i];
-    const formats::CommunitySpecies& s = d.species[static_cast<std::size_t>(p.species)];
+    const spec::CommunitySpecies& s = d.species[static_cast<std::size_t>(p.species)];
     Rng rng(derive_key(derive_key(d.seed ^ 0xdea7u, p.id), static_cast<std::uint64_t>(year)));
     const double u = rng.uniform();
     if (by_peer[i] || (p.dominated && u >= s.shade_tolerance)) continue;
@@ -288,13 +288,13 @@ CommunityYear census_of(const std::vector<Plant>& plants) {
 
 }  // namespace
 
-Community simulate_community(const formats::CommunityDesc& d, const Terrain& terrain) {
+Community simulate_community(const spec::CommunityDesc& d, const Terrain& terrain) {
   Community c;
   const std::vector<float> moisture =
       terrain.empty() ? std::vector<float>{} : flow_moisture(terrain);
   check_habitats(d, terrain, moisture);
   double largest = 0.0;
-  for (const formats::CommunitySpecies& s : d.species) largest = std::max(largest, s.radius);
+  for (const spec::CommunitySpecies& s : d.species) largest = std::max(largest, s.radius);
   std::uint64_t next_id = 0;
   std::vector<Plant>& plants = c.plants;
   const auto years = static_cast<int>(std::lround(d.years));
@@ -311,7 +311,7 @@ Community simulate_community(const formats::CommunityDesc& d, const Terrain& ter
                            "); lower its species' seedlings or seeds, or its area");
     }
     for (Plant& p : plants) {
-      const formats::CommunitySpecies& s = d.species[static_cast<std::size_t>(p.species)];
+      const spec::CommunitySpecies& s = d.species[static_cast<std::size_t>(p.species)];
       p.age += 1.0;
       p.growth += p.dominated ? 0.25 : 1.0;
       p.radius = circle_radius(s, p.growth);

@@ -14,7 +14,7 @@
 
 #include <glm/vec2.hpp>
 
-#include "formats/scene_desc.h"
+#include "spec/scene_desc.h"
 #include "scene/terrain.h"
 
 namespace arbor::scene {
@@ -45,7 +45,7 @@ struct Community {
 // and moisture, each 0 outside its band and rising to 1 over its edges inside it (altitude 5 % of
 // the band, slope 5°, moisture 0.05). On no terrain the ground is flat, at altitude 0 and
 // moisture 0.5.
-double habitat(const formats::CommunitySpecies& s, const Terrain& terrain,
+double habitat(const spec::CommunitySpecies& s, const Terrain& terrain,
                const std::vector<float>& moisture, double x, double y);
 
 // The terrain's flow moisture per vertex, in [0, 1]: the log of the area draining through it
@@ -54,10 +54,10 @@ std::vector<float> flow_moisture(const Terrain& terrain);
 
 // A circle of influence's radius after `growth` years: radius (1 − e^(−3 growth / maturity)), at
 // least 5 % of radius (a seedling's).
-double circle_radius(const formats::CommunitySpecies& s, double growth);
+double circle_radius(const spec::CommunitySpecies& s, double growth);
 
 // The community of `d` on `terrain` (empty: the plane). InputError at the table when more than
 // 4·10⁶ plants would be alive at once.
-Community simulate_community(const formats::CommunityDesc& d, const Terrain& terrain);
+Community simulate_community(const spec::CommunityDesc& d, const Terrain& terrain);
 
 }  // namespace arbor::scene

@@ -8,7 +8,7 @@
 
 namespace arbor::scene {
 
-void apply_frame(formats::SceneDesc& scene, std::optional<int> frame) {
+void apply_frame(spec::SceneDesc& scene, std::optional<int> frame) {
   const bool numbered = scene.output.exr.find('#') != std::string::npos ||
                         scene.output.png.find('#') != std::string::npos;
   if (!frame) {
@@ -21,7 +21,7 @@ void apply_frame(formats::SceneDesc& scene, std::optional<int> frame) {
     }
     return;
   }
-  const formats::AnimationDesc& an = scene.animation;
+  const spec::AnimationDesc& an = scene.animation;
   if (an.frames == 0) {
     throw InputError({scene.path, 0, 0},
                      "--frame " + std::to_string(*frame) + ": the scene has no [animation] table");
@@ -34,8 +34,8 @@ void apply_frame(formats::SceneDesc& scene, std::optional<int> frame) {
   scene.clock = *frame / an.fps;
   if (!an.pin_seed)
     scene.render.seed = derive_key(scene.render.seed, static_cast<std::uint64_t>(*frame));
-  scene.output.exr = formats::frame_path(scene.output.exr, *frame);
-  scene.output.png = formats::frame_path(scene.output.png, *frame);
+  scene.output.exr = spec::frame_path(scene.output.exr, *frame);
+  scene.output.png = spec::frame_path(scene.output.png, *frame);
 }
 
 }  // namespace arbor::scene

@@ -6,8 +6,7 @@ namespace {
 glm::vec3 to_vec3(const Rgb& c) { return glm::vec3(c[0], c[1], c[2]); }
 }  // namespace
 
-materials::Material ground_material(const formats::GroundDesc& d,
-                                    const formats::TerrainDesc& terrain) {
+materials::Material ground_material(const spec::GroundDesc& d, const spec::TerrainDesc& terrain) {
   if (d.patch_cover <= 0.0 && d.detail <= 0.0 && d.stones <= 0.0 && d.litter <= 0.0 &&
       !terrain.enabled)
     return materials::DiffuseMaterial{to_vec3(d.albedo)};

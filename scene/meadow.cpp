@@ -67,7 +67,7 @@ void add_blade(GrassTile& tile, glm::vec3 root, double length, double theta, dou
 }
 
 // The placements of a meadow on the plane z = 0: every cell of the tile grid the area touches.
-void place_on_plane(const formats::MeadowDesc& d, Meadow& m) {
+void place_on_plane(const spec::MeadowDesc& d, Meadow& m) {
   const double side = d.tile;
   const auto ix0 = static_cast<std::int64_t>(std::floor(d.area[0] / side));
   const auto iy0 = static_cast<std::int64_t>(std::floor(d.area[1] / side));
@@ -96,7 +96,7 @@ void place_on_plane(const formats::MeadowDesc& d, Meadow& m) {
 
 }  // namespace
 
-GrassTile grow_grass_tile(const formats::MeadowDesc& d, int k, double clock) {
+GrassTile grow_grass_tile(const spec::MeadowDesc& d, int k, double clock) {
   GrassTile tile;
   Rng rng(derive_key(d.seed, static_cast<std::uint64_t>(k)));
   const double side = d.tile, expected = d.density * side * side;
@@ -139,7 +139,7 @@ GrassTile grow_grass_tile(const formats::MeadowDesc& d, int k, double clock) {
   return tile;
 }
 
-Meadow grow_meadow(const formats::MeadowDesc& d, double clock, const Terrain& terrain) {
+Meadow grow_meadow(const spec::MeadowDesc& d, double clock, const Terrain& terrain) {
   Meadow m;
   if (d.density <= 0.0) return m;
   for (int k = 0; k < d.tiles; ++k) m.tiles.push_back(grow_grass_tile(d, k, clock));

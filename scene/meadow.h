@@ -13,7 +13,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "formats/scene_desc.h"
+#include "spec/scene_desc.h"
 #include "materials/material.h"
 #include "scene/terrain.h"
 
@@ -62,7 +62,7 @@ struct Meadow {
 // exactly on the rendered triangle under it: every blade's root is on the surface. A half is
 // kept at one of four densities (all its blades, ½, ¼ or ⅛: a prefix of its random order), chosen
 // at random so that the mean density of a triangle is d.density × triangle_grass_share().
-Meadow grow_meadow(const formats::MeadowDesc& d, double clock, const Terrain& terrain = {});
+Meadow grow_meadow(const spec::MeadowDesc& d, double clock, const Terrain& terrain = {});
 
 // The share of a meadow's density that grows where the terrain's cover is (soil, rock): none on
 // rock, 30 % on bare soil (scene/ground.h paints them), all elsewhere.
@@ -74,6 +74,6 @@ double grass_share(glm::vec2 cover);
 double triangle_grass_share(const Terrain& terrain, int i, int j, int upper);
 
 // The tile's blades alone (for tests): tile k of the meadow.
-GrassTile grow_grass_tile(const formats::MeadowDesc& d, int k, double clock);
+GrassTile grow_grass_tile(const spec::MeadowDesc& d, int k, double clock);
 
 }  // namespace arbor::scene

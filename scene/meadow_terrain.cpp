@@ -67,7 +67,7 @@ double triangle_grass_share(const Terrain& terrain, int i, int j, int upper) {
   return f;
 }
 
-void place_on_terrain(const formats::MeadowDesc& d, const Terrain& terrain, Meadow& m) {
+void place_on_terrain(const spec::MeadowDesc& d, const Terrain& terrain, Meadow& m) {
   const double s = terrain.spacing();
   const glm::dvec2 o = terrain.origin();
   const int i0 = std::max(0, static_cast<int>(std::floor((d.area[0] - o.x) / s)));

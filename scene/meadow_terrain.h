@@ -12,6 +12,6 @@ namespace arbor::scene {
 std::vector<GrassTile> cut_tiles(const std::vector<GrassTile>& whole, double side);
 
 // The placements of the cut tiles in `m` over the cells of `terrain` the area of `d` touches.
-void place_on_terrain(const formats::MeadowDesc& d, const Terrain& terrain, Meadow& m);
+void place_on_terrain(const spec::MeadowDesc& d, const Terrain& terrain, Meadow& m);
 
 }  // namespace arbor::scene

@@ -32,7 +32,7 @@ double gigabytes(std::uint64_t bytes) { return static_cast<double>(bytes) / doub
 
 }  // namespace
 
-MemoryEstimate estimate_render_memory(const formats::SceneDesc& s, const FilmCosts& film,
+MemoryEstimate estimate_render_memory(const spec::SceneDesc& s, const FilmCosts& film,
                                       std::uint64_t record_passes) {
   MemoryEstimate e;
   std::uint64_t channels = 4, extras = 0;
@@ -56,13 +56,13 @@ MemoryEstimate estimate_render_memory(const formats::SceneDesc& s, const FilmCos
       film.state + film.sum * sums + record_passes * film.sum * (sums + film.record_extra);
   e.image_bytes = pixels * (kBytesPerPixel + kept + kBytesPerChannel * channels);
   e.instances = s.trees.size();
-  for (const formats::ForestDesc& f : s.forests) e.instances += static_cast<std::uint64_t>(f.count);
+  for (const spec::ForestDesc& f : s.forests) e.instances += static_cast<std::uint64_t>(f.count);
   e.instance_bytes = e.instances * kBytesPerInstance;
-  const formats::MeadowDesc& m = s.meadow;
+  const spec::MeadowDesc& m = s.meadow;
   if (m.density > 0.0) {
     // On a terrain each cell holds two halves, and each tile is kept at four densities.
     const double halves = s.terrain.enabled ? 2.0 : 1.0, levels = s.terrain.enabled ? 1.875 : 1.0;
-    const double cells = formats::meadow_cells(m) * halves;
+    const double cells = spec::meadow_cells(m) * halves;
     const double blades = m.density * m.tile * m.tile * m.tiles * levels;
     e.meadow_bytes = static_cast<std::uint64_t>(cells) * kBytesPerInstance +
                      static_cast<std::uint64_t>(blades) * kBytesPerBlade;
@@ -85,20 +85,20 @@ std::uint64_t usable_memory_bytes() {
   return usable;
 }
 
-std::uint64_t geometry_budget(const formats::SceneDesc& s, const FilmCosts& film, bool force,
+std::uint64_t geometry_budget(const spec::SceneDesc& s, const FilmCosts& film, bool force,
                               std::uint64_t usable, std::uint64_t record_passes) {
   if (force) return 0;
   const std::uint64_t used = estimate_render_memory(s, film, record_passes).total() + kBaseline;
   return usable > used ? usable - used : 1;
 }
 
-void check_render_memory(const formats::SceneDesc& s, const FilmCosts& film, bool force,
+void check_render_memory(const spec::SceneDesc& s, const FilmCosts& film, bool force,
                          std::uint64_t usable, std::uint64_t record_passes) {
   const MemoryEstimate e = estimate_render_memory(s, film, record_passes);
   if (force || e.total() + kBaseline <= usable) return;
   SourceLocation where{s.path, 0, 0};
   int largest = 0;
-  for (const formats::ForestDesc& f : s.forests) {
+  for (const spec::ForestDesc& f : s.forests) {
     if (f.count > largest && e.instance_bytes > e.image_bytes &&
         e.instance_bytes > e.meadow_bytes) {
       largest = f.count;
@@ -119,6 +119,23 @@ void check_render_memory(const formats::SceneDesc& s, const FilmCosts& film, boo
       static_cast<unsigned long long>(e.instances), gigabytes(e.instance_bytes),
       gigabytes(e.meadow_bytes), gigabytes(e.terrain_bytes), gigabytes(usable));
   throw InputError(where, buf);
+}
+
+void check_forest_budget(const spec::ForestDesc& f, std::size_t before, std::size_t after,
+                         std::uint64_t budget) {
+  if (budget == 0) return;
+  const double each = 2.0 * static_cast<double>(after - before);
+  const double projected = 2.0 * static_cast<double>(before) + each * f.variants;
+  if (projected <= static_cast<double>(budget)) return;
+  char buf[400];
+  std::snprintf(
+      buf, sizeof buf,
+      "the forest's %d variants would need about %.1f GB of geometry (%.0f MB each, with "
+      "Embree's structures), more than the %.1f GB left for trees; lower variants, or use "
+      "--force to render it anyway",
+      f.variants, projected / double(1ull << 30), each / double(1ull << 20),
+      static_cast<double>(budget) / double(1ull << 30));
+  throw InputError(f.where, buf);
 }
 
 }  // namespace arbor::scene

@@ -2,9 +2,10 @@
 // an absurd image size or forest is refused up front instead of exhausting the machine.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
-#include "formats/scene_desc.h"
+#include "spec/scene_desc.h"
 
 namespace arbor::scene {
 
@@ -43,7 +44,7 @@ struct MemoryEstimate {
 // 225 bytes a pixel over the baseline) and 1043 MB with the variance AOV; the estimate (240 and
 // 264) rounds each up. Tree geometry is not included: each tree has
 // its own size limit when it is grown.
-MemoryEstimate estimate_render_memory(const formats::SceneDesc& scene, const FilmCosts& film,
+MemoryEstimate estimate_render_memory(const spec::SceneDesc& scene, const FilmCosts& film,
                                       std::uint64_t record_passes = 0);
 
 // What this process may use: the machine's physical memory, or the address-space or data-size
@@ -52,14 +53,21 @@ std::uint64_t usable_memory_bytes();
 
 // InputError (at the largest forest, or the scene file) when the estimate exceeds `usable`
 // bytes, saying how much each part needs and that --force renders it anyway.
-void check_render_memory(const formats::SceneDesc& scene, const FilmCosts& film, bool force,
+void check_render_memory(const spec::SceneDesc& scene, const FilmCosts& film, bool force,
                          std::uint64_t usable = usable_memory_bytes(),
                          std::uint64_t record_passes = 0);
 
 // The bytes left for tree geometry once the image, the instances and the libraries have theirs
 // (0 with `force`: no limit). build_scene refuses a forest whose variants would not fit.
-std::uint64_t geometry_budget(const formats::SceneDesc& scene, const FilmCosts& film, bool force,
+std::uint64_t geometry_budget(const spec::SceneDesc& scene, const FilmCosts& film, bool force,
                               std::uint64_t usable = usable_memory_bytes(),
                               std::uint64_t record_passes = 0);
+
+// Refuses a forest whose variants would not fit `budget` bytes (0: no budget), from the scene's
+// geometry bytes before and after its first variant. Every variant of a species is about the
+// size of its first (the Weber & Penn size limits allow a 10^4 spread, but variants differ only by
+// their seed); Embree's structures double it.
+void check_forest_budget(const spec::ForestDesc& forest, std::size_t before, std::size_t after,
+                         std::uint64_t budget);
 
 }  // namespace arbor::scene

@@ -155,7 +155,7 @@ double power_law_size(double lo, double hi, double exponent, double u) {
   return std::pow(a + u * (b - a), 1.0 / e);
 }
 
-Rocks place_rocks(const formats::RocksDesc& d, const Terrain& terrain) {
+Rocks place_rocks(const spec::RocksDesc& d, const Terrain& terrain) {
   Rocks rocks;
   materials::GroundMaterial rock;  // all rock: the terrain's lichen-spotted rock
   rock.terrain = true;

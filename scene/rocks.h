@@ -14,7 +14,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-#include "formats/scene_desc.h"
+#include "spec/scene_desc.h"
 #include "materials/material.h"
 #include "scene/terrain.h"
 
@@ -53,7 +53,7 @@ struct Rocks {
 // The rocks of `d` on `terrain` (flat ground when it is empty), with their material; the
 // compositing ids are left for the caller. InputError at the table when they would be more than
 // 10⁷.
-Rocks place_rocks(const formats::RocksDesc& d, const Terrain& terrain);
+Rocks place_rocks(const spec::RocksDesc& d, const Terrain& terrain);
 
 // The share of [rocks] density where the ground's cover is (soil, rock): all on rock, half on the
 // soil below it (scree), a twentieth elsewhere (erratics in the meadow); all on flat ground

@@ -26,6 +26,7 @@
 #include "formats/species_file.h"
 #include "generator/grow.h"
 #include "scene/ground.h"
+#include "scene/render_budget.h"
 #include "scene/tree_parts.h"
 
 namespace arbor::scene {
@@ -160,7 +161,7 @@ class SceneBuilder {
   void set_regularize(bool on) { regularize_ = on; }
   // [render] lod: each instance's level of detail from its range to `camera`.
   // (`camera` placed on the terrain: placed_camera.)
-  void set_lod(const formats::RenderSettings& render, const formats::CameraDesc& camera) {
+  void set_lod(const spec::RenderSettings& render, const spec::CameraDesc& camera) {
     lod_ = render.lod;
     lod_quality_ = render.lod_quality;
     camera_ = {camera.position[0], camera.position[1], camera.position[2]};
@@ -183,8 +184,8 @@ class SceneBuilder {
     return p;
   }
 
-  TreeLook look_for(const generator::Species& sp, const formats::BarkOverride& bark,
-                    const formats::LeafOverride& leaf, const formats::TreemakerOverride& tm,
+  TreeLook look_for(const generator::Species& sp, const spec::BarkOverride& bark,
+                    const spec::LeafOverride& leaf, const spec::TreemakerOverride& tm,
                     const SourceLocation& where) {
     TreeLook look;
     // The species' own weights (a template's light {}), else arbor's defaults
@@ -247,7 +248,7 @@ class SceneBuilder {
     return material_ids_[name] = static_cast<std::uint32_t>(s_.material_names.size());
   }
 
-  void add_instance(int prototype, const formats::Placement& pl, const TreeLook& look,
+  void add_instance(int prototype, const spec::Placement& pl, const TreeLook& look,
                     const std::string& species) {
     TreeInstance inst;
     const std::string name = file_stem(species);
@@ -278,7 +279,7 @@ class SceneBuilder {
     s_.instances.push_back(inst);
   }
 
-  void add_mesh(const formats::MeshDesc& d);
+  void add_mesh(const spec::MeshDesc& d);
 
  private:
   static TreePrototypeData grow_prototype(const generator::Species& sp, const GrowRequest& r) {
@@ -324,7 +325,7 @@ class SceneBuilder {
   std::map<std::string, std::uint32_t> material_ids_;
 };
 
-void SceneBuilder::add_mesh(const formats::MeshDesc& d) {
+void SceneBuilder::add_mesh(const spec::MeshDesc& d) {
   const formats::ObjMesh obj = formats::load_obj(d.path);
   MeshObject mesh;
   mesh.object_id = new_object(file_stem(d.path));
@@ -343,7 +344,7 @@ void SceneBuilder::add_mesh(const formats::MeshDesc& d) {
     materials::Material material;
     const auto it = d.materials.find(name);
     if (it != d.materials.end()) {
-      const formats::MeshMaterialDesc& md = it->second;
+      const spec::MeshMaterialDesc& md = it->second;
       // A mesh's bark is its albedo, unmapped and unbumped; its leaves are untinted.
       if (md.kind == "leaf") {
         materials::LeafMaterial leaf;
@@ -402,32 +403,11 @@ void SceneBuilder::add_mesh(const formats::MeshDesc& d) {
   s_.meshes.push_back(std::move(mesh));
 }
 
-// Refuses a forest whose variants would not fit `budget` bytes (0: no budget), from the scene's
-// geometry bytes before and after its first variant. Every variant of a species is about the
-// size of its first (the Weber & Penn size limits allow a 10^4 spread, but variants differ only by
-// their seed); Embree's structures double it.
-void check_forest_budget(const formats::ForestDesc& f, std::size_t before, std::size_t after,
-                         std::uint64_t budget) {
-  if (budget == 0) return;
-  const double each = 2.0 * static_cast<double>(after - before);
-  const double projected = 2.0 * static_cast<double>(before) + each * f.variants;
-  if (projected <= static_cast<double>(budget)) return;
-  char buf[400];
-  std::snprintf(
-      buf, sizeof buf,
-      "the forest's %d variants would need about %.1f GB of geometry (%.0f MB each, with "
-      "Embree's structures), more than the %.1f GB left for trees; lower variants, or use "
-      "--force to render it anyway",
-      f.variants, projected / double(1ull << 30), each / double(1ull << 20),
-      static_cast<double>(budget) / double(1ull << 30));
-  throw InputError(f.where, buf);
-}
-
 // The community's plants (scene/community.h): `variants` trees of each species grown (in
 // parallel), every plant one of them chosen by its number, turned at random and scaled so that
 // its crown's radius is its circle of influence.
 template <class Animated, class OnGround>
-void add_community(const formats::CommunityDesc& d, Scene& s, SceneBuilder& b, double sink,
+void add_community(const spec::CommunityDesc& d, Scene& s, SceneBuilder& b, double sink,
                    Progress* progress, std::size_t* done, Animated animated, OnGround on_ground) {
   const auto start = std::chrono::steady_clock::now();
   const Community c = simulate_community(d, s.terrain);
@@ -435,7 +415,7 @@ void add_community(const formats::CommunityDesc& d, Scene& s, SceneBuilder& b, d
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::vector<SceneBuilder::GrowRequest> requests;
   for (std::size_t k = 0; k < d.species.size(); ++k) {
-    const formats::CommunitySpecies& sp = d.species[k];
+    const spec::CommunitySpecies& sp = d.species[k];
     for (int v = 0; v < sp.variants; ++v) {
       requests.push_back({sp.species,
                           derive_key(derive_key(d.seed, k), static_cast<std::uint64_t>(v)),
@@ -446,18 +426,18 @@ void add_community(const formats::CommunityDesc& d, Scene& s, SceneBuilder& b, d
   std::vector<std::size_t> first(d.species.size(), 0);
   std::vector<TreeLook> looks;
   for (std::size_t k = 0; k < d.species.size(); ++k) {
-    const formats::CommunitySpecies& sp = d.species[k];
+    const spec::CommunitySpecies& sp = d.species[k];
     if (k > 0) first[k] = first[k - 1] + static_cast<std::size_t>(d.species[k - 1].variants);
     looks.push_back(b.look_for(b.species(sp.species), sp.bark, sp.leaf, sp.treemaker, sp.where));
   }
   for (const Plant& p : c.plants) {
-    const formats::CommunitySpecies& sp = d.species[static_cast<std::size_t>(p.species)];
+    const spec::CommunitySpecies& sp = d.species[static_cast<std::size_t>(p.species)];
     Rng rng(derive_key(d.seed ^ 0x91a47u, p.id));
     const auto variant = static_cast<int>(rng.uniform() * sp.variants);
     const int prototype =
         prototypes[first[static_cast<std::size_t>(p.species)] + static_cast<std::size_t>(variant)];
     const float crown = s.prototypes[static_cast<std::size_t>(prototype)].extent.radius;
-    formats::Placement pl;
+    spec::Placement pl;
     pl.position = {p.position.x, p.position.y, 0.0};
     pl.rotation = 360.0 * rng.uniform();
     pl.scale = p.radius / std::max(0.1, static_cast<double>(crown));
@@ -468,7 +448,7 @@ void add_community(const formats::CommunityDesc& d, Scene& s, SceneBuilder& b, d
 }
 
 // The ground plane, the terrain's object and the material they share, the meadow and the rocks.
-void add_ground_and_meadow(const formats::SceneDesc& desc, Scene& s, SceneBuilder& b) {
+void add_ground_and_meadow(const spec::SceneDesc& desc, Scene& s, SceneBuilder& b) {
   if (desc.ground.enabled || desc.terrain.enabled) {
     s.has_ground = desc.ground.enabled;
     if (desc.ground.enabled) {
@@ -502,7 +482,7 @@ void add_ground_and_meadow(const formats::SceneDesc& desc, Scene& s, SceneBuilde
 
 }  // namespace
 
-glm::mat4 placement_matrix(const formats::Placement& pl) {
+glm::mat4 placement_matrix(const spec::Placement& pl) {
   glm::mat4 m(1.0f);
   m = glm::translate(m, glm::vec3(pl.position[0], pl.position[1], pl.position[2]));
   m = glm::rotate(m, static_cast<float>(pl.rotation * kPi / 180.0), glm::vec3(0, 0, 1));
@@ -510,7 +490,46 @@ glm::mat4 placement_matrix(const formats::Placement& pl) {
   return m;
 }
 
-std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
+// How a forest's trees are grown: the wind's time, the trunks' sink below their base, the budget
+// of geometry its first variant is checked against.
+struct ForestGrowth {
+  double time = 0.0, sink = 0.0;
+  std::uint64_t budget = 0;
+};
+
+// A forest: its variants grown (the first alone, so its size checks the budget), then its trees
+// scattered over its area.
+template <class OnGround>
+void add_forest(const spec::ForestDesc& f, Scene& s, SceneBuilder& b, const ForestGrowth& grow,
+                Progress* progress, std::size_t* done, OnGround on_ground) {
+  const TreeLook look = b.look_for(b.species(f.species), f.bark, f.leaf, f.treemaker, f.where);
+  // The first variant alone (its size checks the budget), then the others in parallel.
+  std::vector<SceneBuilder::GrowRequest> requests;
+  for (int v = 0; v < f.variants; ++v) {
+    requests.push_back({f.species, derive_key(f.seed, static_cast<std::uint64_t>(v)), grow.time,
+                        f.where, grow.sink});
+  }
+  std::vector<int> variants;
+  {
+    const std::size_t before = s.stats.geometry_bytes;
+    variants.push_back(b.prototypes_for({requests.front()}, progress, done).front());
+    check_forest_budget(f, before, s.stats.geometry_bytes, grow.budget);
+  }
+  requests.erase(requests.begin());
+  const std::vector<int> rest = b.prototypes_for(requests, progress, done);
+  variants.insert(variants.end(), rest.begin(), rest.end());
+  for (int i = 0; i < f.count; ++i) {
+    Rng rng(derive_key(f.seed ^ 0xf0e57u, static_cast<std::uint64_t>(i)));
+    spec::Placement pl;
+    pl.position = {f.area[0] + (f.area[2] - f.area[0]) * rng.uniform(),
+                   f.area[1] + (f.area[3] - f.area[1]) * rng.uniform(), 0.0};
+    pl.rotation = 360.0 * rng.uniform();
+    pl.scale = rng.vary(1.0, 0.1);
+    b.add_instance(variants[static_cast<size_t>(i % f.variants)], on_ground(pl), look, f.species);
+  }
+}
+
+std::unique_ptr<const Scene> build_scene(const spec::SceneDesc& desc,
                                          const std::string& ocio_config, Progress* progress,
                                          std::uint64_t geometry_budget, unsigned threads) {
   const auto start = std::chrono::steady_clock::now();
@@ -522,19 +541,19 @@ std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
   if (desc.terrain.enabled) scene->terrain = Terrain(desc.terrain);
   b.set_lod(desc.render, placed_camera(desc.camera, scene->terrain));
   std::size_t total = desc.trees.size(), done = 0;
-  for (const formats::ForestDesc& f : desc.forests) total += static_cast<std::size_t>(f.variants);
-  for (const formats::CommunitySpecies& c : desc.community.species)
+  for (const spec::ForestDesc& f : desc.forests) total += static_cast<std::size_t>(f.variants);
+  for (const spec::CommunitySpecies& c : desc.community.species)
     total += static_cast<std::size_t>(c.variants);
   if (progress) progress->set_total(total);
   // The animation's clock: seconds of wind for models that sway, years of growth for the fractal
-  // model (formats/scene_desc.h, AnimationDesc).
+  // model (spec/scene_desc.h, AnimationDesc).
   const auto animated = [&](const std::string& species, double time) {
     if (desc.clock == 0.0) return time;
     return b.species(species).model() == generator::Model::Fractal
                ? time + desc.clock * desc.animation.years_per_second
                : time + desc.clock;
   };
-  const auto on_ground = [&](formats::Placement pl) {
+  const auto on_ground = [&](spec::Placement pl) {
     pl.position[2] += scene->terrain.height(pl.position[0], pl.position[1]);
     return pl;
   };
@@ -543,47 +562,24 @@ std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
   const double sink = desc.terrain.enabled ? 60.0 : 0.0;
   // The trees' prototypes first, grown in parallel; then their instances in scene order.
   std::vector<SceneBuilder::GrowRequest> trees;
-  for (const formats::TreeDesc& t : desc.trees)
+  for (const spec::TreeDesc& t : desc.trees)
     trees.push_back({t.species, t.seed, animated(t.species, t.time), t.where, sink});
   const std::vector<int> tree_prototypes = b.prototypes_for(trees, progress, &done);
   for (std::size_t i = 0; i < desc.trees.size(); ++i) {
-    const formats::TreeDesc& t = desc.trees[i];
+    const spec::TreeDesc& t = desc.trees[i];
     b.add_instance(tree_prototypes[i], on_ground(t.placement),
                    b.look_for(b.species(t.species), t.bark, t.leaf, t.treemaker, t.where),
                    t.species);
   }
   done = desc.trees.size();
-  for (const formats::ForestDesc& f : desc.forests) {
-    const TreeLook look = b.look_for(b.species(f.species), f.bark, f.leaf, f.treemaker, f.where);
-    // The first variant alone (its size checks the budget), then the others in parallel.
-    std::vector<SceneBuilder::GrowRequest> requests;
-    for (int v = 0; v < f.variants; ++v) {
-      requests.push_back({f.species, derive_key(f.seed, static_cast<std::uint64_t>(v)),
-                          animated(f.species, 0.0), f.where, sink});
-    }
-    std::vector<int> variants;
-    {
-      const std::size_t before = scene->stats.geometry_bytes;
-      variants.push_back(b.prototypes_for({requests.front()}, progress, &done).front());
-      check_forest_budget(f, before, scene->stats.geometry_bytes, geometry_budget);
-    }
-    requests.erase(requests.begin());
-    const std::vector<int> rest = b.prototypes_for(requests, progress, &done);
-    variants.insert(variants.end(), rest.begin(), rest.end());
-    for (int i = 0; i < f.count; ++i) {
-      Rng rng(derive_key(f.seed ^ 0xf0e57u, static_cast<std::uint64_t>(i)));
-      formats::Placement pl;
-      pl.position = {f.area[0] + (f.area[2] - f.area[0]) * rng.uniform(),
-                     f.area[1] + (f.area[3] - f.area[1]) * rng.uniform(), 0.0};
-      pl.rotation = 360.0 * rng.uniform();
-      pl.scale = rng.vary(1.0, 0.1);
-      b.add_instance(variants[static_cast<size_t>(i % f.variants)], on_ground(pl), look, f.species);
-    }
+  for (const spec::ForestDesc& f : desc.forests) {
+    add_forest(f, *scene, b, {animated(f.species, 0.0), sink, geometry_budget}, progress, &done,
+               on_ground);
   }
   if (desc.community.enabled)
     add_community(desc.community, *scene, b, sink, progress, &done, animated, on_ground);
-  for (const formats::MeshDesc& m : desc.meshes) {
-    formats::MeshDesc placed = m;
+  for (const spec::MeshDesc& m : desc.meshes) {
+    spec::MeshDesc placed = m;
     placed.placement = on_ground(m.placement);
     b.add_mesh(placed);
   }

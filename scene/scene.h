@@ -13,7 +13,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-#include "formats/scene_desc.h"
+#include "spec/scene_desc.h"
 #include "generator/geometry/tree_geometry.h"
 #include "materials/treemaker_weights.h"
 #include "materials/material.h"
@@ -122,12 +122,12 @@ struct Scene {
 // (InputError at the forest): each variant is taken at the first one's size, twice over for
 // Embree's structures over it. The trees' prototypes and a forest's variants are grown on up to
 // `threads` threads (0: every core); the scene is the same at any thread count.
-std::unique_ptr<const Scene> build_scene(const formats::SceneDesc& desc,
+std::unique_ptr<const Scene> build_scene(const spec::SceneDesc& desc,
                                          const std::string& ocio_config,
                                          Progress* progress = nullptr,
                                          std::uint64_t geometry_budget = 0, unsigned threads = 0);
 
 // The affine map of a placement: translate · rotate about z · uniform scale.
-glm::mat4 placement_matrix(const formats::Placement& placement);
+glm::mat4 placement_matrix(const spec::Placement& placement);
 
 }  // namespace arbor::scene

@@ -89,7 +89,7 @@ SurroundGrid surround_grid(double side, double spacing, double surround) {
   return g;
 }
 
-DecodedImage elevation_header(const formats::TerrainDesc& d, bool pixels) {
+DecodedImage elevation_header(const spec::TerrainDesc& d, bool pixels) {
   try {
     DecodedImage image = read_image_file(d.path, "elevation image", false);
     if (image.width < 2 || image.height < 2 || image.width > kMaxSamples ||
@@ -109,8 +109,8 @@ DecodedImage elevation_header(const formats::TerrainDesc& d, bool pixels) {
 
 }  // namespace
 
-formats::CameraDesc placed_camera(const formats::CameraDesc& camera, const Terrain& terrain) {
-  formats::CameraDesc c = camera;
+spec::CameraDesc placed_camera(const spec::CameraDesc& camera, const Terrain& terrain) {
+  spec::CameraDesc c = camera;
   if (!c.above_ground) return c;
   c.position[2] = terrain.height(c.position[0], c.position[1]) + *c.above_ground;
   if (c.focus_distance == 0.0) {
@@ -121,23 +121,23 @@ formats::CameraDesc placed_camera(const formats::CameraDesc& camera, const Terra
   return c;
 }
 
-std::size_t terrain_vertices(const formats::TerrainDesc& d) {
+std::size_t terrain_vertices(const spec::TerrainDesc& d) {
   if (!d.enabled) return 0;
-  if (d.kind == formats::TerrainKind::Image) {
+  if (d.kind == spec::TerrainKind::Image) {
     const DecodedImage header = elevation_header(d, false);
     return static_cast<std::size_t>(header.width) * static_cast<std::size_t>(header.height);
   }
   const auto n = static_cast<std::size_t>(std::ceil(d.size / d.resolution - 1e-9)) + 1;
   if (d.surround <= 0.0) return n * n;
   const auto around = static_cast<std::size_t>(
-      surround_grid(d.size, formats::terrain_spacing(d), d.surround).samples());
+      surround_grid(d.size, spec::terrain_spacing(d), d.surround).samples());
   return n * n + around * around;
 }
 
-Terrain::Terrain(const formats::TerrainDesc& d) : rock_slope_(d.rock_slope) {
+Terrain::Terrain(const spec::TerrainDesc& d) : rock_slope_(d.rock_slope) {
   // The heights are made in the vertices' z (the one copy Embree renders from), then moved to
   // run from 0 to the relief.
-  const bool image = d.kind == formats::TerrainKind::Image;
+  const bool image = d.kind == spec::TerrainKind::Image;
   std::function<double(double, double)> raw;  // the procedural model, metres from the corner
   if (image) {
     const DecodedImage pixels = elevation_header(d, true);
@@ -159,12 +159,12 @@ Terrain::Terrain(const formats::TerrainDesc& d) : rock_slope_(d.rock_slope) {
       }
     }
   } else {
-    spacing_ = formats::terrain_spacing(d);
+    spacing_ = spec::terrain_spacing(d);
     nx_ = ny_ = static_cast<int>(std::lround(d.size / spacing_)) + 1;
     vertices_.resize(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_) + 2);
     Rng rng(derive_key(d.seed, 0x7e77a1u));
     const glm::dvec3 offset(1000.0 * rng.uniform(), 1000.0 * rng.uniform(), 100.0 * rng.uniform());
-    const bool hills = d.kind == formats::TerrainKind::Hills;
+    const bool hills = d.kind == spec::TerrainKind::Hills;
     const double wavelength = d.size / (hills ? 1.5 : 2.0);
     raw = [hills, wavelength, offset](double x, double y) {
       return hills ? fbm(x / wavelength, y / wavelength, offset)
@@ -207,7 +207,7 @@ Terrain::Terrain(const formats::TerrainDesc& d) : rock_slope_(d.rock_slope) {
   if (!image && d.surround > 0.0) make_surround(d, raw, lo, scale);
 }
 
-void Terrain::make_surround(const formats::TerrainDesc& d,
+void Terrain::make_surround(const spec::TerrainDesc& d,
                             const std::function<double(double, double)>& raw, double lo,
                             double scale) {
   const SurroundGrid g = surround_grid(extent().x, spacing_, d.surround);

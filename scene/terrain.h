@@ -15,7 +15,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "formats/scene_desc.h"
+#include "spec/scene_desc.h"
 
 namespace arbor::scene {
 
@@ -24,7 +24,7 @@ class Terrain {
   Terrain() = default;
   // From a procedural model or an elevation image; InputError at the table for an image that
   // cannot be read or is too large, or heights that are not finite.
-  explicit Terrain(const formats::TerrainDesc& desc);
+  explicit Terrain(const spec::TerrainDesc& desc);
 
   bool empty() const { return nx_ == 0; }
   int columns() const { return nx_; }            // vertices along x
@@ -78,8 +78,8 @@ class Terrain {
   }
   // Makes the surround of this square (its heights already scaled by `scale` after `lo` was
   // taken off), `raw` the procedural model at a point in metres from the square's corner.
-  void make_surround(const formats::TerrainDesc& d,
-                     const std::function<double(double, double)>& raw, double lo, double scale);
+  void make_surround(const spec::TerrainDesc& d, const std::function<double(double, double)>& raw,
+                     double lo, double scale);
   double laplacian(int i, int j) const;  // of the heights, 1/m
 
   int nx_ = 0, ny_ = 0;
@@ -96,10 +96,10 @@ class Terrain {
 // The camera with its eye placed on `terrain` when it asks to stand on it (above_ground: z is the
 // terrain's height under (x, y) plus that), its focus distance then measured to look_at when the
 // scene gave none.
-formats::CameraDesc placed_camera(const formats::CameraDesc& camera, const Terrain& terrain);
+spec::CameraDesc placed_camera(const spec::CameraDesc& camera, const Terrain& terrain);
 
 // The vertices a terrain of `desc` has (for memory estimates before any is built): from its size
 // and resolution, or the image's header (InputError when it cannot be read or is too large).
-std::size_t terrain_vertices(const formats::TerrainDesc& desc);
+std::size_t terrain_vertices(const spec::TerrainDesc& desc);
 
 }  // namespace arbor::scene

@@ -25,6 +25,7 @@ packages=(
   libbenchmark-dev       # Google Benchmark
   fonts-dejavu-core      # the font of the scale bar in compare heatmaps
   clang-format           # the layout check (ctest layout.format, .clang-format)
+  universal-ctags        # the function-length check parses the sources (tools/function-lengths.sh)
 )
 
 if [ "${1:-}" = "--fuzz" ]; then

@@ -10,7 +10,7 @@
 
 namespace arbor::tracer {
 
-Camera::Camera(const scene::CameraSpec& d, int width, int height) : width_(width), height_(height) {
+Camera::Camera(const spec::CameraDesc& d, int width, int height) : width_(width), height_(height) {
   origin_ = glm::vec3(d.position[0], d.position[1], d.position[2]);
   const glm::vec3 target(d.look_at[0], d.look_at[1], d.look_at[2]);
   const glm::vec3 up(d.up[0], d.up[1], d.up[2]);

@@ -11,7 +11,7 @@ namespace arbor::tracer {
 
 class Camera {
  public:
-  Camera(const scene::CameraSpec& spec, int width, int height);
+  Camera(const spec::CameraDesc& camera, int width, int height);
   // A ray through film position (x, y) in pixels (0,0 top-left corner), `lens` in [0,1)².
   Ray generate(glm::vec2 film, glm::vec2 lens) const;
   const glm::vec3& forward() const { return forward_; }

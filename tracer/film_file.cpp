@@ -199,8 +199,7 @@ FilmFile read_film_state(const std::string& path) {
   h.fingerprint = keys["fingerprint"];
   h.settings = keys["settings"];
   h.scene = keys["scene"];
-  const std::optional<formats::Integrator> integrator =
-      formats::integrator_named(keys["integrator"]);
+  const std::optional<spec::Integrator> integrator = spec::integrator_named(keys["integrator"]);
   if (!integrator)
     throw bad("its integrator \"" + keys["integrator"] + "\" is not path or treemaker");
   h.integrator = *integrator;

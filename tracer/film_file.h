@@ -27,7 +27,7 @@ struct FilmHeader {
   double seconds = 0;  // render time spent so far
   std::uint64_t nonfinite = 0, rays = 0;
   // What the outputs are written with (a merge writes them again without the scene).
-  formats::Integrator integrator = formats::Integrator::Path;
+  spec::Integrator integrator = spec::Integrator::Path;
   std::uint64_t seed = 0;
   imaging::OutputSpec output;
   std::string treemaker_weights;

@@ -246,7 +246,7 @@ void write_ground_exr(const materials::GroundMaterial& ground, const Colors& col
 // The opening comment, colour space, camera, film, sampler and integrator, up to WorldBegin.
 std::string camera_text(const scene::RenderInput& input, const PbrtColorSpace& space,
                         bool converted, const std::string& out) {
-  const scene::RenderSpec& r = input.render;
+  const spec::RenderSettings& r = input.render;
   std::string text = "# pbrt-v4 scene written by arbor from " + input.scene + "\n";
   text +=
       "# Units are metres, z is up; colours are in pbrt's \"" + std::string(space.name) +
@@ -261,7 +261,7 @@ std::string camera_text(const scene::RenderInput& input, const PbrtColorSpace& s
       "# sampling (pbrt samples its own way).\n";
   text += "ColorSpace \"" + std::string(space.name) + "\"\n";
   // pbrt's camera space is left-handed: mirroring x keeps arbor's right-handed image unmirrored.
-  const scene::CameraSpec& cam = input.camera;
+  const spec::CameraDesc& cam = input.camera;
   text += "Scale -1 1 1\nLookAt " + number(cam.position[0]) + " " + number(cam.position[1]) + " " +
           number(cam.position[2]) + "  " + number(cam.look_at[0]) + " " + number(cam.look_at[1]) +
           " " + number(cam.look_at[2]) + "  " + number(cam.up[0]) + " " + number(cam.up[1]) + " " +
@@ -511,7 +511,8 @@ PbrtExport write_pbrt_scene(const scene::Scene& scene, const scene::RenderInput&
   if (space.chromaticities != linear)
     colors.to_pbrt = imaging::rgb_to_rgb(linear, space.chromaticities);
 
-  const Sky sky(input.sky, input.sun, color.xyz_to_scene_linear());
+  const Sky sky(input.sky, input.sun, color.xyz_to_scene_linear(), kSkyMapWidth,
+                input.render.aerial_perspective);
   const std::string sky_path = sky_path_for(out), ground_path = ground_path_for(out);
 
   AtomicFile file(out);

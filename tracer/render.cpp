@@ -37,7 +37,7 @@ template <class Trace>
 RenderOutcome render_passes(const scene::RenderInput& input, const RenderJob& job, Film& film,
                             const Trace& trace, const imaging::ColorTransform& to_output,
                             Progress* progress, imaging::RenderStats& stats) {
-  const scene::RenderSpec& rs = input.render;
+  const spec::RenderSettings& rs = input.render;
   const Window win = film.window();
   const int ww = win.width(), wh = win.height();
   const std::size_t extras = film.extras();
@@ -154,7 +154,7 @@ RenderOutcome render_passes(const scene::RenderInput& input, const RenderJob& jo
 
 std::vector<std::string> integrator_aov_names(const scene::RenderInput& input) {
   // The treemaker AOVs cost 23 values a pixel: kept only when the output asks for them.
-  if (input.render.integrator == formats::Integrator::Treemaker &&
+  if (input.render.integrator == spec::Integrator::Treemaker &&
       input.output.aovs.has(imaging::Aov::Treemaker)) {
     return imaging::treemaker_channel_names();
   }
@@ -195,15 +195,15 @@ const char* name_of(StopReason reason) {
   return "";
 }
 
-PassPlan pass_plan_for(const scene::RenderSpec& r) {
+PassPlan pass_plan_for(const spec::RenderSettings& r) {
   return {r.samples(), r.pass_spp, r.independent_passes};
 }
 
 imaging::Image render_image(const scene::RenderInput& asked, const World& world, const Sky& sky,
                             const imaging::ColorTransform& to_output, imaging::RenderStats& stats) {
   const scene::RenderInput input = with_exposure(asked, world, sky);
-  const scene::RenderSpec& r = input.render;
-  const bool treemaker = r.integrator == formats::Integrator::Treemaker;
+  const spec::RenderSettings& r = input.render;
+  const bool treemaker = r.integrator == spec::Integrator::Treemaker;
   RenderJob job;
   job.plan = pass_plan_for(r);
   job.pass_end = job.plan.passes();

@@ -32,7 +32,7 @@ struct RenderJob {
 };
 
 // The passes of the scene's render: the sample count of its integrator in passes of pass_spp.
-PassPlan pass_plan_for(const scene::RenderSpec& render);
+PassPlan pass_plan_for(const spec::RenderSettings& render);
 
 // Why a render's outputs hold fewer passes than it asked for: it did not stop early, a signal
 // stopped it, its time limit did, or it is a checkpoint of a render still running.

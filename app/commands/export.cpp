@@ -11,7 +11,7 @@
 #include "common/error.h"
 #include "common/progress.h"
 #include "common/strings.h"
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 #include "imaging/color.h"
 #include "scene/frame.h"
 #include "scene/render_input.h"
@@ -53,17 +53,17 @@ int export_command(const ExportRequest& a) {
     throw InputError(
         {}, "--sky-resolution " + std::to_string(a.sky_resolution) + " must be 16 to 8192");
   }
-  formats::SceneDesc scene = formats::load_scene(a.scene);
+  spec::SceneDesc scene = formats::load_scene(a.scene);
   // pbrt renders the exact image: --spp is the path integrator's sample count.
   RenderOverrides overrides = a.overrides;
-  overrides.integrator = name_of(formats::Integrator::Path);
+  overrides.integrator = name_of(spec::Integrator::Path);
   apply_overrides(scene, overrides);
   // A frame of an animation: its clock (the scene's own outputs are not written here).
   scene.output.exr.clear();
   scene.output.png.clear();
   scene::apply_frame(scene, a.frame);
   const std::string sky_path = sky_path_for(a.out), ground_path = ground_path_for(a.out);
-  const std::vector<std::string> inputs = formats::scene_inputs(scene);
+  const std::vector<std::string> inputs = spec::scene_inputs(scene);
   refuse_overwriting("-o", a.out, inputs);
   refuse_overwriting("the sky beside -o", sky_path, inputs, {a.out});
   refuse_overwriting("the ground's image beside -o", ground_path, inputs, {a.out, sky_path});
@@ -79,7 +79,8 @@ int export_command(const ExportRequest& a) {
   if (input.camera.auto_exposure) {
     // pbrt has no meter: the exposure arbor's render meters, written as a fixed scale.
     const EmbreeDevice device("");
-    const Sky sky(input.sky, input.sun, color.xyz_to_scene_linear());
+    const Sky sky(input.sky, input.sun, color.xyz_to_scene_linear(), kSkyMapWidth,
+                  input.render.aerial_perspective);
     const double frame_zero =
         meters_frame_zero(scene, input)
             ? frame_zero_exposure(scene, input, sky, {&device, color.config_path()})

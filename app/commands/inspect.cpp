@@ -15,7 +15,7 @@
 #include "common/math.h"
 #include "common/progress.h"
 #include "common/range.h"
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 #include "scene/render_budget.h"
 #include "scene/scene.h"
 #include "tracer/film.h"
@@ -98,7 +98,7 @@ std::map<std::string, SpeciesCount> counts_of(const std::vector<Placed>& trees) 
   return counts;
 }
 
-std::string terrain_line(const formats::SceneDesc& desc, const scene::Terrain& t) {
+std::string terrain_line(const spec::SceneDesc& desc, const scene::Terrain& t) {
   double lo = 1e300, hi = -1e300;
   for (int j = 0; j < t.rows(); ++j)
     for (int i = 0; i < t.columns(); ++i) {
@@ -106,9 +106,9 @@ std::string terrain_line(const formats::SceneDesc& desc, const scene::Terrain& t
       hi = std::max(hi, static_cast<double>(t.at(i, j)));
     }
   const glm::dvec2 e = t.extent();
-  return std::string(formats::kTerrainKindNames[static_cast<std::size_t>(desc.terrain.kind)]) +
-         ", " + short_number(e.x) + " × " + short_number(e.y) + " m at " +
-         short_number(t.spacing()) + " m (" +
+  return std::string(spec::kTerrainKindNames[static_cast<std::size_t>(desc.terrain.kind)]) + ", " +
+         short_number(e.x) + " × " + short_number(e.y) + " m at " + short_number(t.spacing()) +
+         " m (" +
          grouped(static_cast<std::uint64_t>(t.columns()) * static_cast<std::uint64_t>(t.rows())) +
          " vertices), heights " + short_number(std::round(lo * 10) / 10) + " to " +
          short_number(std::round(hi * 10) / 10) + " m";
@@ -128,7 +128,7 @@ JsonObject instance_json(const Placed& p) {
   return o;
 }
 
-void print_json(const InspectRequest& a, const formats::SceneDesc& desc, const scene::Scene& s,
+void print_json(const InspectRequest& a, const spec::SceneDesc& desc, const scene::Scene& s,
                 const std::vector<Placed>& trees, const scene::MemoryEstimate& memory) {
   JsonObject root;
   root.text("scene", a.scene);
@@ -137,7 +137,7 @@ void print_json(const InspectRequest& a, const formats::SceneDesc& desc, const s
     root.object(
         "terrain",
         JsonObject()
-            .text("kind", formats::kTerrainKindNames[static_cast<std::size_t>(desc.terrain.kind)])
+            .text("kind", spec::kTerrainKindNames[static_cast<std::size_t>(desc.terrain.kind)])
             .numbers("area", {o.x, o.y, o.x + e.x, o.y + e.y})
             .number("spacing", s.terrain.spacing())
             .integer("columns", static_cast<long long>(s.terrain.columns()))
@@ -180,7 +180,7 @@ void print_json(const InspectRequest& a, const formats::SceneDesc& desc, const s
   std::printf("%s\n", root.str().c_str());
 }
 
-void print_text(const InspectRequest& a, const formats::SceneDesc& desc, const scene::Scene& s,
+void print_text(const InspectRequest& a, const spec::SceneDesc& desc, const scene::Scene& s,
                 const std::vector<Placed>& trees, const scene::MemoryEstimate& memory) {
   std::printf("scene     %s\n", a.scene.c_str());
   if (!s.terrain.empty()) std::printf("terrain   %s\n", terrain_line(desc, s.terrain).c_str());
@@ -245,7 +245,7 @@ CLI::App* add_inspect_command(CLI::App& app, InspectRequest& request) {
 }
 
 int inspect_command(const InspectRequest& a) {
-  const formats::SceneDesc desc = formats::load_scene(a.scene);
+  const spec::SceneDesc desc = formats::load_scene(a.scene);
   Progress progress("build", 1);
   const std::unique_ptr<const scene::Scene> built = scene::build_scene(
       desc, a.ocio_config, &progress, 0, static_cast<unsigned>(std::max(0, desc.render.threads)));

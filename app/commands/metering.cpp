@@ -9,13 +9,13 @@
 
 namespace arbor::app {
 
-bool meters_frame_zero(const formats::SceneDesc& scene, const scene::RenderInput& input) {
+bool meters_frame_zero(const spec::SceneDesc& scene, const scene::RenderInput& input) {
   return input.camera.auto_exposure && scene.clock != 0.0;
 }
 
-double frame_zero_exposure(const formats::SceneDesc& scene, const scene::RenderInput& input,
+double frame_zero_exposure(const spec::SceneDesc& scene, const scene::RenderInput& input,
                            const tracer::Sky& sky, const MeterBuild& how) {
-  formats::SceneDesc still = scene;
+  spec::SceneDesc still = scene;
   still.clock = 0.0;
   const std::unique_ptr<const scene::Scene> built =
       scene::build_scene(still, how.ocio_config, nullptr, how.geometry_budget, how.threads);
@@ -23,7 +23,7 @@ double frame_zero_exposure(const formats::SceneDesc& scene, const scene::RenderI
   return tracer::metered_exposure(input, world, sky);
 }
 
-scene::RenderInput with_scene_exposure(const formats::SceneDesc& scene,
+scene::RenderInput with_scene_exposure(const spec::SceneDesc& scene,
                                        const scene::RenderInput& input, const tracer::World& world,
                                        const tracer::Sky& sky, double frame_zero) {
   if (!input.camera.auto_exposure) return input;

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "formats/scene_desc.h"
+#include "spec/scene_desc.h"
 #include "scene/render_input.h"
 #include "tracer/embree/embree_device.h"
 #include "tracer/embree/world.h"
@@ -23,16 +23,16 @@ struct MeterBuild {
 
 // True when `scene` (a frame applied or not) is not its own frame 0: its exposure is metered on
 // frame 0, built for the purpose (frame_zero_exposure), before the render builds its own world.
-bool meters_frame_zero(const formats::SceneDesc& scene, const scene::RenderInput& input);
+bool meters_frame_zero(const spec::SceneDesc& scene, const scene::RenderInput& input);
 
 // The metered exposure (stops) of the scene at clock 0: its trees, meadow and wind as at frame 0,
 // the same camera and light.
-double frame_zero_exposure(const formats::SceneDesc& scene, const scene::RenderInput& input,
+double frame_zero_exposure(const spec::SceneDesc& scene, const scene::RenderInput& input,
                            const tracer::Sky& sky, const MeterBuild& how);
 
 // `input` with its camera's exposure metered (tracer::metered_exposure on `world`, or `frame_zero`
 // when meters_frame_zero), or `input` itself when it gives stops; says on stderr what it metered.
-scene::RenderInput with_scene_exposure(const formats::SceneDesc& scene,
+scene::RenderInput with_scene_exposure(const spec::SceneDesc& scene,
                                        const scene::RenderInput& input, const tracer::World& world,
                                        const tracer::Sky& sky, double frame_zero);
 

@@ -61,8 +61,8 @@ void add_override_options(CLI::App* command, RenderOverrides& o, unsigned which,
     command
         ->add_option("--integrator", o.integrator,
                      "path (exact) or treemaker (TREE-MAKER's approximate shading)")
-        ->check(CLI::IsMember(std::vector<std::string>(formats::kIntegratorNames.begin(),
-                                                       formats::kIntegratorNames.end())));
+        ->check(CLI::IsMember(std::vector<std::string>(spec::kIntegratorNames.begin(),
+                                                       spec::kIntegratorNames.end())));
   }
   command->add_option("--time", o.time, "seconds of wind sway for every [[tree]]")
       ->check(finite_in(-1e6, 1e6));
@@ -83,16 +83,16 @@ void add_override_options(CLI::App* command, RenderOverrides& o, unsigned which,
   }
 }
 
-void apply_overrides(formats::SceneDesc& scene, const RenderOverrides& o) {
-  formats::RenderSettings& r = scene.render;
+void apply_overrides(spec::SceneDesc& scene, const RenderOverrides& o) {
+  spec::RenderSettings& r = scene.render;
   if (!o.integrator.empty())
-    r.integrator = formats::integrator_named(o.integrator).value();  // CLI11 checked the name
-  if (o.spp > 0) (r.integrator == formats::Integrator::Treemaker ? r.treemaker_spp : r.spp) = o.spp;
+    r.integrator = spec::integrator_named(o.integrator).value();  // CLI11 checked the name
+  if (o.spp > 0) (r.integrator == spec::Integrator::Treemaker ? r.treemaker_spp : r.spp) = o.spp;
   if (o.width > 0) r.width = o.width;
   if (o.height > 0) r.height = o.height;
   if (o.seed) r.seed = *o.seed;
   if (o.time) {
-    for (formats::TreeDesc& t : scene.trees) t.time = *o.time;
+    for (spec::TreeDesc& t : scene.trees) t.time = *o.time;
   }
   if (o.transparent) scene.output.transparent_sky = true;
   if (o.regularize) r.regularize = true;

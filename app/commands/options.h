@@ -9,7 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "formats/scene_desc.h"
+#include "spec/scene_desc.h"
 
 namespace arbor::app {
 
@@ -49,7 +49,7 @@ void add_override_options(CLI::App* command, RenderOverrides& o, unsigned which,
 
 // Applies the overrides to a loaded scene. --spp sets the sample count of the integrator in use
 // (the scene keeps one for each).
-void apply_overrides(formats::SceneDesc& scene, const RenderOverrides& o);
+void apply_overrides(spec::SceneDesc& scene, const RenderOverrides& o);
 
 // The overrides as `arbor render` options, to hand on to a work unit.
 std::vector<std::string> override_arguments(const RenderOverrides& o);

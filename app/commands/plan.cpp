@@ -11,7 +11,7 @@
 #include "common/json.h"
 #include "common/parse.h"
 #include "common/strings.h"
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 #include "tracer/film.h"
 #include "tracer/render.h"
 
@@ -37,7 +37,7 @@ std::string json_strings(const std::vector<std::string>& v) {
 
 // The frames of the plan: --frames A:B, checked against the [animation] and the outputs' '#'
 // runs; {-1} for a still.
-std::vector<int> plan_frames(const formats::SceneDesc& scene, const PlanRequest& a) {
+std::vector<int> plan_frames(const spec::SceneDesc& scene, const PlanRequest& a) {
   std::vector<int> frames;
   if (!a.frames.empty()) {
     if (scene.animation.frames == 0)
@@ -128,7 +128,7 @@ namespace {
 
 // InputError unless the image splits into `columns` × `rows` tiles and its passes into
 // --pass-groups runs.
-void check_split(const PlanRequest& a, const formats::RenderSettings& r, const PassPlan& passes,
+void check_split(const PlanRequest& a, const spec::RenderSettings& r, const PassPlan& passes,
                  int columns, int rows) {
   const int width = r.width, height = r.height, spp = passes.spp;
   if (columns < 1 || rows < 1 || columns > width || rows > height) {
@@ -162,9 +162,9 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
   const std::vector<int> grid =
       parse_integers(a.tiles, 'x', 2, "--tiles", "CxR (columns x rows, e.g. 4x2)");
   const int columns = grid[0], rows = grid[1];
-  formats::SceneDesc scene = formats::load_scene(a.scene);
+  spec::SceneDesc scene = formats::load_scene(a.scene);
   apply_overrides(scene, a.overrides);
-  const formats::RenderSettings& r = scene.render;
+  const spec::RenderSettings& r = scene.render;
   const int width = r.width, height = r.height;
   const PassPlan passes = pass_plan_for(scene::render_input(scene).render);
   check_split(a, r, passes, columns, rows);
@@ -181,7 +181,7 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
                 " parts per merge); a plan has at most " + std::to_string(kMaxPlanUnits) +
                 " units and " + std::to_string(kMaxMergeParts) + " parts per merge");
   }
-  const std::vector<std::string> inputs = formats::scene_inputs(scene);
+  const std::vector<std::string> inputs = spec::scene_inputs(scene);
   const std::string arbor = a.arbor.empty() ? executable_path() : a.arbor;
   if (arbor.empty()) throw RuntimeFailure("cannot find the path of this arbor (/proc/self/exe)");
   std::vector<std::string> common = {arbor, "render", absolute(a.scene)};
@@ -189,7 +189,7 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
 
   std::vector<PlanStep> units, merges;
   for (const int frame : frames) {
-    const std::string out = absolute(frame >= 0 ? formats::frame_path(a.exr, frame) : a.exr);
+    const std::string out = absolute(frame >= 0 ? spec::frame_path(a.exr, frame) : a.exr);
     refuse_overwriting("-o", out, inputs);
     const std::string folder = out.substr(0, out.size() - 4) + ".parts/";
     PlanStep merge;
@@ -210,7 +210,7 @@ std::vector<PlanStep> make_plan(const PlanRequest& a) {
     merge.argv = {arbor, "merge", "-o", out};
     if (!a.png.empty()) {
       merge.argv.push_back("--png");
-      merge.argv.push_back(absolute(frame >= 0 ? formats::frame_path(a.png, frame) : a.png));
+      merge.argv.push_back(absolute(frame >= 0 ? spec::frame_path(a.png, frame) : a.png));
     }
     for (const std::string& p : merge.inputs) merge.argv.push_back(p);
     merges.push_back(merge);

@@ -24,7 +24,7 @@
 #include "common/rng.h"
 #include "common/parse.h"
 #include "common/strings.h"
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 #include "imaging/color.h"
 #include "imaging/image_output.h"
 #include "scene/frame.h"
@@ -70,9 +70,9 @@ namespace {
 // the OCIO config.
 // Also sets `settings` to the same, readable: "name value" items joined by "; ", so that a
 // refused resume or merge can say which differ (settings_difference).
-std::string render_fingerprint(const formats::SceneDesc& scene, const RenderRequest& a,
+std::string render_fingerprint(const spec::SceneDesc& scene, const RenderRequest& a,
                                const std::string& ocio, std::string& settings) {
-  const formats::RenderSettings& r = scene.render;
+  const spec::RenderSettings& r = scene.render;
   std::ostringstream s;
   s.precision(17);
   // Every [render] key from its table (threads is the command line's and changes no pixel).
@@ -84,7 +84,7 @@ std::string render_fingerprint(const formats::SceneDesc& scene, const RenderRequ
   else
     s << "none";
   if (a.frame) s << "; frame " << *a.frame << "; clock " << scene.clock;
-  std::vector<std::string> files = formats::scene_inputs(scene);
+  std::vector<std::string> files = spec::scene_inputs(scene);
   files.push_back(ocio);
   // The inputs by their place in the scene and their bytes, not by how their paths are spelt
   // (scene.toml and ./scene.toml are one render; the scene's own text names its inputs).
@@ -100,7 +100,7 @@ std::string render_fingerprint(const formats::SceneDesc& scene, const RenderRequ
 
 // An installed scene (<prefix>/share/arbor/scenes/) names its outputs relative to itself, in a
 // folder users do not write in: those outputs go under the current folder instead, with a note.
-void relocate_installed_outputs(formats::SceneDesc& scene, const RenderRequest& a) {
+void relocate_installed_outputs(spec::SceneDesc& scene, const RenderRequest& a) {
   char shared[PATH_MAX], folder[PATH_MAX];
   const std::size_t slash = scene.path.find_last_of('/');
   const std::string scene_folder =
@@ -134,8 +134,8 @@ void relocate_installed_outputs(formats::SceneDesc& scene, const RenderRequest& 
 // The scene as this command renders it: loaded, its installed outputs moved under the current
 // folder, the overrides, -o/--png, the frame and the checkpoint interval applied; InputError
 // when it has nothing to write or an output of the wrong kind.
-formats::SceneDesc prepared_scene(const RenderRequest& a) {
-  formats::SceneDesc scene = formats::load_scene(a.scene);
+spec::SceneDesc prepared_scene(const RenderRequest& a) {
+  spec::SceneDesc scene = formats::load_scene(a.scene);
   relocate_installed_outputs(scene, a);
   apply_overrides(scene, a.overrides);
   scene.render.threads = a.threads;
@@ -167,8 +167,8 @@ struct RunRange {
   Window window;
 };
 
-RunRange run_range(const formats::SceneDesc& scene, const RenderRequest& a, const PassPlan& plan) {
-  const formats::RenderSettings& r = scene.render;
+RunRange run_range(const spec::SceneDesc& scene, const RenderRequest& a, const PassPlan& plan) {
+  const spec::RenderSettings& r = scene.render;
   RunRange run{0, plan.passes(), {0, 0, r.width, r.height}};
   if (!a.passes.empty()) {
     const std::vector<int> v =
@@ -216,9 +216,9 @@ RunRange run_range(const formats::SceneDesc& scene, const RenderRequest& a, cons
 }
 
 // InputError when an output would overwrite an input; then makes the outputs' missing folders.
-void check_outputs(const formats::SceneDesc& scene) {
+void check_outputs(const spec::SceneDesc& scene) {
   const std::string& exr = scene.output.exr;
-  const std::vector<std::string> inputs = formats::scene_inputs(scene);
+  const std::vector<std::string> inputs = spec::scene_inputs(scene);
   if (!exr.empty()) {
     refuse_overwriting("the EXR output", exr, inputs);
     refuse_overwriting("the EXR output's film state", state_path(exr), inputs, {exr});
@@ -229,10 +229,10 @@ void check_outputs(const formats::SceneDesc& scene) {
   }
 }
 
-FilmHeader film_header(const formats::SceneDesc& scene, const scene::RenderInput& input,
+FilmHeader film_header(const spec::SceneDesc& scene, const scene::RenderInput& input,
                        const RenderRequest& a, const imaging::ColorPipeline& color,
                        const PassPlan& plan, const RunRange& run) {
-  const formats::RenderSettings& r = scene.render;
+  const spec::RenderSettings& r = scene.render;
   FilmHeader header;
   header.fingerprint = render_fingerprint(scene, a, color.config_path(), header.settings);
   header.scene = scene.path;
@@ -252,7 +252,7 @@ FilmHeader film_header(const formats::SceneDesc& scene, const scene::RenderInput
 
 // The film this run continues (--resume: the state beside the EXR, its totals copied into
 // `header`) or a new one; nullptr when a resume finds nothing left to do.
-std::unique_ptr<Film> open_film(const formats::SceneDesc& scene, const scene::RenderInput& input,
+std::unique_ptr<Film> open_film(const spec::SceneDesc& scene, const scene::RenderInput& input,
                                 const RenderRequest& a, const RunRange& run, FilmHeader& header) {
   if (!a.resume) {
     return std::make_unique<Film>(run.window, integrator_aov_names(input).size(), run.pass_begin,
@@ -306,16 +306,17 @@ struct RunResult {
 
 // Builds the scene and renders the film's remaining passes, writing checkpoints and, at the end,
 // the outputs (unless no pass finished).
-RunResult build_and_render(const formats::SceneDesc& scene, const scene::RenderInput& input,
+RunResult build_and_render(const spec::SceneDesc& scene, const scene::RenderInput& input,
                            const RenderRequest& a, const imaging::ColorPipeline& color,
                            const PassPlan& plan, const RunRange& run, FilmHeader& header,
                            Film& film) {
-  const formats::RenderSettings& r = scene.render;
-  const bool treemaker = input.render.integrator == formats::Integrator::Treemaker;
+  const spec::RenderSettings& r = scene.render;
+  const bool treemaker = input.render.integrator == spec::Integrator::Treemaker;
   const std::uint64_t unit_passes =
       run.pass_begin > 0 ? static_cast<std::uint64_t>(run.pass_end - run.pass_begin) : 0;
   const EmbreeDevice device(r.threads > 0 ? "threads=" + std::to_string(r.threads) : "");
-  const Sky sky(input.sky, input.sun, color.xyz_to_scene_linear());
+  const Sky sky(input.sky, input.sun, color.xyz_to_scene_linear(), kSkyMapWidth,
+                input.render.aerial_perspective);
   const MeterBuild meter{&device, color.config_path(),
                          scene::geometry_budget(scene, Film::costs(), a.force,
                                                 scene::usable_memory_bytes(), unit_passes),
@@ -386,7 +387,7 @@ RunResult build_and_render(const formats::SceneDesc& scene, const scene::RenderI
   return result;
 }
 
-void report(const formats::SceneDesc& scene, const PassPlan& plan, const RunRange& run,
+void report(const spec::SceneDesc& scene, const PassPlan& plan, const RunRange& run,
             const Film& film, const RunResult& result) {
   const imaging::RenderStats& stats = result.stats;
   const Window& window = run.window;
@@ -485,9 +486,9 @@ CLI::App* add_render_command(CLI::App& app, RenderRequest& render) {
 }
 
 int render_command(const RenderRequest& a) {
-  const formats::SceneDesc scene = prepared_scene(a);
+  const spec::SceneDesc scene = prepared_scene(a);
   const scene::RenderInput input = scene::render_input(scene);
-  if (input.render.integrator != formats::Integrator::Treemaker &&
+  if (input.render.integrator != spec::Integrator::Treemaker &&
       input.output.aovs.has(imaging::Aov::Treemaker)) {
     throw InputError(scene.output.treemaker_aov_where,
                      "output.aovs lists \"treemaker\", which only the treemaker integrator writes "

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "expect_input_error.h"
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 
 namespace arbor::formats {
 

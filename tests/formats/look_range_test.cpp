@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "common/error.h"
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 #include "formats/species_file.h"
 #include "generator/species.h"
 
@@ -105,9 +105,9 @@ TEST(LookRange, EveryReaderChecksTheOneRange) {
 }
 
 TEST(LookRange, AMeshLeafDefaultsToASpeciesLeaf) {
-  const SceneDesc s =
+  const spec::SceneDesc s =
       parse_scene("[[mesh]]\npath = \"m.obj\"\n[mesh.material.m]\nkind = \"leaf\"\n", "s.toml");
-  const MeshMaterialDesc& m = s.meshes.at(0).materials.at("m");
+  const spec::MeshMaterialDesc& m = s.meshes.at(0).materials.at("m");
   const generator::LeafLook leaf;
   EXPECT_EQ(m.reflectance, leaf.reflectance);
   EXPECT_EQ(m.back_reflectance, leaf.back_reflectance);

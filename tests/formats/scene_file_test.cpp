@@ -7,7 +7,7 @@
 
 #include "expect_input_error.h"
 
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 
 namespace arbor::formats {
 
@@ -21,7 +21,7 @@ void expect_error(const std::string& text, int line, int column, const std::stri
 }  // namespace
 
 TEST(SceneFile, ReadsTheContractsKeys) {
-  const SceneDesc s = parse_scene(R"(
+  const spec::SceneDesc s = parse_scene(R"(
 [render]
 width = 320
 height = 200
@@ -87,7 +87,7 @@ view = "Un-tone-mapped"
 aovs = ["albedo", "variance"]
 pixel_type = "float"
 )",
-                                  "dir/s.toml");
+                                        "dir/s.toml");
   EXPECT_EQ(s.render.width, 320);
   EXPECT_EQ(s.render.seed, 9u);
   EXPECT_DOUBLE_EQ(s.camera.focus_distance, 4.0);
@@ -111,13 +111,13 @@ pixel_type = "float"
 }
 
 TEST(SceneFile, FocusDistanceDefaultsToTheLookAtPoint) {
-  const SceneDesc s =
+  const spec::SceneDesc s =
       parse_scene("[camera]\nposition = [0.0, 0.0, 0.0]\nlook_at = [3.0, 4.0, 0.0]\n", "s.toml");
   EXPECT_DOUBLE_EQ(s.camera.focus_distance, 5.0);
 }
 
 TEST(SceneFile, ReadsTheTreemakerKeys) {
-  const SceneDesc s = parse_scene(R"([render]
+  const spec::SceneDesc s = parse_scene(R"([render]
 integrator = "treemaker"
 treemaker_spp = 2
 [[tree]]
@@ -132,8 +132,8 @@ lambert = 1.5
 [output]
 aovs = ["treemaker", "albedo"]
 )",
-                                  "dir/s.toml");
-  EXPECT_EQ(s.render.integrator, Integrator::Treemaker);
+                                        "dir/s.toml");
+  EXPECT_EQ(s.render.integrator, spec::Integrator::Treemaker);
   EXPECT_EQ(s.render.treemaker_spp, 2);
   EXPECT_EQ(s.render.spp, 64);  // the path integrator's count is separate
   EXPECT_DOUBLE_EQ(*s.trees[0].treemaker.ambient, 0.2);
@@ -192,7 +192,7 @@ TEST(SceneFile, ValuesAreRangeAndTypeChecked) {
 // [meadow]: its keys read, each range-checked at its position, a blade that would create light
 // and a meadow too large for memory refused at the table.
 TEST(SceneFile, MeadowKeysAreReadAndChecked) {
-  const SceneDesc s = parse_scene(
+  const spec::SceneDesc s = parse_scene(
       "[meadow]\ndensity = 800\narea = [[-5.0, -4.0], [6.0, 7.0]]\nheight = 0.4\n"
       "clumping = 0.2\ndry = 0.1\nwind = 3.0\ntile = 2.0\ntiles = 8\nseed = 9\n",
       "s.toml");
@@ -245,23 +245,23 @@ TEST(SceneFile, CameraAndOutputErrorsAreFoundWithTheirKey) {
 // The atmosphere sky's keys: the aerosols by one of three keys, the ground's albedo by default
 // from [ground], and the keys that belong to it refused elsewhere, at the key.
 TEST(SceneFile, TheAtmosphereSkysKeys) {
-  const SceneDesc a = parse_scene(
+  const spec::SceneDesc a = parse_scene(
       "[sky]\nmodel = \"atmosphere\"\nvisibility = 40.0\n[ground]\nalbedo = [0.2, 0.2, 0.2]\n",
       "s.toml");
-  EXPECT_EQ(a.sky.model, SkyModel::Atmosphere);
+  EXPECT_EQ(a.sky.model, spec::SkyModel::Atmosphere);
   EXPECT_DOUBLE_EQ(a.sky.visibility, 40.0);
   EXPECT_FALSE(a.sky.turbidity_given);
   EXPECT_FALSE(a.sky.dust_given);
   EXPECT_NEAR(a.sky.ground_albedo, 0.2, 1e-12);  // [ground]'s, no patches
-  const SceneDesc b = parse_scene(
+  const spec::SceneDesc b = parse_scene(
       "[sky]\nmodel = \"atmosphere\"\nturbidity = 4.0\nground_albedo = 0.3\n[ground]\n"
       "patch_cover = 0.5\n",
       "s.toml");
   EXPECT_TRUE(b.sky.turbidity_given);
   EXPECT_DOUBLE_EQ(b.sky.ground_albedo, 0.3);  // given: [ground] does not matter
   // Half soil, half grass: the mean of the two luminances.
-  const SceneDesc c = parse_scene("[ground]\npatch_cover = 0.5\n", "s.toml");
-  const GroundDesc g;
+  const spec::SceneDesc c = parse_scene("[ground]\npatch_cover = 0.5\n", "s.toml");
+  const spec::GroundDesc g;
   auto y = [](const Rgb& v) { return 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2]; };
   EXPECT_NEAR(c.sky.ground_albedo, 0.5 * (y(g.albedo) + y(g.patch_albedo)), 1e-12);
 
@@ -298,7 +298,7 @@ TEST(SceneFile, AerialPerspectiveNeedsAnAtmosphereAndThePathIntegrator) {
 
 TEST(SceneFile, ExposureIsStopsOrAuto) {
   EXPECT_TRUE(parse_scene("[camera]\nexposure = \"auto\"\n", "s.toml").camera.auto_exposure);
-  const SceneDesc fixed = parse_scene("[camera]\nexposure = 1.5\n", "s.toml");
+  const spec::SceneDesc fixed = parse_scene("[camera]\nexposure = 1.5\n", "s.toml");
   EXPECT_FALSE(fixed.camera.auto_exposure);
   EXPECT_DOUBLE_EQ(fixed.camera.exposure, 1.5);
   expect_error("[camera]\nexposure = \"bright\"\n", 2, 12, "a number of stops or \"auto\"");
@@ -311,7 +311,7 @@ namespace arbor::formats {
 
 // The ground's detail keys (issue 29): read with their values, refused out of range at the key.
 TEST(SceneFile, GroundDetailKeysAreReadAndCheckedAtTheKey) {
-  const SceneDesc s = parse_scene(
+  const spec::SceneDesc s = parse_scene(
       "[ground]\ndetail = 0.6\nstones = 8.0\nstone_albedo = [0.3, 0.3, 0.3]\nlitter = 0.2\n"
       "litter_albedo = [0.2, 0.1, 0.05]\n",
       "s.toml");
@@ -354,9 +354,9 @@ TEST(Scenes, TheTreemakerSceneIsTheDefaultScene) {
   const std::string exact = middle(folder + "default.toml");
   ASSERT_NE(exact.find("[meadow]"), std::string::npos);
   EXPECT_EQ(middle(folder + "default_treemaker.toml"), exact);
-  const SceneDesc a = load_scene(folder + "default.toml"),
-                  b = load_scene(folder + "default_treemaker.toml");
-  EXPECT_EQ(b.render.integrator, Integrator::Treemaker);
+  const spec::SceneDesc a = load_scene(folder + "default.toml"),
+                        b = load_scene(folder + "default_treemaker.toml");
+  EXPECT_EQ(b.render.integrator, spec::Integrator::Treemaker);
   EXPECT_EQ(a.render.width, b.render.width);
   EXPECT_EQ(a.render.height, b.render.height);
   EXPECT_EQ(a.sun.elevation, b.sun.elevation);

@@ -9,7 +9,7 @@
 
 #include "expect_scene_error.h"
 
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 
 namespace arbor::formats {
 
@@ -47,7 +47,7 @@ TEST(SceneKeys, AKeyOfAnotherSkyModelIsAnErrorAtIt) {
   // The default model is preetham's.
   expect_scene_error("[sky]\ndust_density = 2\n", 2, 16, "not \"preetham\"");
   // A model's own keys are read.
-  const SceneDesc s = parse_scene(
+  const spec::SceneDesc s = parse_scene(
       "[sky]\nmodel = \"nishita\"\nair_density = 2\ndust_density = 0.5\naltitude = 1000\n",
       "s.toml");
   EXPECT_DOUBLE_EQ(s.sky.air_density, 2.0);
@@ -62,7 +62,7 @@ TEST(SceneKeys, AKeyOfAnotherSkyModelIsAnErrorAtIt) {
 // The fingerprint's settings: every [render] key, each value exactly (two times or qualities
 // that differ past the sixth decimal differ in it).
 TEST(SceneKeys, TheRenderSettingsTextHoldsEveryKeyExactly) {
-  RenderSettings a;
+  spec::RenderSettings a;
   const std::string text = render_settings_text(a);
   for (const char* key : {"width 960", "height 640", "spp 64", "seed 1", "integrator path",
                           "regularize false", "lod false", "lod_quality 1", "max_depth 12",
@@ -70,7 +70,7 @@ TEST(SceneKeys, TheRenderSettingsTextHoldsEveryKeyExactly) {
                           "noise_threshold 0", "min_spp 16", "aerial_perspective false"}) {
     EXPECT_NE(text.find(key), std::string::npos) << key << " in " << text;
   }
-  RenderSettings b = a;
+  spec::RenderSettings b = a;
   b.lod_quality = 1.0000001;
   EXPECT_NE(render_settings_text(b), text);
   EXPECT_NE(render_settings_text(b).find("lod_quality 1.0000001"), std::string::npos);
@@ -78,7 +78,7 @@ TEST(SceneKeys, TheRenderSettingsTextHoldsEveryKeyExactly) {
   b.noise_threshold = 0.1;
   EXPECT_NE(render_settings_text(b).find("noise_threshold 0.1;"), std::string::npos);
   b = a;
-  b.integrator = Integrator::Treemaker;
+  b.integrator = spec::Integrator::Treemaker;
   EXPECT_NE(render_settings_text(b).find("integrator treemaker"), std::string::npos);
 }
 

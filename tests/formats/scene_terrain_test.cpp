@@ -6,21 +6,21 @@
 
 #include "expect_scene_error.h"
 
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 
 namespace arbor::formats {
 
 TEST(SceneTerrain, ItsKeysAreRead) {
-  const SceneDesc none = parse_scene("", "s.toml");
+  const spec::SceneDesc none = parse_scene("", "s.toml");
   EXPECT_FALSE(none.terrain.enabled);
-  const SceneDesc s = parse_scene(
+  const spec::SceneDesc s = parse_scene(
       "[terrain]\nkind = \"mountains\"\nsize = 2000\nrelief = 350\nseed = 7\nresolution = 4\n"
       "rock_slope = 40\nrock_albedo = [0.3, 0.3, 0.3]\nsurround = 2.5\n[camera]\nposition = [1, 2, "
       "3]\n"
       "above_ground = 1.7\n",
       "s.toml");
   EXPECT_TRUE(s.terrain.enabled);
-  EXPECT_EQ(s.terrain.kind, TerrainKind::Mountains);
+  EXPECT_EQ(s.terrain.kind, spec::TerrainKind::Mountains);
   EXPECT_EQ(s.terrain.size, 2000.0);
   EXPECT_EQ(s.terrain.relief, 350.0);
   EXPECT_EQ(s.terrain.seed, 7u);
@@ -31,7 +31,7 @@ TEST(SceneTerrain, ItsKeysAreRead) {
   ASSERT_TRUE(s.camera.above_ground.has_value());
   EXPECT_EQ(*s.camera.above_ground, 1.7);
   EXPECT_EQ(s.camera.focus_distance, 0.0);  // measured once the eye stands on the terrain
-  const SceneDesc image = parse_scene(
+  const spec::SceneDesc image = parse_scene(
       "[terrain]\nkind = \"image\"\npath = \"dem.png\"\nmetres_per_pixel = 30\n"
       "height_scale = 1000\n",
       "scenes/s.toml");
@@ -67,7 +67,7 @@ TEST(SceneTerrain, BadValuesAreRefusedAtTheirPosition) {
 }
 
 TEST(SceneCommunity, IsReadWithItsSpecies) {
-  const SceneDesc s = parse_scene(
+  const spec::SceneDesc s = parse_scene(
       "[community]\narea = [[-10, -20], [30, 40]]\nyears = 60\nseed = 3\n"
       "[[community.species]]\nspecies = \"aspen.toml\"\nradius = 5\nshade_tolerance = 0.5\n"
       "altitude_max = 120\n[[community.species]]\nspecies = \"fir.toml\"\nsown = 0.01\n",
@@ -105,7 +105,7 @@ TEST(SceneCommunity, BadTablesAreRefusedAtTheirPlace) {
 }
 
 TEST(SceneRocks, AreReadAndBadValuesRefusedAtTheirPlace) {
-  const SceneDesc s = parse_scene(
+  const spec::SceneDesc s = parse_scene(
       "[terrain]\n[rocks]\ndensity = 0.1\nsize_min = 0.5\nsize_max = 4\nexponent = 3\n"
       "buried = 0.2\nvariants = 4\nseed = 9\n",
       "s.toml");
@@ -115,7 +115,7 @@ TEST(SceneRocks, AreReadAndBadValuesRefusedAtTheirPlace) {
   EXPECT_EQ(s.rocks.exponent, 3.0);
   EXPECT_EQ(s.rocks.variants, 4);
   EXPECT_FALSE(s.rocks.area.has_value());
-  const SceneDesc flat = parse_scene("[rocks]\narea = [[-5, -5], [5, 5]]\n", "s.toml");
+  const spec::SceneDesc flat = parse_scene("[rocks]\narea = [[-5, -5], [5, 5]]\n", "s.toml");
   ASSERT_TRUE(flat.rocks.area.has_value());
   EXPECT_EQ((*flat.rocks.area)[2], 5.0);
   expect_scene_error("[rocks]\ndensity = 1\n", 1, 1,

@@ -11,7 +11,7 @@
 
 #include "expect_input_error.h"
 #include "imaging/color.h"
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 #include "imaging/image_output.h"
 
 namespace arbor::imaging {
@@ -30,7 +30,7 @@ void expect_rgb(const float got[3], double r, double g, double b, double toleran
 // Errors the OCIO config finds in a scene that parsed: still at the scene key.
 void expect_colour_error(const std::string& text, int line, int column,
                          const std::string& fragment) {
-  const formats::SceneDesc s = formats::parse_scene(text, "dir/s.toml");
+  const spec::SceneDesc s = formats::parse_scene(text, "dir/s.toml");
   const ColorPipeline color(kConfig);
   testing::expect_input_error([&] { color.check(s.output, s.output.where); }, "dir/s.toml", line,
                               column, fragment);

@@ -1,12 +1,12 @@
 // The ground's detail (materials/ground.h, issue 29): finer scales that keep the mean, stones
 // covering what their density says and only on soil, litter covering its fraction, and the sky's
-// ground albedo (formats::mean_albedo) agreeing with the ground it stands for.
+// ground albedo (spec::mean_albedo) agreeing with the ground it stands for.
 #include <cmath>
 #include <cstdio>
 
 #include <gtest/gtest.h>
 
-#include "formats/scene_desc.h"
+#include "spec/scene_desc.h"
 #include "materials/ground.h"
 
 namespace arbor::materials {
@@ -86,10 +86,10 @@ TEST(GroundDetail, LitterCoversItsFraction) {
   }
 }
 
-// formats::mean_albedo, the sky's ground albedo, is the ground's sampled mean luminance within 3 %
+// spec::mean_albedo, the sky's ground albedo, is the ground's sampled mean luminance within 3 %
 // with patches, detail, stones and litter all on.
 TEST(GroundDetail, TheSkysGroundAlbedoIsTheGroundsMean) {
-  formats::GroundDesc d;
+  spec::GroundDesc d;
   d.patch_cover = 0.6;
   d.patch_scale = 2.5;
   d.detail = 0.6;
@@ -104,8 +104,8 @@ TEST(GroundDetail, TheSkysGroundAlbedoIsTheGroundsMean) {
   g.stones = 8.0f;
   g.set_litter(0.15f);
   const double sampled = sample(g, 500, 0.2).mean;  // 100 m
-  std::printf("  mean albedo %.4f, sampled %.4f\n", formats::mean_albedo(d), sampled);
-  EXPECT_NEAR(formats::mean_albedo(d), sampled, 0.03 * sampled);
+  std::printf("  mean albedo %.4f, sampled %.4f\n", spec::mean_albedo(d), sampled);
+  EXPECT_NEAR(spec::mean_albedo(d), sampled, 0.03 * sampled);
 }
 
 }  // namespace arbor::materials

@@ -22,7 +22,7 @@ TEST(OrenNayar, SamplingMatchesPdfChiSquare) {
       const Dir wo(std::sin(theta_o), 0.0, std::cos(theta_o));
       const auto r = testing::chi_square(
           [&](Rng& rng) {
-            return on.sample(wo, {rng.uniform(), rng.uniform()});
+            return on.sample(wo, {0.0, rng.uniform(), rng.uniform()});
           },
           [&](const Dir& wi) { return on.pdf(wo, wi); }, 200000, 31);
       EXPECT_LT(r.chi2, testing::chi_square_critical(r.degrees_of_freedom))
@@ -82,7 +82,7 @@ TEST(OrenNayar, IsReciprocalAndConservesEnergy) {
     double sum = 0.0;
     const int n = 200000;
     for (int i = 0; i < n; ++i) {
-      const BsdfSample s = on.sample(wo, {rng.uniform(), rng.uniform()});
+      const BsdfSample s = on.sample(wo, {0.0, rng.uniform(), rng.uniform()});
       sum += s.value.x * std::fabs(s.wi.z) / s.pdf;
     }
     EXPECT_LE(sum / n, 1.0 + 0.01) << "theta_o " << theta_o;

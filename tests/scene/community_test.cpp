@@ -19,8 +19,8 @@
 namespace arbor::scene {
 namespace {
 
-formats::CommunitySpecies canopy() {
-  formats::CommunitySpecies s;
+spec::CommunitySpecies canopy() {
+  spec::CommunitySpecies s;
   s.species = "canopy";
   s.radius = 4.0;
   s.maturity = 40.0;
@@ -30,8 +30,8 @@ formats::CommunitySpecies canopy() {
   return s;
 }
 
-formats::CommunitySpecies understory() {
-  formats::CommunitySpecies s;
+spec::CommunitySpecies understory() {
+  spec::CommunitySpecies s;
   s.species = "understory";
   s.radius = 1.0;
   s.maturity = 15.0;
@@ -42,9 +42,9 @@ formats::CommunitySpecies understory() {
   return s;
 }
 
-formats::CommunityDesc community(std::vector<formats::CommunitySpecies> species, double side,
-                                 double years) {
-  formats::CommunityDesc d;
+spec::CommunityDesc community(std::vector<spec::CommunitySpecies> species, double side,
+                              double years) {
+  spec::CommunityDesc d;
   d.enabled = true;
   d.area = {-0.5 * side, -0.5 * side, 0.5 * side, 0.5 * side};
   d.years = years;
@@ -138,7 +138,7 @@ TEST(Community, TheUnderstoryClustersAndLivesUnderTheCanopy) {
     return static_cast<double>(under_canopy) / static_cast<double>(n);
   };
   EXPECT_GT(shaded(c), 0.1);
-  formats::CommunitySpecies intolerant = understory();
+  spec::CommunitySpecies intolerant = understory();
   intolerant.shade_tolerance = 0.0;
   EXPECT_EQ(shaded(simulate_community(community({canopy(), intolerant}, 200.0, 150.0), Terrain{})),
             0.0);
@@ -148,7 +148,7 @@ TEST(Community, TheUnderstoryClustersAndLivesUnderTheCanopy) {
 // plant rises as the density falls, mass ∝ density^(−3/2). Fitted over the years of thinning:
 // after half the sown plants have died and before the trees reach 90 % of their full size.
 TEST(Community, AnEvenAgedStandThinsItselfByYodasLaw) {
-  formats::CommunitySpecies s = canopy();
+  spec::CommunitySpecies s = canopy();
   s.sown = 0.5;
   s.seedlings = 0.0;
   s.seeds = 0.0;
@@ -173,9 +173,9 @@ TEST(Community, AnEvenAgedStandThinsItselfByYodasLaw) {
 
 // Ridged mountains 200 m across with 120 m of relief, as the habitat's ground.
 Terrain mountains() {
-  formats::TerrainDesc t;
+  spec::TerrainDesc t;
   t.enabled = true;
-  t.kind = formats::TerrainKind::Mountains;
+  t.kind = spec::TerrainKind::Mountains;
   t.size = 200;
   t.resolution = 2;
   t.relief = 120;
@@ -185,13 +185,13 @@ Terrain mountains() {
 
 TEST(Community, NoPlantStandsOutsideItsHabitat) {
   const Terrain terrain = mountains();
-  formats::CommunitySpecies s = canopy();
+  spec::CommunitySpecies s = canopy();
   s.altitude_min = 30.0;
   s.altitude_max = 70.0;
   s.slope_max = 35.0;
   s.radius = 2.0;
   s.seedlings = 2e-2;
-  formats::CommunitySpecies wet = understory();
+  spec::CommunitySpecies wet = understory();
   wet.moisture_min = 0.5;
   wet.seedlings = 2e-2;
   const Community c = simulate_community(community({s, wet}, 190.0, 40.0), terrain);
@@ -225,7 +225,7 @@ TEST(Community, NoPlantStandsOutsideItsHabitat) {
 }
 
 TEST(Community, IsAFunctionOfItsTable) {
-  const formats::CommunityDesc d = community({canopy(), understory()}, 100.0, 60.0);
+  const spec::CommunityDesc d = community({canopy(), understory()}, 100.0, 60.0);
   const Community a = simulate_community(d, mountains()), b = simulate_community(d, mountains());
   ASSERT_EQ(a.plants.size(), b.plants.size());
   for (std::size_t i = 0; i < a.plants.size(); ++i) {
@@ -233,7 +233,7 @@ TEST(Community, IsAFunctionOfItsTable) {
     EXPECT_EQ(a.plants[i].radius, b.plants[i].radius);
     EXPECT_EQ(a.plants[i].id, b.plants[i].id);
   }
-  formats::CommunityDesc other = d;
+  spec::CommunityDesc other = d;
   other.seed = 2;
   EXPECT_NE(simulate_community(other, mountains()).plants.front().position,
             a.plants.front().position);

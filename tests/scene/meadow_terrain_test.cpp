@@ -16,9 +16,9 @@ namespace {
 
 // Ridged mountains, 160 m across on a 4 m grid with 120 m of relief: faces over 60°.
 Terrain steep_mountains() {
-  formats::TerrainDesc t;
+  spec::TerrainDesc t;
   t.enabled = true;
-  t.kind = formats::TerrainKind::Mountains;
+  t.kind = spec::TerrainKind::Mountains;
   t.size = 160;
   t.resolution = 4;
   t.relief = 120;
@@ -27,8 +27,8 @@ Terrain steep_mountains() {
   return Terrain(t);
 }
 
-formats::MeadowDesc meadow_on(const Terrain& terrain, double density) {
-  formats::MeadowDesc d;
+spec::MeadowDesc meadow_on(const Terrain& terrain, double density) {
+  spec::MeadowDesc d;
   d.density = density;
   d.tile = terrain.spacing();
   d.area = {-80.0, -80.0, 80.0, 80.0};

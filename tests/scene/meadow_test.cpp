@@ -18,8 +18,8 @@
 namespace arbor::scene {
 namespace {
 
-formats::MeadowDesc small_meadow(double density) {
-  formats::MeadowDesc d;
+spec::MeadowDesc small_meadow(double density) {
+  spec::MeadowDesc d;
   d.density = density;
   d.area = {-2.0, -1.0, 2.0, 1.0};
   return d;
@@ -38,7 +38,7 @@ double arc_length(const glm::vec4* p) {
 }
 
 TEST(Meadow, EachTileHoldsTheDensitysBladesOnAverage) {
-  formats::MeadowDesc d = small_meadow(1234.5);
+  spec::MeadowDesc d = small_meadow(1234.5);
   d.tiles = 16;
   const Meadow m = grow_meadow(d, 0.0);
   ASSERT_EQ(m.tiles.size(), 16u);
@@ -63,7 +63,7 @@ TEST(Meadow, ZeroDensityGrowsNothing) {
   EXPECT_TRUE(m.tiles.empty());
   EXPECT_EQ(m.placed_blades(), 0u);
   // A density below one blade a tile leaves most tiles empty, and empty tiles are not placed.
-  formats::MeadowDesc sparse = small_meadow(0.2);
+  spec::MeadowDesc sparse = small_meadow(0.2);
   sparse.tiles = 64;
   sparse.area = {-10.0, -10.0, 10.0, 10.0};
   const Meadow s = grow_meadow(sparse, 0.0);
@@ -77,7 +77,7 @@ TEST(Meadow, ZeroDensityGrowsNothing) {
 }
 
 TEST(Meadow, TilesCoverTheAreaRoundedOutAndNothingBeyond) {
-  formats::MeadowDesc d = small_meadow(50.0);
+  spec::MeadowDesc d = small_meadow(50.0);
   d.area = {-1.5, 0.25, 1.2, 2.0};
   d.tile = 0.5;
   const Meadow m = grow_meadow(d, 0.0);
@@ -96,7 +96,7 @@ TEST(Meadow, TilesCoverTheAreaRoundedOutAndNothingBeyond) {
 }
 
 TEST(Meadow, BladeLengthsHaveTheDocumentedMedianAndSpread) {
-  formats::MeadowDesc d = small_meadow(3000.0);
+  spec::MeadowDesc d = small_meadow(3000.0);
   d.height = 0.4;
   d.height_spread = 0.25;
   const GrassTile t = grow_grass_tile(d, 0, 0.0);
@@ -113,7 +113,7 @@ TEST(Meadow, BladeLengthsHaveTheDocumentedMedianAndSpread) {
 }
 
 TEST(Meadow, BladesStayAboveTheGroundAndTaperToTheTip) {
-  formats::MeadowDesc d = small_meadow(2000.0);
+  spec::MeadowDesc d = small_meadow(2000.0);
   d.lean = 60.0;
   d.bend = 1.0;
   d.wind = 20.0;
@@ -147,7 +147,7 @@ double clark_evans(const GrassTile& t, double side, double density) {
 }
 
 TEST(Meadow, ClumpingGathersBladesIntoTufts) {
-  formats::MeadowDesc d = small_meadow(400.0);
+  spec::MeadowDesc d = small_meadow(400.0);
   d.clumping = 0.0;
   const double uniform = clark_evans(grow_grass_tile(d, 0, 0.0), d.tile, d.density);
   d.clumping = 0.9;
@@ -157,7 +157,7 @@ TEST(Meadow, ClumpingGathersBladesIntoTufts) {
 }
 
 TEST(Meadow, TheDryShareIsStrawColoured) {
-  formats::MeadowDesc d = small_meadow(5000.0);
+  spec::MeadowDesc d = small_meadow(5000.0);
   d.dry = 0.2;
   const GrassTile t = grow_grass_tile(d, 2, 0.0);
   std::size_t dry = 0;
@@ -167,15 +167,15 @@ TEST(Meadow, TheDryShareIsStrawColoured) {
 }
 
 TEST(Meadow, IsAFunctionOfItsTableAndClock) {
-  const formats::MeadowDesc d = small_meadow(500.0);
+  const spec::MeadowDesc d = small_meadow(500.0);
   const GrassTile a = grow_grass_tile(d, 3, 0.0), b = grow_grass_tile(d, 3, 0.0);
   EXPECT_EQ(a.points, b.points);
   EXPECT_EQ(a.normals, b.normals);
-  formats::MeadowDesc other = d;
+  spec::MeadowDesc other = d;
   other.seed = 2;
   EXPECT_NE(grow_grass_tile(other, 3, 0.0).points, a.points);
   // The wind sways the blades over time; in calm air the clock changes nothing.
-  formats::MeadowDesc windy = d;
+  spec::MeadowDesc windy = d;
   windy.wind = 5.0;
   EXPECT_NE(grow_grass_tile(windy, 3, 0.0).points, grow_grass_tile(windy, 3, 0.3).points);
   EXPECT_EQ(grow_grass_tile(d, 3, 0.3).points, a.points);
@@ -184,7 +184,7 @@ TEST(Meadow, IsAFunctionOfItsTableAndClock) {
 // Every kind of blade — green and dry, seen from above and below, each its own tint — samples
 // its own pdf (χ²) and reflects plus transmits at most what comes in.
 TEST(GrassBsdf, SamplesItsPdfAndCreatesNoEnergy) {
-  formats::MeadowDesc d = small_meadow(100.0);
+  spec::MeadowDesc d = small_meadow(100.0);
   d.dry = 0.5;
   const Meadow m = grow_meadow(d, 0.0);
   const materials::LeafMaterial* grass = m.grass.as<materials::LeafMaterial>();

@@ -17,7 +17,7 @@ namespace {
 constexpr FilmCosts kFilm{88, 8, 8, 16, 7, 23};
 
 TEST(RenderBudget, EstimateGrowsWithPixelsChannelsAndTrees) {
-  formats::SceneDesc s;
+  spec::SceneDesc s;
   s.render.width = 1000;
   s.render.height = 1000;
   const MemoryEstimate plain = estimate_render_memory(s, kFilm);
@@ -36,7 +36,7 @@ TEST(RenderBudget, EstimateGrowsWithPixelsChannelsAndTrees) {
   s.output.aovs = {};
   s.output.aovs.add(imaging::Aov::Treemaker);
   EXPECT_GE(estimate_render_memory(s, kFilm).image_bytes, 257u * 1000000u);
-  formats::ForestDesc f;
+  spec::ForestDesc f;
   f.count = 100000;
   s.forests = {f, f};
   s.trees.resize(3);
@@ -46,7 +46,7 @@ TEST(RenderBudget, EstimateGrowsWithPixelsChannelsAndTrees) {
 }
 
 TEST(RenderBudget, TheLargestImageIsRefusedUnlessForced) {
-  formats::SceneDesc s;
+  spec::SceneDesc s;
   s.path = "big.toml";
   s.render.width = s.render.height = 16384;
   s.output.aovs = {};
@@ -71,10 +71,10 @@ TEST(RenderBudget, TheLargestImageIsRefusedUnlessForced) {
 // The largest forest count the scene allows needs about 10 GB: refused on a machine (or under a
 // ulimit) of 8 GB, at the forest's table.
 TEST(RenderBudget, TheLargestForestIsRefusedWhereItDoesNotFit) {
-  formats::SceneDesc s;
+  spec::SceneDesc s;
   s.path = "forest.toml";
   s.render.width = s.render.height = 8;
-  formats::ForestDesc f;
+  spec::ForestDesc f;
   f.count = 10000000;
   f.where = {"forest.toml", 5, 1};
   s.forests = {f};

@@ -16,9 +16,9 @@ namespace {
 
 // Ridged mountains, 160 m across on a 2 m grid with 120 m of relief: faces over 60°.
 Terrain steep_mountains(double relief = 120) {
-  formats::TerrainDesc t;
+  spec::TerrainDesc t;
   t.enabled = true;
-  t.kind = formats::TerrainKind::Mountains;
+  t.kind = spec::TerrainKind::Mountains;
   t.size = 160;
   t.resolution = 2;
   t.relief = relief;
@@ -27,8 +27,8 @@ Terrain steep_mountains(double relief = 120) {
   return Terrain(t);
 }
 
-formats::RocksDesc rocks_desc(double density) {
-  formats::RocksDesc d;
+spec::RocksDesc rocks_desc(double density) {
+  spec::RocksDesc d;
   d.enabled = true;
   d.density = density;
   return d;
@@ -71,11 +71,11 @@ TEST(Rocks, NoneFloatsOnTheSteepestMountains) {
 // The diameters follow the truncated power law: Kolmogorov–Smirnov against its CDF at the 1 %
 // level, and against a law of exponent 2.2 they are refused.
 TEST(Rocks, TheirSizesFollowThePowerLaw) {
-  formats::RocksDesc d = rocks_desc(0.5);
+  spec::RocksDesc d = rocks_desc(0.5);
   d.size_min = 0.2;
   d.size_max = 4.0;
   d.exponent = 2.5;
-  formats::RocksDesc flat = d;
+  spec::RocksDesc flat = d;
   flat.area = std::array<double, 4>{-40.0, -40.0, 40.0, 40.0};
   const Rocks rocks = place_rocks(flat, Terrain{});
   ASSERT_GT(rocks.placements.size(), 2000u);
@@ -140,7 +140,7 @@ TEST(Rocks, AreAFunctionOfTheirTable) {
     EXPECT_EQ(a.placements[i].to_world, b.placements[i].to_world);
     EXPECT_EQ(a.placements[i].shape, b.placements[i].shape);
   }
-  formats::RocksDesc other = rocks_desc(0.02);
+  spec::RocksDesc other = rocks_desc(0.02);
   other.seed = 2;
   EXPECT_NE(place_rocks(other, terrain).placements.front().to_world, a.placements.front().to_world);
 }

@@ -1,5 +1,6 @@
 // build_scene (scene/scene.h): trees grown once per (species, seed, time) and shared as
 // prototypes, placed by their instances, named for compositing, the ground added.
+#include "formats/scene_file.h"
 #include "scene/scene.h"
 
 #include <cstring>
@@ -23,7 +24,7 @@ std::string tree(const char* species, int seed, double x) {
 }
 
 TEST(BuildScene, TreesOfOneSpeciesAndSeedShareOnePrototype) {
-  const formats::SceneDesc desc =
+  const spec::SceneDesc desc =
       formats::parse_scene(tree("young_tree.skel", 1, 0.0) + tree("young_tree.skel", 1, 4.0) +
                                tree("young_tree.skel", 2, 8.0) + tree("dogwood.tmpl", 1, 12.0),
                            "/tmp/scene.toml");
@@ -64,7 +65,7 @@ bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
 // Growing prototypes in parallel builds the scene growing them one by one builds: the same
 // prototypes in the same order, byte for byte, and the same instances.
 TEST(BuildScene, ParallelGrowthBuildsTheSceneSerialGrowthBuilds) {
-  const formats::SceneDesc desc = formats::parse_scene(
+  const spec::SceneDesc desc = formats::parse_scene(
       tree("young_tree.skel", 1, 0.0) + tree("dogwood.tmpl", 3, 4.0) +
           tree("young_tree.skel", 1, 8.0) + tree("dogwood.tmpl", 4, 12.0) +
           "[[forest]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) +
@@ -120,7 +121,7 @@ TEST(BuildScene, TheSeasonTintsLeavesByTheSpeciesAutumnColour) {
 }
 
 TEST(BuildScene, AGroundlessSceneHasNoGround) {
-  const formats::SceneDesc desc = formats::parse_scene(
+  const spec::SceneDesc desc = formats::parse_scene(
       "[ground]\nenabled = false\n" + tree("young_tree.skel", 1, 0.0), "/tmp/scene.toml");
   const std::unique_ptr<const Scene> scene = build_scene(desc, kOcio);
   EXPECT_FALSE(scene->has_ground);

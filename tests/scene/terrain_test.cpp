@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "expect_input_error.h"
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 #include "scene/render_budget.h"
 #include "scene/terrain.h"
 
@@ -35,7 +35,7 @@ std::string exr(const std::string& name, int w, int h, F f) {
   return path;
 }
 
-formats::SceneDesc scene_with(const std::string& terrain_table) {
+spec::SceneDesc scene_with(const std::string& terrain_table) {
   const std::string path = temp("terrain_scene.toml");
   std::ofstream(path) << terrain_table;
   return formats::load_scene(path);
@@ -43,10 +43,9 @@ formats::SceneDesc scene_with(const std::string& terrain_table) {
 
 TEST(Terrain, TheProceduralModelsSpanTheReliefAndRepeatBitForBit) {
   for (const char* kind : {"hills", "mountains"}) {
-    formats::TerrainDesc d;
+    spec::TerrainDesc d;
     d.enabled = true;
-    d.kind = std::string(kind) == "hills" ? formats::TerrainKind::Hills
-                                          : formats::TerrainKind::Mountains;
+    d.kind = std::string(kind) == "hills" ? spec::TerrainKind::Hills : spec::TerrainKind::Mountains;
     d.size = 500;
     d.resolution = 5;
     d.relief = 80;
@@ -74,10 +73,10 @@ TEST(Terrain, AnElevationImageIsReadNorthUpWithItsOwnRelief) {
   // Heights rise to the east (x) and to the image's top row (north).
   const std::string dem =
       exr("dem.exr", 5, 3, [](int x, int y) { return 100.0f + 2.0f * x + 10.0f * (2 - y); });
-  const formats::SceneDesc s = scene_with("[terrain]\nkind = \"image\"\npath = \"" + dem +
-                                          "\"\nmetres_per_pixel = 10\nheight_scale = 0.5\n"
-                                          "[camera]\nposition = [20, 10, 0]\nabove_ground = 1.5\n"
-                                          "look_at = [0, 0, 0]\n");
+  const spec::SceneDesc s = scene_with("[terrain]\nkind = \"image\"\npath = \"" + dem +
+                                       "\"\nmetres_per_pixel = 10\nheight_scale = 0.5\n"
+                                       "[camera]\nposition = [20, 10, 0]\nabove_ground = 1.5\n"
+                                       "look_at = [0, 0, 0]\n");
   const Terrain t(s.terrain);
   ASSERT_EQ(t.columns(), 5);
   ASSERT_EQ(t.rows(), 3);
@@ -87,7 +86,7 @@ TEST(Terrain, AnElevationImageIsReadNorthUpWithItsOwnRelief) {
   EXPECT_FLOAT_EQ(t.at(0, 0), 0.0f);           // south-west: the lowest
   EXPECT_FLOAT_EQ(t.at(4, 2), 14.0f);          // north-east: the highest
   EXPECT_NEAR(t.height(5.0, 0.0), 7.5, 1e-5);  // a plane (2.5 + 5): exact between the samples
-  const formats::CameraDesc c = placed_camera(s.camera, t);
+  const spec::CameraDesc c = placed_camera(s.camera, t);
   EXPECT_NEAR(c.position[2], 14.0 + 1.5, 1e-6);
   EXPECT_NEAR(c.focus_distance, std::sqrt(20.0 * 20 + 10 * 10 + 15.5 * 15.5), 1e-9);
   EXPECT_EQ(terrain_vertices(s.terrain), 15u);
@@ -99,7 +98,7 @@ TEST(Terrain, BadElevationImagesAreRefusedAtThePath) {
                               temp("terrain_scene.toml"), 3, 8, "does not exist");
   const std::string text = temp("text.png");
   std::ofstream(text) << "not an image\n";
-  const formats::SceneDesc not_image = scene_with(table + text + "\"\n");
+  const spec::SceneDesc not_image = scene_with(table + text + "\"\n");
   testing::expect_input_error([&] { Terrain t(not_image.terrain); }, temp("terrain_scene.toml"), 3,
                               8, "cannot read the elevation image");
   // A PNG whose header says 100,000 × 100,000 pixels.
@@ -109,12 +108,12 @@ TEST(Terrain, BadElevationImagesAreRefusedAtThePath) {
       "\x00\x00\x00\x00\xdd\xa9\x88\x57\x00\x00\x00\x0bIDATx\x9c\x63\x60\x80\x01"
       "\x00\x00\x0a\x00\x01\x7f\x80\x74\x5e\x00\x00\x00\x00IEND\xae\x42\x60\x82",
       69);
-  const formats::SceneDesc big = scene_with(table + huge + "\"\n");
+  const spec::SceneDesc big = scene_with(table + huge + "\"\n");
   testing::expect_input_error([&] { estimate_render_memory(big, {}); }, temp("terrain_scene.toml"),
                               3, 8, "100000x100000");
   const std::string nan =
       exr("nan.exr", 4, 4, [](int x, int y) { return x == 2 && y == 1 ? NAN : 1.0f; });
-  const formats::SceneDesc holes = scene_with(table + nan + "\"\n");
+  const spec::SceneDesc holes = scene_with(table + nan + "\"\n");
   testing::expect_input_error([&] { Terrain t(holes.terrain); }, temp("terrain_scene.toml"), 3, 8,
                               "not finite, at (2, 1)");
 }
@@ -127,10 +126,9 @@ TEST(Terrain, BadElevationImagesAreRefusedAtThePath) {
 TEST(Terrain, TheSurroundContinuesTheModelToTheHorizon) {
   for (const char* kind : {"hills", "mountains"}) {
     SCOPED_TRACE(kind);
-    formats::TerrainDesc d;
+    spec::TerrainDesc d;
     d.enabled = true;
-    d.kind = std::string(kind) == "hills" ? formats::TerrainKind::Hills
-                                          : formats::TerrainKind::Mountains;
+    d.kind = std::string(kind) == "hills" ? spec::TerrainKind::Hills : spec::TerrainKind::Mountains;
     d.size = 500;
     d.resolution = 2;
     d.relief = 80;

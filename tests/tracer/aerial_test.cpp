@@ -13,7 +13,7 @@
 #include <glm/geometric.hpp>
 
 #include "common/math.h"
-#include "formats/scene_desc.h"
+#include "spec/scene_desc.h"
 #include "scene/render_input.h"
 #include "test_world.h"
 #include "tracer/lights/nishita.h"
@@ -72,13 +72,13 @@ namespace {
 
 // A grey card facing the camera `distance` metres away along +x, filling a 1° view, lit by a sun
 // at 40° under the atmosphere sky; no ground.
-formats::SceneDesc card_scene(double distance, bool aerial) {
+spec::SceneDesc card_scene(double distance, bool aerial) {
   const std::string obj = ::testing::TempDir() + "card.obj";
   const double h = 0.05 * distance;
   std::ofstream(obj) << "v " << distance << " " << -h << " " << -h << "\nv " << distance << " " << h
                      << " " << -h << "\nv " << distance << " " << h << " " << h << "\nv "
                      << distance << " " << -h << " " << h << "\ng card\nf 1 4 3 2\n";
-  formats::SceneDesc s;
+  spec::SceneDesc s;
   s.render.width = s.render.height = 4;
   s.render.spp = 16;
   s.render.aerial_perspective = aerial;
@@ -88,12 +88,12 @@ formats::SceneDesc card_scene(double distance, bool aerial) {
   s.camera.focus_distance = distance;
   s.sun.elevation = 40.0;
   s.sun.azimuth = 180.0;  // behind the camera: the card's face is lit
-  s.sky.model = formats::SkyModel::Atmosphere;
+  s.sky.model = spec::SkyModel::Atmosphere;
   s.ground.enabled = false;
-  formats::MeshDesc m;
+  spec::MeshDesc m;
   m.path = obj;
   m.up = "z";
-  formats::MeshMaterialDesc grey;
+  spec::MeshMaterialDesc grey;
   grey.kind = "diffuse";
   grey.albedo = {0.18, 0.18, 0.18};
   m.materials["card"] = grey;
@@ -101,7 +101,7 @@ formats::SceneDesc card_scene(double distance, bool aerial) {
   return s;
 }
 
-imaging::Image render_card(const formats::SceneDesc& scene, const Sky& sky) {
+imaging::Image render_card(const spec::SceneDesc& scene, const Sky& sky) {
   const EmbreeDevice device("");
   const TestWorld test_world(scene, device);
   imaging::RenderStats stats;
@@ -115,12 +115,9 @@ imaging::Image render_card(const formats::SceneDesc& scene, const Sky& sky) {
 // are 10–25 % changes there; at 0.5 m the air changes nothing a user could see.
 TEST(AerialPerspective, AGreyCardFadesByTheAtmospheresTransmittanceAndPathRadiance) {
   for (double distance : {0.5, 5000.0}) {
-    const formats::SceneDesc off = card_scene(distance, false), on = card_scene(distance, true);
-    const Sky sky_off(scene::sky_spec(off.sky), scene::sun_spec(off.sun), xyz_to_scene_linear(),
-                      128);
-    scene::SkySpec spec = scene::sky_spec(on.sky);
-    spec.aerial_perspective = true;
-    const Sky sky_on(spec, scene::sun_spec(on.sun), xyz_to_scene_linear(), 128);
+    const spec::SceneDesc off = card_scene(distance, false), on = card_scene(distance, true);
+    const Sky sky_off(off.sky, off.sun, xyz_to_scene_linear(), 128);
+    const Sky sky_on(on.sky, on.sun, xyz_to_scene_linear(), 128, true);
     ASSERT_NE(sky_on.aerial(), nullptr);
     EXPECT_EQ(sky_off.aerial(), nullptr);
     const imaging::Image a = render_card(off, sky_off), b = render_card(on, sky_on);

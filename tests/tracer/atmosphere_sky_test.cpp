@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "common/math.h"
-#include "formats/scene_desc.h"
+#include "spec/scene_desc.h"
 #include "tracer/lights/nishita.h"
 #include "tracer/lights/sky_monte_carlo.h"
 
@@ -84,7 +84,7 @@ TEST(AtmosphereSky, AgreesWithTheMonteCarloSimulationOfEveryOrder) {
 // docs/rendering.md.)
 TEST(AtmosphereSky, SunAtFortyDegreesIsInThePublishedClearSkyBands) {
   const glm::dvec3 sun = direction(40.0, 0.0);
-  const double ground = formats::mean_albedo({});
+  const double ground = spec::mean_albedo({});
   struct Sky {
     double zenith, across, away, horizon, diffuse;
   };

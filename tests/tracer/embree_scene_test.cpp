@@ -201,11 +201,11 @@ TEST(TreePrototype, RaysLeavingLimbsAndLeavesDoNotHitThemAgain) {
   const generator::TreeGeometry g =
       generator::build_tree_geometry(generator::grow_weber_penn(tupelo.weber_penn(), o));
   EmbreeDevice device("threads=1");
-  formats::Placement placed;
+  spec::Placement placed;
   placed.position = {180.0, -140.0, 0.5};
   placed.rotation = 37.0;
   placed.scale = 1.3;
-  for (const formats::Placement& placement : {formats::Placement{}, placed}) {
+  for (const spec::Placement& placement : {spec::Placement{}, placed}) {
     const GeometryWorld tree(g, device, placement);
     const glm::mat4 m = scene::placement_matrix(placement);
     auto world = [&](const glm::vec3& p) { return glm::vec3(m * glm::vec4(p, 1.0f)); };

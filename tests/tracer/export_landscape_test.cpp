@@ -80,7 +80,7 @@ TEST(PbrtExport, TheTerrainIsItsGridWithItsAlbedoAndTheRocksAreInstances) {
   const std::string pbrt_out = dir + "scene.pbrt";
   export_scene(scene_path, pbrt_out, 16);
   const std::vector<Statement> pbrt = parse_pbrt(slurp(pbrt_out));
-  const formats::SceneDesc desc = formats::load_scene(scene_path);
+  const spec::SceneDesc desc = formats::load_scene(scene_path);
   const std::unique_ptr<const scene::Scene> built = scene::build_scene(desc, kOcioConfig);
   const scene::Terrain& t = built->terrain;
   const int nx = t.columns(), ny = t.rows();

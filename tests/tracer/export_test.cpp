@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <OpenImageIO/imageio.h>
 
+#include "formats/scene_file.h"
 #include "imaging/color.h"
 #include "pbrt_reading.h"
 #include "scene/scene.h"
@@ -133,8 +134,8 @@ TEST(PbrtExport, WritesTheWholeSceneAndASkyWithItsIrradiance) {
 
   // The sun: towards it, its irradiance, the exposure's 2× as the scale.
   const imaging::ColorPipeline color(kOcioConfig);
-  formats::SceneDesc desc = formats::load_scene(scene_path);
-  const Sky sky(scene::sky_spec(desc.sky), scene::sun_spec(desc.sun), color.xyz_to_scene_linear());
+  spec::SceneDesc desc = formats::load_scene(scene_path);
+  const Sky sky(desc.sky, desc.sun, color.xyz_to_scene_linear());
   const Statement* sun = find(pbrt, "LightSource", "distant");
   ASSERT_NE(sun, nullptr);
   const std::vector<double> from = numbers(*sun, "point3 from"), l = numbers(*sun, "rgb L");
@@ -222,7 +223,7 @@ TEST(PbrtExport, GroundPatchesNearTheCameraAreAnImage) {
   std::vector<float> px(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
   ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
 
-  const formats::SceneDesc desc = formats::load_scene(scene_path);
+  const spec::SceneDesc desc = formats::load_scene(scene_path);
   const std::unique_ptr<const scene::Scene> built = scene::build_scene(desc, kOcioConfig);
   ASSERT_NE(built->ground.as<materials::GroundMaterial>(), nullptr);
   const materials::GroundMaterial& ground = *built->ground.as<materials::GroundMaterial>();

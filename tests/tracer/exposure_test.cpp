@@ -9,7 +9,7 @@
 
 #include <tbb/task_arena.h>
 
-#include "formats/scene_desc.h"
+#include "spec/scene_desc.h"
 #include "scene/render_input.h"
 #include "test_world.h"
 #include "tracer/lights/sky.h"
@@ -22,8 +22,8 @@ namespace {
 const imaging::ColorTransform kIdentity = [](float*) {};
 
 // The default camera over the default ground under a Preetham sky and a sun, small.
-formats::SceneDesc lit_ground() {
-  formats::SceneDesc s;
+spec::SceneDesc lit_ground() {
+  spec::SceneDesc s;
   s.render.width = 48;
   s.render.height = 32;
   s.render.spp = 4;
@@ -31,10 +31,10 @@ formats::SceneDesc lit_ground() {
   return s;
 }
 
-double meter(const formats::SceneDesc& s) {
+double meter(const spec::SceneDesc& s) {
   const EmbreeDevice device("");
   const TestWorld test_world(s, device);
-  const Sky sky(scene::sky_spec(s.sky), scene::sun_spec(s.sun), xyz_to_scene_linear(), 64);
+  const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 64);
   return metered_exposure(scene::render_input(s), test_world.world, sky);
 }
 
@@ -43,10 +43,10 @@ double meter(const formats::SceneDesc& s) {
 // A constant sky of radiance 0.5 and nothing else: every pixel's luminance is 0.5, and the meter
 // puts it at middle grey, log2(0.18 / 0.5) stops.
 TEST(AutoExposure, AUniformSkyIsMeteredToMiddleGrey) {
-  formats::SceneDesc s = lit_ground();
+  spec::SceneDesc s = lit_ground();
   s.sun.enabled = false;
   s.ground.enabled = false;
-  s.sky.model = formats::SkyModel::Constant;
+  s.sky.model = spec::SkyModel::Constant;
   s.sky.color = {0.5, 0.5, 0.5};
   EXPECT_NEAR(meter(s), std::log2(0.18 / 0.5), 1e-5);
 }
@@ -54,18 +54,18 @@ TEST(AutoExposure, AUniformSkyIsMeteredToMiddleGrey) {
 // Twice the light (sun and sky) is one stop less; the render's seed and the thread count change
 // nothing, bit for bit.
 TEST(AutoExposure, FollowsTheLightAndNothingElse) {
-  formats::SceneDesc s = lit_ground();
-  s.sky.model = formats::SkyModel::Constant;
+  spec::SceneDesc s = lit_ground();
+  s.sky.model = spec::SkyModel::Constant;
   s.sky.color = {0.2, 0.3, 0.4};
   const double base = meter(s);
   std::printf("  metered %+.4f stops\n", base);
   EXPECT_GT(base, -8.0);
   EXPECT_LT(base, 8.0);
-  formats::SceneDesc brighter = s;
+  spec::SceneDesc brighter = s;
   brighter.sun.irradiance *= 2.0;
   brighter.sky.color = {0.4, 0.6, 0.8};
   EXPECT_NEAR(meter(brighter), base - 1.0, 1e-3);
-  formats::SceneDesc seeded = s;
+  spec::SceneDesc seeded = s;
   seeded.render.seed = 12345;
   EXPECT_EQ(meter(seeded), base);
   double one_thread = 0.0;
@@ -76,19 +76,19 @@ TEST(AutoExposure, FollowsTheLightAndNothingElse) {
 // The meter reads the scene, not the output: a transparent sky (the compositing plate), the
 // treemaker integrator and regularisation meter the beauty pass's exposure, bit for bit.
 TEST(AutoExposure, MetersTheSceneNotTheOutputVariant) {
-  const formats::SceneDesc s = lit_ground();
+  const spec::SceneDesc s = lit_ground();
   const double beauty = meter(s);
-  formats::SceneDesc plate = s;
+  spec::SceneDesc plate = s;
   plate.output.transparent_sky = true;
   EXPECT_EQ(meter(plate), beauty);
-  formats::SceneDesc approximate = s;
-  approximate.render.integrator = formats::Integrator::Treemaker;
+  spec::SceneDesc approximate = s;
+  approximate.render.integrator = spec::Integrator::Treemaker;
   EXPECT_EQ(meter(approximate), beauty);
-  formats::SceneDesc regularized = s;
+  spec::SceneDesc regularized = s;
   regularized.render.regularize = true;
   EXPECT_EQ(meter(regularized), beauty);
   // The light still counts: a dimmer sun meters brighter.
-  formats::SceneDesc dim = s;
+  spec::SceneDesc dim = s;
   dim.sun.irradiance *= 0.5;
   EXPECT_GT(meter(dim), beauty + 0.2);
 }
@@ -96,13 +96,13 @@ TEST(AutoExposure, MetersTheSceneNotTheOutputVariant) {
 // A render asked for "auto" is, pixel for pixel, the render at the metered exposure given as
 // stops.
 TEST(AutoExposure, TheRenderUsesTheMeteredExposure) {
-  const formats::SceneDesc s = lit_ground();
-  formats::SceneDesc fixed = s;
+  const spec::SceneDesc s = lit_ground();
+  spec::SceneDesc fixed = s;
   fixed.camera.auto_exposure = false;
   fixed.camera.exposure = meter(s);
   const EmbreeDevice device("");
   const TestWorld test_world(s, device);
-  const Sky sky(scene::sky_spec(s.sky), scene::sun_spec(s.sun), xyz_to_scene_linear(), 64);
+  const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 64);
   imaging::RenderStats stats;
   const imaging::Image a =
       render_image(scene::render_input(s), test_world.world, sky, kIdentity, stats);
@@ -110,7 +110,7 @@ TEST(AutoExposure, TheRenderUsesTheMeteredExposure) {
       render_image(scene::render_input(fixed), test_world.world, sky, kIdentity, stats);
   ASSERT_EQ(a.beauty.size(), b.beauty.size());
   for (std::size_t p = 0; p < a.beauty.size(); ++p) ASSERT_EQ(a.beauty[p], b.beauty[p]) << p;
-  formats::SceneDesc plain = fixed;
+  spec::SceneDesc plain = fixed;
   plain.camera.exposure = 0.0;
   const imaging::Image c =
       render_image(scene::render_input(plain), test_world.world, sky, kIdentity, stats);

@@ -8,45 +8,45 @@
 
 #include "common/rng.h"
 #include "expect_input_error.h"
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 #include "scene/frame.h"
 #include "tracer/test_world.h"
 
 namespace arbor::tracer {
 namespace {
 
-formats::SceneDesc animated(const std::string& species, const std::string& animation) {
+spec::SceneDesc animated(const std::string& species, const std::string& animation) {
   return formats::parse_scene(
       "[render]\nseed = 9\n[[tree]]\nspecies = \"" + std::string(ARBOR_SOURCE_DIR) + "/species/" +
           species + "\"\n[output]\nexr = \"out/f.####.exr\"\npng = \"out/f.##.png\"\n" + animation,
       "/tmp/scene.toml");
 }
 
-std::size_t segments(const formats::SceneDesc& s) {
+std::size_t segments(const spec::SceneDesc& s) {
   return scene::build_scene(s, kOcioConfig)->stats.curve_segments;
 }
 
 }  // namespace
 
 TEST(Frames, FrameSetsClockSeedAndOutputNames) {
-  formats::SceneDesc s = animated("quaking_aspen.toml", "[animation]\nframes = 10\nfps = 4.0\n");
+  spec::SceneDesc s = animated("quaking_aspen.toml", "[animation]\nframes = 10\nfps = 4.0\n");
   scene::apply_frame(s, 6);
   EXPECT_DOUBLE_EQ(s.clock, 1.5);
   EXPECT_EQ(s.render.seed, derive_key(9, 6));
   EXPECT_EQ(s.output.exr, "/tmp/out/f.0006.exr");
   EXPECT_EQ(s.output.png, "/tmp/out/f.06.png");
-  EXPECT_EQ(formats::frame_path("a.#.exr", 123), "a.123.exr");
-  EXPECT_EQ(formats::frame_path("plain.exr", 3), "plain.exr");
+  EXPECT_EQ(spec::frame_path("a.#.exr", 123), "a.123.exr");
+  EXPECT_EQ(spec::frame_path("plain.exr", 3), "plain.exr");
 
-  formats::SceneDesc pinned =
+  spec::SceneDesc pinned =
       animated("quaking_aspen.toml", "[animation]\nframes = 10\npin_seed = true\n");
   scene::apply_frame(pinned, 6);
   EXPECT_EQ(pinned.render.seed, 9u);
   EXPECT_DOUBLE_EQ(pinned.clock, 0.25);  // fps 24 by default
 
-  formats::SceneDesc no_frame = animated("quaking_aspen.toml", "[animation]\nframes = 10\n");
+  spec::SceneDesc no_frame = animated("quaking_aspen.toml", "[animation]\nframes = 10\n");
   EXPECT_THROW(scene::apply_frame(no_frame, std::nullopt), InputError);  // #### but no --frame
-  formats::SceneDesc outside = animated("quaking_aspen.toml", "[animation]\nframes = 10\n");
+  spec::SceneDesc outside = animated("quaking_aspen.toml", "[animation]\nframes = 10\n");
   EXPECT_THROW(scene::apply_frame(outside, 10), InputError);
 }
 
@@ -62,8 +62,8 @@ TEST(Frames, AnimationTableIsChecked) {
 
 TEST(Frames, WindSwaysWithTheClockAndGrowthOnlyWhenAsked) {
   // Weber & Penn: the sway moves the limbs, the tree keeps its structure.
-  formats::SceneDesc still = animated("quaking_aspen.toml", "[animation]\nframes = 48\n");
-  formats::SceneDesc later = still;
+  spec::SceneDesc still = animated("quaking_aspen.toml", "[animation]\nframes = 48\n");
+  spec::SceneDesc later = still;
   later.clock = 1.0;
   const auto a = scene::build_scene(still, kOcioConfig), b = scene::build_scene(later, kOcioConfig);
   const generator::TreeGeometry &ga = *a->prototypes.at(0).geometry,
@@ -78,12 +78,12 @@ TEST(Frames, WindSwaysWithTheClockAndGrowthOnlyWhenAsked) {
   EXPECT_TRUE(moved);
 
   // The fractal model: its time is an age; without years_per_second it stands still.
-  formats::SceneDesc young = animated("fractal_broadleaf.toml", "[animation]\nframes = 48\n");
+  spec::SceneDesc young = animated("fractal_broadleaf.toml", "[animation]\nframes = 48\n");
   young.trees.at(0).time = 3.0;
-  formats::SceneDesc same = young;
+  spec::SceneDesc same = young;
   same.clock = 2.0;
   EXPECT_EQ(segments(young), segments(same));
-  formats::SceneDesc growing = young;
+  spec::SceneDesc growing = young;
   growing.animation.years_per_second = 2.0;
   growing.clock = 2.0;  // 3 + 4 years old
   EXPECT_GT(segments(growing), segments(young));

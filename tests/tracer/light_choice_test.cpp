@@ -15,8 +15,8 @@ namespace arbor::tracer {
 
 namespace {
 
-formats::SunDesc no_sun() {
-  formats::SunDesc sun;
+spec::SunDesc no_sun() {
+  spec::SunDesc sun;
   sun.enabled = false;
   return sun;
 }
@@ -37,19 +37,19 @@ std::string write_cap(int rows, int height) {
 }
 
 Sky cap_sky(int rows, int height) {
-  formats::SkyDesc desc;
-  desc.model = formats::SkyModel::Envmap;
+  spec::SkyDesc desc;
+  desc.model = spec::SkyModel::Envmap;
   desc.path = write_cap(rows, height);
-  return Sky(scene::sky_spec(desc), scene::sun_spec(no_sun()), xyz_to_scene_linear(), 2 * height);
+  return Sky(desc, no_sun(), xyz_to_scene_linear(), 2 * height);
 }
 
 }  // namespace
 
 TEST(LightChoice, CosineVarianceOfAConstantSkyIsZero) {
-  formats::SkyDesc desc;
-  desc.model = formats::SkyModel::Constant;
+  spec::SkyDesc desc;
+  desc.model = spec::SkyModel::Constant;
   desc.color = {0.12, 0.18, 0.3};
-  const Sky sky(scene::sky_spec(desc), scene::sun_spec(no_sun()), xyz_to_scene_linear(), 256);
+  const Sky sky(desc, no_sun(), xyz_to_scene_linear(), 256);
   EXPECT_NEAR(sky.cosine_variance_up(), 0.0f, 1e-3f);
 }
 
@@ -67,19 +67,19 @@ TEST(LightChoice, CosineVarianceOfACapIsCotSquaredOfItsAngle) {
 // The cases the rule was measured on (docs/rendering.md, "Light selection"): each decision is
 // the one that rendered with the higher efficiency.
 TEST(LightChoice, TheSkyIsLightSampledWhereThatMeasuredBetter) {
-  const auto choice = [](formats::SkyModel model, double elevation, bool sun_on) {
-    formats::SkyDesc desc;
+  const auto choice = [](spec::SkyModel model, double elevation, bool sun_on) {
+    spec::SkyDesc desc;
     desc.model = model;
     desc.color = {0.12, 0.18, 0.3};
     desc.dust_density = 3.0;
-    formats::SunDesc sun;
+    spec::SunDesc sun;
     sun.enabled = sun_on;
     sun.elevation = elevation;
     sun.irradiance = 3.0;
-    const Sky sky(scene::sky_spec(desc), scene::sun_spec(sun), xyz_to_scene_linear(), 256);
+    const Sky sky(desc, sun, xyz_to_scene_linear(), 256);
     return PathIntegrator::light_choice(sky);
   };
-  using M = formats::SkyModel;
+  using M = spec::SkyModel;
   // Constant sky and sun (the Cycles yardstick): every shadow ray to the sun.
   PathIntegrator::LightChoice c = choice(M::Constant, 38.0, true);
   EXPECT_EQ(c.sun, 1.0f);

@@ -11,7 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "common/math.h"
-#include "formats/scene_desc.h"
+#include "spec/scene_desc.h"
 #include "scene/render_input.h"
 #include "test_world.h"
 #include "tracer/lights/nishita.h"
@@ -66,8 +66,9 @@ TEST(LimbDarkening, TheProfileKeepsTheDisksMeanAndDarkensTheBlueMost) {
 // The sky's sun: the irradiance its radiance gives, integrated over the disk (200 rings), is the
 // sun's irradiance within 0.1 %; its centre is brighter than its mean radiance.
 TEST(LimbDarkening, TheSunKeepsItsIrradiance) {
-  scene::SunSpec sun{true, 40.0, 30.0, 3.0, 0.53};
-  scene::SkySpec none;
+  const spec::SunDesc sun{true, 40.0, 30.0, 3.0, 0.53};
+  spec::SkyDesc none;
+  none.model = spec::SkyModel::None;
   const Sky sky(none, sun, xyz_to_scene_linear(), 16);
   const glm::vec3 w = sky.sun_direction();
   const glm::vec3 a = glm::normalize(glm::cross(w, glm::vec3(0, 0, 1))), b = glm::cross(w, a);

@@ -7,13 +7,13 @@
 
 #include <gtest/gtest.h>
 
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 #include "test_world.h"
 
 namespace arbor::tracer {
 namespace {
 
-formats::SceneDesc aspen_seen_from(double distance, bool lod) {
+spec::SceneDesc aspen_seen_from(double distance, bool lod) {
   const std::string species = std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml";
   return formats::parse_scene(
       "[render]\nwidth = 640\nheight = 480\nlod = " + std::string(lod ? "true" : "false") +

@@ -9,7 +9,7 @@
 
 #include "common/math.h"
 #include "common/rng.h"
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 #include "test_world.h"
 #include "tracer/integrators/path.h"
 
@@ -51,7 +51,7 @@ double projected_area(const scene::GrassTile& t) {
 }
 
 void cover(double density, std::uint64_t seed, Cover& c) {
-  formats::SceneDesc desc = formats::parse_scene(
+  spec::SceneDesc desc = formats::parse_scene(
       "[meadow]\ndensity = " + std::to_string(density) +
           "\narea = [[-3.0, -3.0], [3.0, 3.0]]\nclumping = 0.0\nseed = " + std::to_string(seed) +
           "\n",
@@ -131,7 +131,7 @@ TEST(MeadowWorld, BladesCoverTheAreaAsTheDensitySaysAndNothingBeyond) {
 // where the offset is largest), a ray leaves in a random direction with the integrator's offset
 // rule; none may meet the same blade of the same cell again within a millimetre.
 TEST(MeadowWorld, RaysLeavingABladeDoNotHitItAgain) {
-  const formats::SceneDesc desc = formats::parse_scene(
+  const spec::SceneDesc desc = formats::parse_scene(
       "[meadow]\ndensity = 3000\narea = [[140.0, -90.0], [146.0, -84.0]]\n", "meadow.toml");
   const EmbreeDevice device("threads=1");
   const TestWorld w(desc, device);

@@ -28,13 +28,13 @@ glm::dvec3 rec709(const glm::dvec3& xyz) {
   return {c[0], c[1], c[2]};
 }
 
-Sky nishita_sky(double elevation, const formats::SkyDesc& base = {}, int width = 256) {
-  formats::SkyDesc sky = base;
-  sky.model = formats::SkyModel::Nishita;
-  formats::SunDesc sun;
+Sky nishita_sky(double elevation, const spec::SkyDesc& base = {}, int width = 256) {
+  spec::SkyDesc sky = base;
+  sky.model = spec::SkyModel::Nishita;
+  spec::SunDesc sun;
   sun.elevation = elevation;
   sun.azimuth = 0.0;
-  return Sky(scene::sky_spec(sky), scene::sun_spec(sun), xyz_to_scene_linear(), width);
+  return Sky(sky, sun, xyz_to_scene_linear(), width);
 }
 
 }  // namespace
@@ -60,7 +60,7 @@ TEST(Nishita, RayleighAndOzoneConstantsAreThePublishedOnes) {
 }
 
 TEST(Nishita, AnEmptyAtmosphereLetsTheSunThroughWhiteAndHasNoSky) {
-  formats::SkyDesc empty;
+  spec::SkyDesc empty;
   empty.air_density = empty.dust_density = empty.ozone_density = 0.0;
   const Sky sky = nishita_sky(30.0, empty, 64);
   ASSERT_TRUE(sky.has_sun());

@@ -23,8 +23,8 @@ namespace {
 const imaging::ColorTransform kIdentity = [](float*) {};
 
 // An aspen against the sky and the ground, 48x36.
-formats::SceneDesc tree_scene(int spp, int pass_spp, std::uint64_t seed, bool independent = false) {
-  formats::SceneDesc s;
+spec::SceneDesc tree_scene(int spp, int pass_spp, std::uint64_t seed, bool independent = false) {
+  spec::SceneDesc s;
   s.render.independent_passes = independent;
   s.render.width = 48;
   s.render.height = 36;
@@ -35,7 +35,7 @@ formats::SceneDesc tree_scene(int spp, int pass_spp, std::uint64_t seed, bool in
   s.render.threads = 2;
   s.camera.position = {9.0, -12.0, 4.0};
   s.camera.look_at = {0.0, 0.0, 6.0};
-  formats::TreeDesc t;
+  spec::TreeDesc t;
   t.species = std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml";
   t.seed = 3;
   // Matte leaves: the tests below are of the passes' variance bookkeeping, whatever the BSDF, and
@@ -46,10 +46,10 @@ formats::SceneDesc tree_scene(int spp, int pass_spp, std::uint64_t seed, bool in
   return s;
 }
 
-imaging::Image render(const formats::SceneDesc& s) {
+imaging::Image render(const spec::SceneDesc& s) {
   const EmbreeDevice device("threads=" + std::to_string(s.render.threads));
   const TestWorld test_world(s, device);
-  const Sky sky(scene::sky_spec(s.sky), scene::sun_spec(s.sun), xyz_to_scene_linear(), 128);
+  const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 128);
   imaging::RenderStats stats;
   return render_image(scene::render_input(s), test_world.world, sky, kIdentity, stats);
 }
@@ -143,7 +143,7 @@ TEST(Passes, PassesOfOneSequenceAreTheSinglePassSamples) {
 }
 
 TEST(Passes, AdaptiveSamplingStopsConvergedPixelsDeterministically) {
-  formats::SceneDesc s = tree_scene(256, 16, 3);
+  spec::SceneDesc s = tree_scene(256, 16, 3);
   s.render.noise_threshold = 0.05;
   s.render.min_spp = 32;
   const imaging::Image a = render(s);

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "imaging/color.h"
+#include "formats/scene_file.h"
 #include "scene/scene.h"
 #include "tracer/pbrt_scene.h"
 #include "tracer/test_world.h"
@@ -23,7 +24,7 @@ namespace arbor::tracer::pbrt_reading {
 // `arbor export`'s library part: the scene built, then written as pbrt-v4 sees it.
 inline void export_scene(const std::string& scene_path, const std::string& out,
                          int sky_resolution) {
-  const formats::SceneDesc desc = formats::load_scene(scene_path);
+  const spec::SceneDesc desc = formats::load_scene(scene_path);
   write_pbrt_scene(*scene::build_scene(desc, kOcioConfig), scene::render_input(desc),
                    imaging::ColorPipeline(kOcioConfig), out, sky_resolution);
 }

@@ -17,8 +17,8 @@ const imaging::ColorTransform kIdentity = [](float*) {};
 
 // A glossy-leaved aspen (cuticle roughness 0.35: GGX α 0.12, regularised to 0.245) under a low
 // sun and a constant sky, its crown filling the frame.
-formats::SceneDesc glossy_aspen(bool regularize, int max_depth) {
-  formats::SceneDesc s;
+spec::SceneDesc glossy_aspen(bool regularize, int max_depth) {
+  spec::SceneDesc s;
   s.render.width = 48;
   s.render.height = 36;
   s.render.spp = 64;
@@ -29,9 +29,9 @@ formats::SceneDesc glossy_aspen(bool regularize, int max_depth) {
   s.camera.focus_distance = 15.0;
   s.sun.elevation = 25.0;
   s.sun.azimuth = 60.0;
-  s.sky.model = formats::SkyModel::Constant;
+  s.sky.model = spec::SkyModel::Constant;
   s.sky.color = {0.3, 0.4, 0.6};
-  formats::TreeDesc t;
+  spec::TreeDesc t;
   t.species = std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml";
   t.seed = 3;
   t.leaf.cuticle_ior = 1.45;
@@ -40,10 +40,10 @@ formats::SceneDesc glossy_aspen(bool regularize, int max_depth) {
   return s;
 }
 
-imaging::Image render(const formats::SceneDesc& scene) {
+imaging::Image render(const spec::SceneDesc& scene) {
   const EmbreeDevice device;
   const TestWorld w(scene, device);
-  const Sky sky(scene::sky_spec(scene.sky), scene::sun_spec(scene.sun), xyz_to_scene_linear(), 64);
+  const Sky sky(scene.sky, scene.sun, xyz_to_scene_linear(), 64);
   imaging::RenderStats stats;
   return render_image(scene::render_input(scene), w.world, sky, kIdentity, stats);
 }

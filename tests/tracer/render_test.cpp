@@ -29,8 +29,8 @@ namespace {
 
 const imaging::ColorTransform kIdentity = [](float*) {};
 
-formats::SceneDesc small_scene(int width, int height, int spp) {
-  formats::SceneDesc s;
+spec::SceneDesc small_scene(int width, int height, int spp) {
+  spec::SceneDesc s;
   s.render.width = width;
   s.render.height = height;
   s.render.spp = spp;
@@ -41,28 +41,28 @@ formats::SceneDesc small_scene(int width, int height, int spp) {
 }
 
 // Straight down onto the ground from 5 m, a 20° view, no sky: what the ground's radiance tests see.
-formats::SceneDesc ground_view(int width, int height, int spp) {
-  formats::SceneDesc s = small_scene(width, height, spp);
+spec::SceneDesc ground_view(int width, int height, int spp) {
+  spec::SceneDesc s = small_scene(width, height, spp);
   s.camera.position = {0.0, 0.0, 5.0};
   s.camera.look_at = {0.0, 0.0, 0.0};
   s.camera.up = {0.0, 1.0, 0.0};
   s.camera.fov = 20.0;
-  s.sky.model = formats::SkyModel::None;
+  s.sky.model = spec::SkyModel::None;
   return s;
 }
 
 // The white furnace: a constant sky of radiance 1, no sun, no ground, paths long enough that
 // nothing is cut off.
-void white_furnace(formats::SceneDesc& s) {
+void white_furnace(spec::SceneDesc& s) {
   s.render.max_depth = 512;
   s.sun.enabled = false;
-  s.sky.model = formats::SkyModel::Constant;
+  s.sky.model = spec::SkyModel::Constant;
   s.sky.color = {1.0, 1.0, 1.0};
   s.ground.enabled = false;
 }
 
-formats::TreeDesc aspen() {
-  formats::TreeDesc t;
+spec::TreeDesc aspen() {
+  spec::TreeDesc t;
   t.species = std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml";
   t.seed = 3;
   return t;
@@ -70,8 +70,8 @@ formats::TreeDesc aspen() {
 
 // An aspen whose surfaces scatter everything: bark albedo 1 without relief (shading normals off
 // the geometry lose energy by design), leaves with R + T = 1.
-formats::TreeDesc white_aspen() {
-  formats::TreeDesc t = aspen();
+spec::TreeDesc white_aspen() {
+  spec::TreeDesc t = aspen();
   t.bark.albedo = Rgb{1.0, 1.0, 1.0};
   t.bark.bump_height = 0.0;
   t.leaf.reflectance = t.leaf.back_reflectance = Rgb{0.5, 0.6, 0.7};
@@ -82,12 +82,12 @@ formats::TreeDesc white_aspen() {
   return t;
 }
 
-imaging::Image render(const formats::SceneDesc& scene, imaging::RenderStats& stats) {
+imaging::Image render(const spec::SceneDesc& scene, imaging::RenderStats& stats) {
   const EmbreeDevice device(
       scene.render.threads > 0 ? "threads=" + std::to_string(scene.render.threads) : "");
   const TestWorld test_world(scene, device);
   const World& world = test_world.world;
-  const Sky sky(scene::sky_spec(scene.sky), scene::sun_spec(scene.sun), xyz_to_scene_linear(), 128);
+  const Sky sky(scene.sky, scene.sun, xyz_to_scene_linear(), 128);
   return render_image(scene::render_input(scene), world, sky, kIdentity, stats);
 }
 
@@ -96,10 +96,10 @@ imaging::Image render(const formats::SceneDesc& scene, imaging::RenderStats& sta
 TEST(Render, WhiteFurnaceOnARealTreeIsOneEverywhere) {
   // Bark albedo 1, leaves with R + T = 1, a constant sky of radiance 1, no ground, no sun: every
   // path carries exactly 1, so every pixel is 1 within noise.
-  formats::SceneDesc s = small_scene(32, 24, 64);
+  spec::SceneDesc s = small_scene(32, 24, 64);
   s.render.pass_spp = 4;  // 16 passes: each pixel's variance estimate has 15 degrees of freedom
   white_furnace(s);
-  formats::TreeDesc t = white_aspen();
+  spec::TreeDesc t = white_aspen();
   t.leaf.cuticle_ior = 1.0;  // the bare diffuse leaf (the next test adds the cuticle)
   s.trees.push_back(t);
   imaging::RenderStats stats;
@@ -126,10 +126,10 @@ TEST(Render, WhiteFurnaceWithGlossyLeavesStaysOne) {
   // bound: the mean within [0.97, 1.005]; the layering conserves energy up to the coat's albedo
   // table, so the test asks for the mean within 4 standard errors of 1 as well: measured 0.9955,
   // standard error 0.0018).
-  formats::SceneDesc s = small_scene(32, 24, 256);
+  spec::SceneDesc s = small_scene(32, 24, 256);
   s.render.pass_spp = 16;  // 16 passes
   white_furnace(s);
-  formats::TreeDesc t = white_aspen();
+  spec::TreeDesc t = white_aspen();
   t.leaf.cuticle_ior = 1.45;
   t.leaf.cuticle_roughness = 0.3;
   s.trees.push_back(t);
@@ -159,13 +159,13 @@ TEST(Render, WhiteFurnaceWithBumpMappedBarkLosesEnergyButNeverGainsIt) {
   // The white furnace on the trunk, close up, with the bark's relief on: a bumped shading normal
   // redistributes light and the integrator refuses directions below the geometry, so a little
   // energy is lost (never gained). Bark pixels stay at most 1 and within 1 % of it.
-  formats::SceneDesc s = small_scene(24, 32, 64);
+  spec::SceneDesc s = small_scene(24, 32, 64);
   s.render.pass_spp = 4;  // 16 passes: 15 degrees of freedom a pixel
   s.camera.position = {0.0, -3.0, 2.0};
   s.camera.look_at = {0.0, 0.0, 2.0};
   s.camera.fov = 12.0;
   white_furnace(s);
-  formats::TreeDesc t = aspen();
+  spec::TreeDesc t = aspen();
   t.bark.albedo = Rgb{1.0, 1.0, 1.0};
   t.bark.bump_height = 0.004;  // the species' default relief
   t.bark.roughness = 0.0;      // Lambertian (Oren–Nayar's qualitative model loses energy itself)
@@ -194,7 +194,7 @@ TEST(Render, WhiteFurnaceWithBumpMappedBarkLosesEnergyButNeverGainsIt) {
 
 TEST(Render, LambertianGroundUnderTheSunIsRhoEOverPi) {
   for (double elevation : {90.0, 30.0}) {
-    formats::SceneDesc s = ground_view(8, 8, 16);
+    spec::SceneDesc s = ground_view(8, 8, 16);
     s.sun.elevation = elevation;
     s.sun.irradiance = 2.0;
     s.ground.albedo = {0.5, 0.25, 0.1};
@@ -218,7 +218,7 @@ TEST(Render, LambertianGroundUnderTheSunIsRhoEOverPi) {
 TEST(Render, ASmallSunLightsTheGroundExactly) {
   // The bias was largest for small suns: at 0.5° the float 1 - cos α is 0.18 % off.
   for (double diameter : {0.5, 0.53, 0.1}) {
-    formats::SceneDesc s = ground_view(4, 4, 16);
+    spec::SceneDesc s = ground_view(4, 4, 16);
     s.sun.elevation = 90.0;
     s.sun.angular_diameter = diameter;
     s.sun.irradiance = 3.0;
@@ -235,7 +235,7 @@ TEST(Render, BsdfSampledHitsOnALargeSunAreWeightedByMis) {
   // twenty, so the BSDF branch of the sun's MIS carries real weight. A disk of uniform radiance
   // lies wholly above the horizon, so the ground's irradiance is still E cos(theta_s) exactly and
   // its radiance rho E cos(theta_s) / pi: right only when the two branches' weights sum to one.
-  formats::SceneDesc s = ground_view(8, 8, 256);
+  spec::SceneDesc s = ground_view(8, 8, 256);
   s.sun.elevation = 60.0;
   s.sun.angular_diameter = 40.0;
   s.sun.irradiance = 2.0;
@@ -255,11 +255,11 @@ TEST(Render, BsdfSampledHitsOnALargeSunAreWeightedByMis) {
 }
 
 TEST(Render, ConstantSkySeenDirectlyIsItsRadiance) {
-  formats::SceneDesc s = small_scene(8, 8, 4);
+  spec::SceneDesc s = small_scene(8, 8, 4);
   s.camera.look_at = {0.0, 0.0, 50.0};
   s.sun.enabled = false;
   s.ground.enabled = false;
-  s.sky.model = formats::SkyModel::Constant;
+  s.sky.model = spec::SkyModel::Constant;
   s.sky.color = {0.25, 0.5, 2.0};
   imaging::RenderStats stats;
   for (const glm::vec3& v : render(s, stats).beauty) {
@@ -270,7 +270,7 @@ TEST(Render, ConstantSkySeenDirectlyIsItsRadiance) {
 }
 
 TEST(Render, ImagesAreBitIdenticalAtAnyThreadCount) {
-  formats::SceneDesc s = small_scene(40, 30, 4);
+  spec::SceneDesc s = small_scene(40, 30, 4);
   s.trees.push_back(aspen());
   imaging::RenderStats a_stats, b_stats;
   s.render.threads = 1;
@@ -289,19 +289,19 @@ namespace {
 
 // Under the sun at the zenith (irradiance 2), no ground: the OBJ `text`, placed 1 m up, its
 // group "floor" diffuse of albedo 0.5.
-formats::SceneDesc floor_scene(const std::string& name, const std::string& text,
-                               const std::string& up) {
+spec::SceneDesc floor_scene(const std::string& name, const std::string& text,
+                            const std::string& up) {
   const std::string obj = ::testing::TempDir() + name;
   std::ofstream(obj) << text;
-  formats::SceneDesc s = ground_view(8, 8, 8);
+  spec::SceneDesc s = ground_view(8, 8, 8);
   s.sun.elevation = 90.0;
   s.sun.irradiance = 2.0;
   s.ground.enabled = false;
-  formats::MeshDesc m;
+  spec::MeshDesc m;
   m.path = obj;
   m.up = up;
   m.placement.position = {0.0, 0.0, 1.0};
-  formats::MeshMaterialDesc floor;
+  spec::MeshMaterialDesc floor;
   floor.kind = "diffuse";
   floor.albedo = {0.5, 0.5, 0.5};
   m.materials["floor"] = floor;
@@ -313,9 +313,9 @@ formats::SceneDesc floor_scene(const std::string& name, const std::string& text,
 
 TEST(Render, ObjMeshesAreConvertedToZUpAndUseTheirMaterials) {
   // A floor quad in a y-up OBJ (group "floor") must lie flat in arbor's z-up world.
-  formats::SceneDesc s =
+  spec::SceneDesc s =
       floor_scene("floor.obj", "v -5 0 -5\nv 5 0 -5\nv 5 0 5\nv -5 0 5\ng floor\nf 1 4 3 2\n", "y");
-  const formats::MeshMaterialDesc floor = s.meshes[0].materials["floor"];
+  const spec::MeshMaterialDesc floor = s.meshes[0].materials["floor"];
   imaging::RenderStats stats;
   for (const glm::vec3& v : render(s, stats).beauty) EXPECT_NEAR(v.x, 0.5 * 2.0 / kPi, 4e-3);
   // A group without a material entry is an error naming it.
@@ -334,7 +334,7 @@ TEST(Render, ObjVertexNormalsShadeTheMesh) {
   // surface facing 60° from the sun, ρE cos 60° / π, half the flat quad's ρE / π. Without
   // normals on its corners the same quad is flat again.
   const std::string quad = "v -5 -5 0\nv 5 -5 0\nv 5 5 0\nv -5 5 0\nvn 0.8660254 0 0.5\ng floor\n";
-  formats::SceneDesc s = floor_scene("leaning.obj", quad + "f 1//1 2//1 3//1 4//1\n", "z");
+  spec::SceneDesc s = floor_scene("leaning.obj", quad + "f 1//1 2//1 3//1 4//1\n", "z");
   imaging::RenderStats stats;
   for (const glm::vec3& v : render(s, stats).beauty) EXPECT_NEAR(v.x, 0.5 * 0.5 * 2.0 / kPi, 2e-3);
   s = floor_scene("leaning.obj", quad + "f 1 2 3 4\n", "z");
@@ -345,7 +345,7 @@ TEST(Render, ATreesCurvesAndItsOwnMeshExportCoverTheSamePixels) {
   // The Saguaro (periodic taper, whose radius law has unbounded slope where swellings meet)
   // rendered as curves and as its own OBJ export: the same camera rays (same sampler), so the
   // pixels that see the tree differ only along silhouettes, by the mesh's chord error.
-  formats::SceneDesc s;
+  spec::SceneDesc s;
   s.render.width = 96;
   s.render.height = 128;
   s.render.spp = 1;
@@ -355,7 +355,7 @@ TEST(Render, ATreesCurvesAndItsOwnMeshExportCoverTheSamePixels) {
   s.ground.enabled = false;
   s.camera.position = {0.0, -9.0, 3.0};
   s.camera.look_at = {0.0, 0.0, 3.0};
-  formats::TreeDesc t;
+  spec::TreeDesc t;
   t.species = std::string(ARBOR_SOURCE_DIR) + "/species/saguaro_cactus.toml";
   t.seed = 1;
   s.trees.push_back(t);
@@ -370,7 +370,7 @@ TEST(Render, ATreesCurvesAndItsOwnMeshExportCoverTheSamePixels) {
   const std::string obj = ::testing::TempDir() + "saguaro.obj";
   generator::write_obj(generator::tessellate(g), obj, {species.name, species.bark, species.leaf});
   s.trees.clear();
-  formats::MeshDesc m;
+  spec::MeshDesc m;
   m.path = obj;
   s.meshes.push_back(m);
   const imaging::Image mesh = render(s, stats);
@@ -398,14 +398,14 @@ TEST(Render, BarkBumpMapImagesShadeTheBarkAndMissingOnesAreErrors) {
     }
   }
   ASSERT_TRUE(stripes.write(path));
-  formats::SceneDesc s = small_scene(24, 32, 4);
+  spec::SceneDesc s = small_scene(24, 32, 4);
   s.camera.position = {0.0, -3.0, 2.0};
   s.camera.look_at = {0.0, 0.0, 2.0};
   s.camera.fov = 12.0;
-  s.sky.model = formats::SkyModel::None;
+  s.sky.model = spec::SkyModel::None;
   s.sun.elevation = 10.0;
   s.sun.azimuth = -90.0;
-  formats::TreeDesc t = aspen();
+  spec::TreeDesc t = aspen();
   t.bark.bump_map = path;
   t.bark.bump_tile = 0.1;
   t.bark.bump_height = 0.004;
@@ -441,12 +441,12 @@ TEST(Render, BarkBumpMapImagesShadeTheBarkAndMissingOnesAreErrors) {
 }
 
 TEST(Camera, ThinLensKeepsTheFocusPlaneSharp) {
-  formats::CameraDesc d;
+  spec::CameraDesc d;
   d.position = {0.0, 0.0, 0.0};
   d.look_at = {0.0, 10.0, 0.0};
   d.aperture_radius = 0.05;
   d.focus_distance = 7.0;
-  const Camera cam(scene::camera_spec(d), 64, 48);
+  const Camera cam(d, 64, 48);
   for (glm::vec2 film : {glm::vec2(32, 24), glm::vec2(5, 40), glm::vec2(60, 3)}) {
     const Ray centre = cam.generate(film, {0.5f, 0.5f});
     // Where rays through different lens points meet the plane y = 7 (the focus plane).
@@ -473,13 +473,13 @@ TEST(Sky, SamplingIsConsistentWithItsPdfAndRadiance) {
     }
   }
   ASSERT_TRUE(env.write(path));
-  for (const formats::SkyModel model : {formats::SkyModel::Envmap, formats::SkyModel::Preetham}) {
-    formats::SkyDesc desc;
+  for (const spec::SkyModel model : {spec::SkyModel::Envmap, spec::SkyModel::Preetham}) {
+    spec::SkyDesc desc;
     desc.model = model;
     desc.path = path;
     desc.rotation = 30.0;
-    formats::SunDesc sun;
-    const Sky sky(scene::sky_spec(desc), scene::sun_spec(sun), xyz_to_scene_linear(), 128);
+    spec::SunDesc sun;
+    const Sky sky(desc, sun, xyz_to_scene_linear(), 128);
     // (1) pdf() agrees with sample(); (2) E[L / pdf] equals the integral of L over the sphere.
     glm::dvec3 estimate(0.0);
     const int n = 200000;

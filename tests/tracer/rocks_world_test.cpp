@@ -6,14 +6,14 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 #include "test_world.h"
 
 namespace arbor::tracer {
 namespace {
 
 TEST(RocksWorld, RaysDownMeetEachRockAndTheTerrainBeside) {
-  const formats::SceneDesc desc = formats::parse_scene(
+  const spec::SceneDesc desc = formats::parse_scene(
       "[terrain]\nkind = \"mountains\"\nsize = 100\nrelief = 30\nresolution = 1\nseed = 5\n"
       "[rocks]\ndensity = 0.05\nsize_min = 0.5\nsize_max = 2\n",
       "rocks.toml");

@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "common/rng.h"
-#include "formats/scene_desc.h"
+#include "formats/scene_file.h"
 #include "test_world.h"
 
 namespace arbor::tracer {
@@ -37,7 +37,7 @@ double rendered_height(const World& world, double x, double y) {
 }
 
 TEST(TerrainWorld, TheRenderedSurfaceIsTheOneHeightStates) {
-  const formats::SceneDesc desc =
+  const spec::SceneDesc desc =
       formats::parse_scene(std::string(kMountains) + "[ground]\nenabled = false\n", "terrain.toml");
   const EmbreeDevice device;
   const TestWorld w(desc, device);
@@ -59,7 +59,7 @@ TEST(TerrainWorld, TheRenderedSurfaceIsTheOneHeightStates) {
 }
 
 TEST(TerrainWorld, EveryTreeOfAForestStandsOnTheSurface) {
-  const formats::SceneDesc desc = formats::parse_scene(
+  const spec::SceneDesc desc = formats::parse_scene(
       std::string(kMountains) + "[ground]\nenabled = false\n[[forest]]\nspecies = \"" +
           ARBOR_SOURCE_DIR +
           "/species/lsystem_weed.lsys\"\ncount = 200\nvariants = 2\n"
@@ -79,7 +79,7 @@ struct Faces {
 };
 
 Faces look_down(const std::string& terrain) {
-  const formats::SceneDesc desc = formats::parse_scene(terrain, "terrain.toml");
+  const spec::SceneDesc desc = formats::parse_scene(terrain, "terrain.toml");
   const EmbreeDevice device;
   const TestWorld w(desc, device);
   const scene::Terrain& t = w.scene->terrain;
@@ -141,7 +141,7 @@ std::string slope_image(const std::string& name, double degrees) {
 TEST(TerrainWorld, ATreeOnASlopeMeetsItAllRound) {
   const std::string dem = slope_image("slope30.exr", 30.0);
   for (const char* species : {"quaking_aspen.toml", "lsystem_weed.lsys"}) {
-    const formats::SceneDesc desc = formats::parse_scene(
+    const spec::SceneDesc desc = formats::parse_scene(
         "[terrain]\nkind = \"image\"\npath = \"" + dem +
             "\"\nmetres_per_pixel = 0.5\n[ground]\nenabled = false\n[[tree]]\nspecies = \"" +
             ARBOR_SOURCE_DIR + "/species/" + species + "\"\n",
@@ -174,7 +174,7 @@ TEST(TerrainWorld, ATreeOnASlopeMeetsItAllRound) {
 // cells sunk under the square (a ray through a crack would). Mountains of 400 m relief, whose
 // ridges the surround's coarser grid misses most.
 TEST(TerrainWorld, TheSurroundMeetsTheSquareWithoutAGap) {
-  const formats::SceneDesc desc = formats::parse_scene(
+  const spec::SceneDesc desc = formats::parse_scene(
       "[terrain]\nkind = \"mountains\"\nsize = 600\nrelief = 400\nresolution = 2\nseed = 3\n"
       "[ground]\nenabled = false\n",
       "surround.toml");
@@ -236,7 +236,7 @@ TEST(TerrainWorld, TheSurroundMeetsTheSquareWithoutAGap) {
 TEST(TerrainWorld, TheGroundPlaneReachesTheHorizon) {
   for (const char* terrain : {"", "[terrain]\nkind = \"hills\"\nsize = 200\nrelief = 20\n"}) {
     SCOPED_TRACE(terrain);
-    const formats::SceneDesc desc = formats::parse_scene(terrain, "plane.toml");
+    const spec::SceneDesc desc = formats::parse_scene(terrain, "plane.toml");
     const EmbreeDevice device;
     const TestWorld w(desc, device);
     const float level =

@@ -18,7 +18,7 @@ namespace arbor::tracer {
 inline const std::string kOcioConfig = std::string(ARBOR_SOURCE_DIR) + "/imaging/ocio/config.ocio";
 
 struct TestWorld {
-  TestWorld(const formats::SceneDesc& desc, const EmbreeDevice& device)
+  TestWorld(const spec::SceneDesc& desc, const EmbreeDevice& device)
       : scene(scene::build_scene(desc, kOcioConfig)), world(*scene, device) {}
   std::unique_ptr<const scene::Scene> scene;
   World world;
@@ -28,7 +28,7 @@ struct TestWorld {
 class GeometryWorld {
  public:
   GeometryWorld(const generator::TreeGeometry& g, const EmbreeDevice& device,
-                const formats::Placement& placement = {})
+                const spec::Placement& placement = {})
       : scene_(make_scene(g, placement)), world_(*scene_, device) {}
   // The closest hit in world space; false when the ray escapes.
   bool intersect(const Ray& ray, SurfaceHit& hit) const {
@@ -43,7 +43,7 @@ class GeometryWorld {
 
  private:
   static std::unique_ptr<scene::Scene> make_scene(const generator::TreeGeometry& g,
-                                                  const formats::Placement& placement) {
+                                                  const spec::Placement& placement) {
     auto scene = std::make_unique<scene::Scene>();
     scene::TreePrototypeData p;
     p.geometry = std::make_unique<generator::TreeGeometry>(g);

@@ -38,8 +38,8 @@ std::string known_skeleton() {
                     "connect 1 2\nconnect 2 3\nconnect 2 4\nconnect 4 5\nconnect 3 6\n");
 }
 
-formats::TreeDesc tree_of(const std::string& species) {
-  formats::TreeDesc t;
+spec::TreeDesc tree_of(const std::string& species) {
+  spec::TreeDesc t;
   t.species = species;
   return t;
 }
@@ -83,20 +83,20 @@ TEST(Treemaker, FactorsMatchHandWorkedValues) {
 }
 
 TEST(Treemaker, SkyIrradianceOfAConstantSkyIsPiL) {
-  formats::SkyDesc sky;
-  sky.model = formats::SkyModel::Constant;
+  spec::SkyDesc sky;
+  sky.model = spec::SkyModel::Constant;
   sky.color = {0.5, 1.0, 2.0};
-  formats::SunDesc sun;
+  spec::SunDesc sun;
   sun.enabled = false;
-  const Sky s(scene::sky_spec(sky), scene::sun_spec(sun), xyz_to_scene_linear(), 256);
+  const Sky s(sky, sun, xyz_to_scene_linear(), 256);
   EXPECT_NEAR(s.irradiance_up().x, kPi * 0.5, 2e-3 * kPi);
   EXPECT_NEAR(s.irradiance_up().y, kPi * 1.0, 2e-3 * kPi);
   EXPECT_NEAR(s.irradiance_up().z, kPi * 2.0, 2e-3 * kPi);
 }
 
 TEST(Treemaker, TreeExtentIsMeasuredFromTheFirstPoint) {
-  formats::SceneDesc scene;
-  formats::TreeDesc t = tree_of(known_skeleton());
+  spec::SceneDesc scene;
+  spec::TreeDesc t = tree_of(known_skeleton());
   t.placement.position = {10.0, 0.0, 0.0};
   t.placement.scale = 2.0;
   t.placement.rotation = 90.0;
@@ -115,9 +115,9 @@ TEST(Treemaker, TreeExtentIsMeasuredFromTheFirstPoint) {
 }
 
 TEST(Treemaker, WeightsComeFromTheTemplateThenTheScene) {
-  formats::SceneDesc scene;
+  spec::SceneDesc scene;
   scene.trees.push_back(tree_of(std::string(ARBOR_SOURCE_DIR) + "/species/dogwood.tmpl"));
-  formats::TreeDesc overridden = scene.trees.back();
+  spec::TreeDesc overridden = scene.trees.back();
   overridden.treemaker.angle = 0.7;
   scene.trees.push_back(overridden);
   scene.trees.push_back(tree_of(known_skeleton()));
@@ -146,20 +146,20 @@ TEST(Treemaker, WeightsComeFromTheTemplateThenTheScene) {
 // (T = z) under a sun 30° up has N·L = sqrt(1 − (T·L)²) = cos 30° everywhere, and h/h0 is the
 // hit's height over the trunk's 10 m, which a horizontal camera sees row by row.
 TEST(Treemaker, ShadeOfAVerticalTrunkIsWorkedOutFromTheView) {
-  formats::SceneDesc s;
+  spec::SceneDesc s;
   s.render.width = 16;
   s.render.height = 64;
   s.render.treemaker_spp = 1;
-  s.render.integrator = formats::Integrator::Treemaker;
+  s.render.integrator = spec::Integrator::Treemaker;
   s.camera.position = {0.0, -20.0, 5.0};
   s.camera.look_at = {0.0, 0.0, 5.0};
   s.camera.fov = 40.0;
   s.sun.elevation = 30.0;
   s.sun.azimuth = 0.0;
   s.sun.irradiance = 2.0;
-  s.sky.model = formats::SkyModel::None;
+  s.sky.model = spec::SkyModel::None;
   s.ground.enabled = false;
-  formats::TreeDesc t =
+  spec::TreeDesc t =
       tree_of(write_file("tm_pole.skel", "point 1 0 0 0 0.3\npoint 2 0 0 10 0.3\nconnect 1 2\n"));
   t.bark.albedo = Rgb{0.5, 0.5, 0.5};
   t.treemaker = {0.0, 1.0, 0.0, 0.0, 0.0};  // N·L alone
@@ -170,7 +170,7 @@ TEST(Treemaker, ShadeOfAVerticalTrunkIsWorkedOutFromTheView) {
   for (int part = 0; part < 2; ++part) {
     if (part == 1) s.trees[0].treemaker = {0.0, 0.0, 1.0, 0.0, 0.0};  // h/h0 alone
     const TestWorld test_world(s, device);
-    const Sky sky(scene::sky_spec(s.sky), scene::sun_spec(s.sun), xyz_to_scene_linear(), 64);
+    const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 64);
     imaging::RenderStats stats;
     const imaging::Image img =
         render_image(scene::render_input(s), test_world.world, sky, kIdentity, stats);
@@ -204,11 +204,11 @@ TEST(Treemaker, ShadeOfAVerticalTrunkIsWorkedOutFromTheView) {
 // are ρ(E_sun cos θ + E_sky)/π in sunlight and ρ E_sky/π in the tree's shadow, which lies on the
 // side away from the sun.
 TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
-  formats::SceneDesc s;
+  spec::SceneDesc s;
   s.render.width = 64;
   s.render.height = 64;
   s.render.treemaker_spp = 1;
-  s.render.integrator = formats::Integrator::Treemaker;
+  s.render.integrator = spec::Integrator::Treemaker;
   s.output.aovs = {};
   s.output.aovs.add(imaging::Aov::Treemaker);
   s.camera.position = {0.0, 0.0, 60.0};  // straight down onto the tree and its shadow
@@ -218,10 +218,10 @@ TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
   s.sun.elevation = 45.0;
   s.sun.azimuth = 0.0;  // from +x: shadows fall towards −x
   s.sun.irradiance = 2.0;
-  s.sky.model = formats::SkyModel::Constant;
+  s.sky.model = spec::SkyModel::Constant;
   s.sky.color = {0.25, 0.25, 0.25};
   s.ground.albedo = {0.5, 0.5, 0.5};
-  formats::TreeDesc t = tree_of(known_skeleton());
+  spec::TreeDesc t = tree_of(known_skeleton());
   t.placement.position = {-1.0, -2.0, 0.0};  // base at the origin
   t.placement.scale = 1.5;
   t.treemaker.ambient = 0.3;
@@ -229,7 +229,7 @@ TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
   const EmbreeDevice device("");
   const TestWorld test_world(s, device);
   const World& world = test_world.world;
-  const Sky sky(scene::sky_spec(s.sky), scene::sun_spec(s.sun), xyz_to_scene_linear(), 256);
+  const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 256);
   const TreemakerIntegrator integrator(world, sky);
   const float e_sky = sky.irradiance_up().x;
   EXPECT_NEAR(integrator.max_intensity().x, (2.0f + e_sky) / kPi, 1e-5);
@@ -274,16 +274,16 @@ TEST(Treemaker, RenderedShadeAndGroundShadowFollowTheFormula) {
 }
 
 TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
-  formats::SceneDesc s;
+  spec::SceneDesc s;
   s.render.width = 48;
   s.render.height = 32;
   s.render.treemaker_spp = 3;
-  s.render.integrator = formats::Integrator::Treemaker;
+  s.render.integrator = spec::Integrator::Treemaker;
   s.output.aovs = {};
   s.output.aovs.add(imaging::Aov::Treemaker);
   s.camera.position = {9.0, -12.0, 4.0};
   s.camera.look_at = {0.0, 0.0, 6.0};
-  formats::TreeDesc t = tree_of(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
+  spec::TreeDesc t = tree_of(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen.toml");
   s.trees.push_back(t);
   imaging::Image images[2];
   for (int threads : {1, 2}) {
@@ -291,7 +291,7 @@ TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
     const EmbreeDevice device("threads=" + std::to_string(threads));
     const TestWorld test_world(s, device);
     const World& world = test_world.world;
-    const Sky sky(scene::sky_spec(s.sky), scene::sun_spec(s.sun), xyz_to_scene_linear(), 128);
+    const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 128);
     imaging::RenderStats stats;
     images[threads - 1] = render_image(scene::render_input(s), world, sky, kIdentity, stats);
   }
@@ -308,7 +308,7 @@ TEST(Treemaker, ImagesAreBitIdenticalAtOneAndTwoThreadsWithOrWithoutAovs) {
   const EmbreeDevice device("threads=2");
   const TestWorld test_world(s, device);
   const World& world = test_world.world;
-  const Sky sky(scene::sky_spec(s.sky), scene::sun_spec(s.sun), xyz_to_scene_linear(), 128);
+  const Sky sky(s.sky, s.sun, xyz_to_scene_linear(), 128);
   imaging::RenderStats stats;
   const imaging::Image plain = render_image(scene::render_input(s), world, sky, kIdentity, stats);
   EXPECT_TRUE(plain.extra.empty());

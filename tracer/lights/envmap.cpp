@@ -12,7 +12,7 @@
 namespace arbor::tracer {
 
 SkyMap envmap_sky_map(const SkyContext& c) {
-  const scene::SkySpec& sky = c.sky;
+  const spec::SkyDesc& sky = c.sky;
   DecodedImage image = read_image_file(sky.path, "environment map", true);
   SkyMap map;
   map.width = image.width;

@@ -23,10 +23,10 @@ Atmosphere atmosphere_of(const SkyContext& c) {
   atmosphere.dust_density = c.sky.dust_density;
   atmosphere.ozone_density = c.sky.ozone_density;
   atmosphere.altitude = c.sky.altitude;
-  if (c.sky.model == formats::SkyModel::Atmosphere) {
+  if (c.sky.model == spec::SkyModel::Atmosphere) {
     // Every order of scattering over a ground of the albedo given; the aerosols by the key given.
     atmosphere.multiple_scattering = true;
-    atmosphere.ground_albedo = c.sky.ground_albedo;
+    atmosphere.ground_albedo = spec::ground_albedo_under(c.sky);
     if (!c.sky.dust_given) {
       atmosphere.dust_density = c.sky.visibility > 0.0
                                     ? atmosphere::dust_for_visibility(c.sky.visibility)
@@ -95,7 +95,7 @@ SkyMap nishita_sky_map(const SkyContext& c) {
         }
       });
   map.sun_irradiance = to_linear(model.sun_irradiance_xyz());
-  if (c.sky.aerial_perspective) map.aerial = aerial_of(model, to_linear);
+  if (c.aerial_perspective) map.aerial = aerial_of(model, to_linear);
   return map;
 }
 

@@ -36,8 +36,8 @@ std::vector<glm::vec3> limb_table(const imaging::ColorTransform& xyz_to_linear) 
 
 }  // namespace
 
-Sky::Sky(const scene::SkySpec& sky, const scene::SunSpec& sun,
-         const imaging::ColorTransform& xyz_to_linear, int width) {
+Sky::Sky(const spec::SkyDesc& sky, const spec::SunDesc& sun,
+         const imaging::ColorTransform& xyz_to_linear, int width, bool aerial_perspective) {
   const double elevation = sun.elevation * kPi / 180.0, azimuth = sun.azimuth * kPi / 180.0;
   sun_direction_d_ = glm::dvec3(std::cos(elevation) * std::cos(azimuth),
                                 std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
@@ -55,9 +55,10 @@ Sky::Sky(const scene::SkySpec& sky, const scene::SunSpec& sun,
     sun_present_ = true;
     limb_ = limb_table(xyz_to_linear);
   }
-  if (sky.model == formats::SkyModel::None) return;
+  if (sky.model == spec::SkyModel::None) return;
   rotation_ = static_cast<float>(sky.rotation * kPi / 180.0);
-  SkyMap map = make_sky_map({sky, sun, sun_direction_d_, xyz_to_linear, width, rotation_});
+  SkyMap map = make_sky_map(
+      {sky, sun, sun_direction_d_, xyz_to_linear, width, rotation_, aerial_perspective});
   width_ = map.width;
   height_ = map.height;
   map_ = std::move(map.texels);

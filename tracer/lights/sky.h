@@ -24,12 +24,18 @@ struct LightSample {
   float pdf = 0.0f;  // solid angle
 };
 
+// The sky map's width in texels (its height is half) where the render does not choose another.
+inline constexpr int kSkyMapWidth = 512;
+
 class Sky {
  public:
   // Builds the map at `width` × width/2; throws InputError for an unreadable environment map.
   // `xyz_to_scene_linear` converts the Preetham model's XYZ (ColorPipeline::xyz_to_scene_linear).
-  Sky(const scene::SkySpec& sky, const scene::SunSpec& sun,
-      const imaging::ColorTransform& xyz_to_scene_linear, int width = 512);
+  // With `aerial_perspective` ([render]'s key), the nishita and atmosphere skies build the air's
+  // table (aerial()).
+  Sky(const spec::SkyDesc& sky, const spec::SunDesc& sun,
+      const imaging::ColorTransform& xyz_to_scene_linear, int width = kSkyMapWidth,
+      bool aerial_perspective = false);
 
   glm::vec3 radiance(const glm::vec3& direction) const;  // sky only, not the sun
   LightSample sample(glm::vec2 u) const;

@@ -134,9 +134,9 @@ std::uint64_t sky_cache_key(const SkyContext& c, const char* model) {
   h = mix(h, c.sky.dust_density);
   h = mix(h, c.sky.ozone_density);
   h = mix(h, c.sky.altitude);
-  if (c.sky.model == formats::SkyModel::Atmosphere) {
+  if (c.sky.model == spec::SkyModel::Atmosphere) {
     h = mix(h, c.sky.visibility);
-    h = mix(h, c.sky.ground_albedo);
+    h = mix(h, spec::ground_albedo_under(c.sky));
     h = mix(h, static_cast<double>(c.sky.turbidity_given) + 2.0 * c.sky.dust_given);
   }
   h = mix(h, c.sun.irradiance);

@@ -22,7 +22,7 @@ namespace {
 // map read back has none: it is made from the model again).
 SkyMap atmosphere_map(const SkyContext& context, const char* model) {
   SkyMap map = cached_sky_map(context, model, nishita_sky_map);
-  if (context.sky.aerial_perspective && !map.aerial) map.aerial = nishita_aerial(context);
+  if (context.aerial_perspective && !map.aerial) map.aerial = nishita_aerial(context);
   return map;
 }
 
@@ -30,12 +30,12 @@ SkyMap atmosphere_map(const SkyContext& context, const char* model) {
 
 SkyMap make_sky_map(const SkyContext& context) {
   switch (context.sky.model) {
-    case formats::SkyModel::Preetham: return preetham_sky_map(context);
-    case formats::SkyModel::Constant: return constant_sky_map(context);
-    case formats::SkyModel::Envmap: return envmap_sky_map(context);
-    case formats::SkyModel::Nishita: return atmosphere_map(context, "nishita");
-    case formats::SkyModel::Atmosphere: return atmosphere_map(context, "atmosphere");
-    case formats::SkyModel::None: break;
+    case spec::SkyModel::Preetham: return preetham_sky_map(context);
+    case spec::SkyModel::Constant: return constant_sky_map(context);
+    case spec::SkyModel::Envmap: return envmap_sky_map(context);
+    case spec::SkyModel::Nishita: return atmosphere_map(context, "nishita");
+    case spec::SkyModel::Atmosphere: return atmosphere_map(context, "atmosphere");
+    case spec::SkyModel::None: break;
   }
   throw std::logic_error("make_sky_map: no map for this sky model");
 }

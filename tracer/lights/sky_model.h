@@ -2,7 +2,7 @@
 // sun, the sun's irradiance at the ground). One file per model (preetham.cpp, constant_sky.cpp,
 // envmap.cpp, nishita_map.cpp), one factory keyed by SkyModel (sky_model.cpp); the Sky (sky.h)
 // samples whatever map it gets. A new model: its file, its case in the factory, its name in
-// formats/scene_desc.h, its source in tracer/CMakeLists.txt.
+// spec/scene_desc.h, its source in tracer/CMakeLists.txt.
 #pragma once
 
 #include <memory>
@@ -21,12 +21,13 @@ class AerialPerspective;
 
 // What a model is made from.
 struct SkyContext {
-  const scene::SkySpec& sky;
-  const scene::SunSpec& sun;
+  const spec::SkyDesc& sky;
+  const spec::SunDesc& sun;
   glm::dvec3 sun_direction;                      // unit, z up
   const imaging::ColorTransform& xyz_to_linear;  // CIE XYZ → scene-linear
   int width = 512;                               // of the map, for the models that compute theirs
   float rotation = 0.0f;                         // radians about z of the map's columns
+  bool aerial_perspective = false;               // the air's table too (nishita, atmosphere)
 };
 
 // A lat-long map: `width` columns over the azimuth, `height` rows from the zenith (row 0) to the

@@ -7,9 +7,9 @@
 #include <glm/vec3.hpp>
 
 #include "common/error.h"
-#include "formats/scene_desc.h"
+#include "spec/scene_desc.h"
 
-namespace arbor::formats {
+namespace arbor::spec {
 
 void check_camera(const CameraDesc& d) {
   const glm::vec3 origin(d.position[0], d.position[1], d.position[2]);
@@ -70,4 +70,4 @@ std::vector<std::string> scene_inputs(const SceneDesc& s) {
   return in;
 }
 
-}  // namespace arbor::formats
+}  // namespace arbor::spec

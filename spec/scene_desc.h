@@ -1,5 +1,8 @@
-// The scene file contract (DESIGN.md) as plain data: what a scene asks for, before anything is
-// built. Paths are already resolved relative to the scene file.
+// The scene file contract (docs/scene-format.md) as plain data: what a scene asks for, before
+// anything is built, and what the renderer reads. formats/ fills it from a file (formats/
+// scene_file.h), scene/ builds the world from it, tracer/ reads its settings; it sits below all
+// three so that none of them reaches another's code. Paths are already resolved relative to the
+// scene file.
 #pragma once
 
 #include <algorithm>
@@ -17,7 +20,7 @@
 #include "generator/species.h"
 #include "imaging/output_spec.h"
 
-namespace arbor::formats {
+namespace arbor::spec {
 
 using Vec3d = std::array<double, 3>;
 
@@ -56,6 +59,9 @@ struct RenderSettings {
   // The air between the camera and what it sees (the nishita and atmosphere skies' atmosphere,
   // the path integrator): off for references
   bool aerial_perspective = false;
+
+  // The sample count of the integrator in use.
+  int samples() const { return integrator == Integrator::Treemaker ? treemaker_spp : spp; }
 };
 
 struct CameraDesc {
@@ -188,6 +194,12 @@ inline double mean_albedo(const GroundDesc& g) {
   const double plain = (1.0 - g.patch_cover - stones) * y(g.albedo) +
                        g.patch_cover * y(g.patch_albedo) + stones * y(g.stone_albedo);
   return (1.0 - g.litter) * plain + g.litter * y(g.litter_albedo);
+}
+
+// The ground's albedo under the atmosphere sky: the one stated (the reader fills in [ground]'s),
+// or, for a description made in code (negative), the default ground's.
+inline double ground_albedo_under(const SkyDesc& s) {
+  return s.ground_albedo >= 0.0 ? s.ground_albedo : mean_albedo(GroundDesc{});
 }
 
 // Linke's turbidity of an atmosphere without aerosols (and 1.5 cm of precipitable water), rounded
@@ -375,21 +387,7 @@ struct SceneDesc {
 // length ("out/wind.####.exr", 7 → "out/wind.0007.exr"); `path` when it has no '#'.
 std::string frame_path(const std::string& path, int frame);
 
-// Reads and validates a scene file: unknown keys and out-of-range values are InputErrors with
-// their position; relative paths are resolved against the scene file's folder. Every input the
-// scene uses (scene_inputs) must be a readable regular file: else InputError at the key naming it.
-SceneDesc load_scene(const std::string& path);
-SceneDesc parse_scene(const std::string& text, const std::string& path);
-
-// Every [render] key and its value at full precision, "name value" items joined by "; "
-// ("width 480; height 360; spp 256; …"): what a render's fingerprint holds of its settings.
-std::string render_settings_text(const RenderSettings& render);
-
-// The scene file's key reference, as docs/scene-format.md holds it (Markdown, generated from the
-// key tables that the reader reads by).
-std::string scene_key_reference();
-
 // Every file the scene reads: the scene itself, species, textures, the environment map, meshes.
 std::vector<std::string> scene_inputs(const SceneDesc& scene);
 
-}  // namespace arbor::formats
+}  // namespace arbor::spec
