@@ -45,6 +45,16 @@ void read_sky(const KeyValue& v, spec::SkyDesc& s) {
     throw InputError(v.where(), "sky.model = \"envmap\" needs sky.path (an image OIIO reads)");
 }
 
+// The render settings by the integrator in use (a key of the other integrator is an error).
+void read_render(const KeyValue& v, spec::RenderSettings& r) {
+  const toml::table& t = v.table();
+  if (const toml::node* integrator = t.get("integrator"))
+    r.integrator = static_cast<spec::Integrator>(
+        v.reader.choice_index(*integrator, "render.integrator", spec::kIntegratorNames));
+  const ModelInUse model{"render.integrator", name_of(r.integrator)};
+  read_keys(v.reader, t, "render", "[render]", render_keys(), r, &model);
+}
+
 void read_terrain(const KeyValue& v, spec::TerrainDesc& t) {
   const toml::table& table = v.table();
   t.enabled = true;
@@ -116,7 +126,7 @@ const std::vector<Key<spec::SceneDesc>>& scene_keys() {
   using keys::custom;
   static const std::vector<Key<S>> table = {
       custom<S>("render", KeyKind::Table, "the image and how it is sampled",
-                [](const KeyValue& v, S& s) { read_table(v, render_keys(), s.render); }),
+                [](const KeyValue& v, S& s) { read_render(v, s.render); }),
       custom<S>("camera", KeyKind::Table, "the camera (z up)",
                 [](const KeyValue& v, S& s) { read_table(v, camera_keys(), s.camera); }),
       custom<S>("sun", KeyKind::Table, "the sun",

@@ -75,7 +75,8 @@ const std::vector<Key<spec::RenderSettings>>& render_keys() {
           .shows("\"path\""),
       flag("regularize", &R::regularize,
            "roughen glossy coats after a diffuse bounce (pbrt-v4's rule; biased, off for "
-           "references)"),
+           "references)")
+          .only_for("path"),
       flag("lod", &R::lod,
            "thin distant trees' limbs and leaves by Weber & Penn's §5 (approximate, off for "
            "references)"),
@@ -83,15 +84,18 @@ const std::vector<Key<spec::RenderSettings>>& render_keys() {
             "Weber & Penn's quality factor: larger keeps detail farther away"),
       value("max_depth", &R::max_depth, Range{1, 1024, "bounces"}, "the most bounces a path takes"),
       value("treemaker_spp", &R::treemaker_spp, kSamples,
-            "samples per pixel of the treemaker integrator (anti-aliasing)"),
+            "samples per pixel of the treemaker integrator (anti-aliasing)")
+          .only_for("treemaker"),
       value("pass_spp", &R::pass_spp, kSamples,
             "samples a pixel takes per pass (a power of two keeps the sequence balanced)"),
       flag("independent_passes", &R::independent_passes,
            "each pass its own scramble, so the variance is unbiased (references)"),
       value("noise_threshold", &R::noise_threshold, kUnit,
-            "adaptive sampling: the relative standard error a pixel stops at; 0: off"),
+            "adaptive sampling: the relative standard error a pixel stops at; 0: off")
+          .only_for("path"),
       value("min_spp", &R::min_spp, Range{0, 1 << 20, "samples per pixel"},
-            "adaptive sampling: the samples a pixel takes before it may stop"),
+            "adaptive sampling: the samples a pixel takes before it may stop")
+          .only_for("path"),
       flag("aerial_perspective", &R::aerial_perspective,
            "the air between the camera and what it sees (the nishita and atmosphere skies, the "
            "path integrator)"),

@@ -25,7 +25,8 @@ std::string markdown(const Section& s) {
   bool models = false;
   for (const KeyDoc& k : s.keys) models = models || !k.belongs.empty();
   std::string md = "## " + s.title + "\n\n" + s.intro +
-                   "\n\n| key | type | range | default | meaning |" + (models ? " models |" : "") +
+                   "\n\n| key | type | range | default | meaning |" +
+                   (models ? s.title == "[render]" ? " integrators |" : " models |" : "") +
                    "\n|---|---|---|---|---|" + (models ? "---|" : "") + "\n";
   for (const KeyDoc& k : s.keys) {
     md += "| `" + k.name + "` | " + k.kind + " | " + cell(k.range) + " | " + cell(k.default_value) +
@@ -42,7 +43,11 @@ std::string scene_key_reference() {
   const std::vector<Section> sections = {
       {"The tables", "A scene file is TOML; its top level holds these tables and no other key.",
        key_docs(scene_keys())},
-      {"[render]", "The image and how it is sampled (docs/rendering.md).", key_docs(render_keys())},
+      {"[render]",
+       "The image and how it is sampled (docs/rendering.md); a key of the other integrator than "
+       "the "
+       "one in use is an error.",
+       key_docs(render_keys())},
       {"[camera]", "A pinhole, or a thin lens with `aperture_radius` > 0.",
        key_docs(camera_keys())},
       {"[sun]", "A disk of the sun's angular size.", key_docs(sun_keys())},

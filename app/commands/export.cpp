@@ -56,7 +56,7 @@ int export_command(const ExportRequest& a) {
   spec::SceneDesc scene = formats::load_scene(a.scene);
   // pbrt renders the exact image: --spp is the path integrator's sample count.
   RenderOverrides overrides = a.overrides;
-  overrides.integrator = name_of(spec::Integrator::Path);
+  overrides.integrator = spec::Integrator::Path;
   apply_overrides(scene, overrides);
   // A frame of an animation: its clock (the scene's own outputs are not written here).
   scene.output.exr.clear();

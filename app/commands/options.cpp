@@ -2,7 +2,8 @@
 
 #include <charconv>
 #include <cmath>
-#include <cstdio>
+
+#include "common/range.h"
 
 namespace arbor::app {
 
@@ -21,10 +22,9 @@ CLI::Validator seed_check() {
 }
 
 CLI::Validator finite_in(double lo, double hi) {
-  char range[64];
-  std::snprintf(range, sizeof range, "[%g, %g]", lo, hi);
+  const std::string range = "[" + short_number(lo) + ", " + short_number(hi) + "]";
   return CLI::Validator(
-      [lo, hi, text = std::string(range)](std::string& v) {
+      [lo, hi, text = range](std::string& v) {
         double parsed = 0.0;
         const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), parsed);
         if (v.empty() || ec != std::errc() || end != v.data() + v.size() ||
@@ -34,7 +34,7 @@ CLI::Validator finite_in(double lo, double hi) {
         if (parsed < lo || parsed > hi) return v + " is out of range " + text;
         return std::string();
       },
-      std::string("FLOAT in ") + range);
+      "FLOAT in " + range);
 }
 
 CLI::Validator non_empty() {
@@ -59,8 +59,10 @@ void add_override_options(CLI::App* command, RenderOverrides& o, unsigned which,
   }
   if (which & kIntegratorOption) {
     command
-        ->add_option("--integrator", o.integrator,
-                     "path (exact) or treemaker (TREE-MAKER's approximate shading)")
+        ->add_option_function<std::string>(
+            "--integrator",
+            [&o](const std::string& name) { o.integrator = spec::integrator_named(name); },
+            "path (exact) or treemaker (TREE-MAKER's approximate shading)")
         ->check(CLI::IsMember(std::vector<std::string>(spec::kIntegratorNames.begin(),
                                                        spec::kIntegratorNames.end())));
   }
@@ -85,8 +87,7 @@ void add_override_options(CLI::App* command, RenderOverrides& o, unsigned which,
 
 void apply_overrides(spec::SceneDesc& scene, const RenderOverrides& o) {
   spec::RenderSettings& r = scene.render;
-  if (!o.integrator.empty())
-    r.integrator = spec::integrator_named(o.integrator).value();  // CLI11 checked the name
+  if (o.integrator) r.integrator = *o.integrator;
   if (o.spp > 0) (r.integrator == spec::Integrator::Treemaker ? r.treemaker_spp : r.spp) = o.spp;
   if (o.width > 0) r.width = o.width;
   if (o.height > 0) r.height = o.height;
@@ -114,7 +115,7 @@ std::vector<std::string> override_arguments(const RenderOverrides& o) {
     const auto end = std::to_chars(buf, buf + sizeof buf, *o.time).ptr;  // shortest exact form
     add("--time", std::string(buf, end));
   }
-  if (!o.integrator.empty()) add("--integrator", o.integrator);
+  if (o.integrator) add("--integrator", spec::name_of(*o.integrator));
   if (o.transparent) args.push_back("--transparent");
   if (o.regularize) args.push_back("--regularize");
   if (o.lod) args.push_back("--lod");

@@ -27,7 +27,7 @@ CLI::Validator non_empty();
 struct RenderOverrides {
   int width = 0, height = 0, spp = 0;
   std::optional<std::uint64_t> seed;
-  std::string integrator;      // "path" or "treemaker"
+  std::optional<spec::Integrator> integrator;
   std::optional<double> time;  // seconds of wind for every [[tree]]
   bool transparent = false;    // output.transparent_sky = true
   bool regularize = false;     // render.regularize = true

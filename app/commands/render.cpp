@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <unistd.h>
 
+#include "app/commands/fingerprint.h"
 #include "app/commands/metering.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
@@ -64,39 +65,6 @@ std::string treemaker_weights_text(const scene::Scene& scene) {
 }  // namespace
 
 namespace {
-
-// The hash of everything that decides the pixels: the settings (not the threads, the outputs or
-// the pass range and window of a work unit), the bytes of the scene and each of its inputs, and
-// the OCIO config.
-// Also sets `settings` to the same, readable: "name value" items joined by "; ", so that a
-// refused resume or merge can say which differ (settings_difference).
-std::string render_fingerprint(const spec::SceneDesc& scene, const RenderRequest& a,
-                               const std::string& ocio, std::string& settings) {
-  const spec::RenderSettings& r = scene.render;
-  std::ostringstream s;
-  s.precision(17);
-  // Every [render] key from its table (threads is the command line's and changes no pixel).
-  s << formats::render_settings_text(r) << "; transparent_sky "
-    << (scene.output.transparent_sky ? "true" : "false") << "; ids "
-    << (scene.output.wants_ids() ? "kept" : "none") << "; --time ";
-  if (a.overrides.time)
-    s << *a.overrides.time;
-  else
-    s << "none";
-  if (a.frame) s << "; frame " << *a.frame << "; clock " << scene.clock;
-  std::vector<std::string> files = spec::scene_inputs(scene);
-  files.push_back(ocio);
-  // The inputs by their place in the scene and their bytes, not by how their paths are spelt
-  // (scene.toml and ./scene.toml are one render; the scene's own text names its inputs).
-  for (std::size_t i = 0; i < files.size(); ++i) {
-    const std::string role = i == 0                  ? "the scene file"
-                             : i + 1 == files.size() ? "the OCIO config"
-                                                     : "input " + file_name(files[i]);
-    s << "; " << role << " " << fingerprint_hex(input_digest(files[i], role));
-  }
-  settings = s.str();
-  return fingerprint_hex(fnv1a("arbor render 2 " + settings));
-}
 
 // An installed scene (<prefix>/share/arbor/scenes/) names its outputs relative to itself, in a
 // folder users do not write in: those outputs go under the current folder instead, with a note.
@@ -234,7 +202,8 @@ FilmHeader film_header(const spec::SceneDesc& scene, const scene::RenderInput& i
                        const PassPlan& plan, const RunRange& run) {
   const spec::RenderSettings& r = scene.render;
   FilmHeader header;
-  header.fingerprint = render_fingerprint(scene, a, color.config_path(), header.settings);
+  header.fingerprint =
+      render_fingerprint(scene, a.overrides.time, a.frame, color.config_path(), header.settings);
   header.scene = scene.path;
   header.full_width = r.width;
   header.full_height = r.height;

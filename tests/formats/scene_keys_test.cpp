@@ -34,6 +34,26 @@ TEST(SceneKeys, TheReferencePageIsTheTables) {
   }
 }
 
+// The same for the integrators: the treemaker's samples with the path integrator (the default),
+// adaptive sampling and regularisation with the treemaker's; each integrator's own keys are read.
+TEST(SceneKeys, AKeyOfAnotherIntegratorIsAnErrorAtIt) {
+  expect_scene_error("[render]\ntreemaker_spp = 8\n", 2, 17,
+                     "render.treemaker_spp belongs to render.integrator = \"treemaker\", not "
+                     "\"path\"");
+  expect_scene_error("[render]\nintegrator = \"treemaker\"\nnoise_threshold = 0.05\n", 3, 19,
+                     "render.noise_threshold belongs to render.integrator = \"path\"");
+  expect_scene_error("[render]\nmin_spp = 4\nintegrator = \"treemaker\"\n", 2, 11,
+                     "not \"treemaker\"");
+  expect_scene_error("[render]\nintegrator = \"treemaker\"\nregularize = true\n", 3, 14,
+                     "render.regularize belongs to render.integrator = \"path\"");
+  const spec::SceneDesc t = parse_scene(
+      "[render]\nintegrator = \"treemaker\"\ntreemaker_spp = 8\nmax_depth = 3\n", "s.toml");
+  EXPECT_EQ(t.render.treemaker_spp, 8);
+  EXPECT_EQ(t.render.max_depth, 3);
+  EXPECT_DOUBLE_EQ(
+      parse_scene("[render]\nnoise_threshold = 0.05\n", "s.toml").render.noise_threshold, 0.05);
+}
+
 TEST(SceneKeys, AKeyOfAnotherSkyModelIsAnErrorAtIt) {
   expect_scene_error("[sky]\nmodel = \"constant\"\nturbidity = 9.5\n", 3, 13,
                      "sky.turbidity belongs to sky.model = \"preetham\" or \"atmosphere\", not "
