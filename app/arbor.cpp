@@ -63,26 +63,25 @@ void report_usage_error(const CLI::App& app, const CLI::ParseError& e, const std
 }  // namespace
 
 int main(int argc, char** argv) {
-  using namespace arbor::app;
   CLI::App app{"arbor " ARBOR_VERSION_STRING
                ": grows trees from procedural models and renders them (physically based)"};
   app.set_version_flag(
       "--version", std::string("arbor ") + ARBOR_VERSION_STRING + " (commit " + ARBOR_COMMIT + ")");
   app.require_subcommand(1);
-  GrowRequest grow;
-  RenderRequest render;
-  CompareRequest compare;
-  MergeRequest merge;
-  PlanRequest plan;
-  ExportRequest exp;
-  InspectRequest inspect;
-  CLI::App* grow_cmd = add_grow_command(app, grow);
-  CLI::App* render_cmd = add_render_command(app, render);
-  CLI::App* compare_cmd = add_compare_command(app, compare);
-  CLI::App* merge_cmd = add_merge_command(app, merge);
-  CLI::App* plan_cmd = add_plan_command(app, plan);
-  CLI::App* export_cmd = add_export_command(app, exp);
-  CLI::App* inspect_cmd = add_inspect_command(app, inspect);
+  arbor::app::GrowRequest grow;
+  arbor::app::RenderRequest render;
+  arbor::app::CompareRequest compare;
+  arbor::app::MergeRequest merge;
+  arbor::app::PlanRequest plan;
+  arbor::app::ExportRequest exp;
+  arbor::app::InspectRequest inspect;
+  CLI::App* grow_cmd = arbor::app::add_grow_command(app, grow);
+  CLI::App* render_cmd = arbor::app::add_render_command(app, render);
+  CLI::App* compare_cmd = arbor::app::add_compare_command(app, compare);
+  CLI::App* merge_cmd = arbor::app::add_merge_command(app, merge);
+  CLI::App* plan_cmd = arbor::app::add_plan_command(app, plan);
+  CLI::App* export_cmd = arbor::app::add_export_command(app, exp);
+  CLI::App* inspect_cmd = arbor::app::add_inspect_command(app, inspect);
 
   arbor::remove_temporaries_on_signal();
   try {
@@ -98,13 +97,13 @@ int main(int argc, char** argv) {
     // The OCIO config of this run: $OCIO, or arbor's own beside the executable.
     render.ocio_config = compare.ocio_config = merge.ocio_config = exp.ocio_config =
         inspect.ocio_config = arbor::imaging::default_ocio_config();
-    if (*grow_cmd) return grow_command(grow);
-    if (*render_cmd) return render_command(render);
-    if (*compare_cmd) return compare_command(compare);
-    if (*merge_cmd) return merge_command(merge);
-    if (*export_cmd) return export_command(exp);
-    if (*plan_cmd) return plan_command(plan);
-    if (*inspect_cmd) return inspect_command(inspect);
+    if (*grow_cmd) return arbor::app::grow_command(grow);
+    if (*render_cmd) return arbor::app::render_command(render);
+    if (*compare_cmd) return arbor::app::compare_command(compare);
+    if (*merge_cmd) return arbor::app::merge_command(merge);
+    if (*export_cmd) return arbor::app::export_command(exp);
+    if (*plan_cmd) return arbor::app::plan_command(plan);
+    if (*inspect_cmd) return arbor::app::inspect_command(inspect);
   } catch (const arbor::InputError& e) {
     std::fprintf(stderr, "%s%s\n", e.where().path.empty() ? "arbor: " : "", e.what());
     return 2;

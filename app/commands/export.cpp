@@ -24,7 +24,15 @@
 
 namespace arbor::app {
 
-using namespace arbor::tracer;
+using tracer::EmbreeDevice;
+using tracer::ground_path_for;
+using tracer::kSkyMapWidth;
+using tracer::pbrt_color_space_of;
+using tracer::PbrtExport;
+using tracer::Sky;
+using tracer::sky_path_for;
+using tracer::World;
+using tracer::write_pbrt_scene;
 
 CLI::App* add_export_command(CLI::App& app, ExportRequest& exp) {
   CLI::App* cmd = app.add_subcommand("export",

@@ -15,7 +15,17 @@
 
 namespace arbor::app {
 
-using namespace arbor::tracer;
+using tracer::Film;
+using tracer::film_complete;
+using tracer::FilmFile;
+using tracer::FilmHeader;
+using tracer::FilmPart;
+using tracer::passes_text;
+using tracer::read_film_state;
+using tracer::state_path;
+using tracer::StopReason;
+using tracer::Window;
+using tracer::write_render;
 
 namespace {
 

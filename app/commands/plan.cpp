@@ -17,7 +17,8 @@
 
 namespace arbor::app {
 
-using namespace arbor::tracer;
+using tracer::pass_plan_for;
+using tracer::PassPlan;
 
 namespace {
 

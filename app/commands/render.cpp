@@ -42,7 +42,29 @@
 
 namespace arbor::app {
 
-using namespace arbor::tracer;
+using tracer::EmbreeDevice;
+using tracer::Film;
+using tracer::FilmFile;
+using tracer::FilmHeader;
+using tracer::integrator_aov_names;
+using tracer::kSkyMapWidth;
+using tracer::name_of;
+using tracer::number_text;
+using tracer::pass_plan_for;
+using tracer::PassPlan;
+using tracer::read_film_state;
+using tracer::render_path;
+using tracer::render_treemaker;
+using tracer::RenderJob;
+using tracer::RenderOutcome;
+using tracer::RenderWrite;
+using tracer::settings_difference;
+using tracer::Sky;
+using tracer::state_path;
+using tracer::StopReason;
+using tracer::Window;
+using tracer::World;
+using tracer::write_render;
 
 namespace {
 
