@@ -17,14 +17,24 @@ namespace arbor::formats {
 
 namespace {
 
+// Table `name` of a model chosen by its key `choice` (read first, into `chosen`), each other key
+// read by `table` and refused when it belongs to another model than the chosen one.
+template <class D, class E, std::size_t N>
+void read_by_model(const KeyValue& v, const std::string& name, const char* choice,
+                   const std::array<const char*, N>& names, E& chosen,
+                   const std::vector<Key<D>>& table, D& d) {
+  const toml::table& t = v.table();
+  const std::string key = name + "." + choice;
+  if (const toml::node* n = t.get(choice))
+    chosen = static_cast<E>(v.reader.choice_index(*n, key, names));
+  const ModelInUse model{key, names[static_cast<std::size_t>(chosen)]};
+  read_keys(v.reader, t, name, "[" + name + "]", table, d, &model);
+}
+
 // The sky's keys by the model in use, and the atmosphere's rules across them.
 void read_sky(const KeyValue& v, spec::SkyDesc& s) {
   const toml::table& t = v.table();
-  if (const toml::node* model = t.get("model"))
-    s.model = static_cast<spec::SkyModel>(
-        v.reader.choice_index(*model, "sky.model", spec::kSkyModelNames));
-  const ModelInUse model{"sky.model", name_of(s.model)};
-  read_keys(v.reader, t, "sky", "[sky]", sky_keys(), s, &model);
+  read_by_model(v, "sky", "model", spec::kSkyModelNames, s.model, sky_keys(), s);
   if (s.model == spec::SkyModel::Atmosphere) {
     const toml::node* first = nullptr;  // the aerosols, given by one key (in the table's order)
     for (const char* key : {"dust_density", "turbidity", "visibility"}) {
@@ -47,12 +57,7 @@ void read_sky(const KeyValue& v, spec::SkyDesc& s) {
 
 // The render settings by the integrator in use (a key of the other integrator is an error).
 void read_render(const KeyValue& v, spec::RenderSettings& r) {
-  const toml::table& t = v.table();
-  if (const toml::node* integrator = t.get("integrator"))
-    r.integrator = static_cast<spec::Integrator>(
-        v.reader.choice_index(*integrator, "render.integrator", spec::kIntegratorNames));
-  const ModelInUse model{"render.integrator", name_of(r.integrator)};
-  read_keys(v.reader, t, "render", "[render]", render_keys(), r, &model);
+  read_by_model(v, "render", "integrator", spec::kIntegratorNames, r.integrator, render_keys(), r);
 }
 
 void read_terrain(const KeyValue& v, spec::TerrainDesc& t) {

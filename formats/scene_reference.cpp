@@ -13,6 +13,7 @@ namespace {
 struct Section {
   std::string title, intro;
   std::vector<KeyDoc> keys;
+  std::string owners = "models";  // the column naming what each key belongs to, when any does
 };
 
 std::string cell(const std::string& text) {
@@ -26,8 +27,8 @@ std::string markdown(const Section& s) {
   for (const KeyDoc& k : s.keys) models = models || !k.belongs.empty();
   std::string md = "## " + s.title + "\n\n" + s.intro +
                    "\n\n| key | type | range | default | meaning |" +
-                   (models ? s.title == "[render]" ? " integrators |" : " models |" : "") +
-                   "\n|---|---|---|---|---|" + (models ? "---|" : "") + "\n";
+                   (models ? " " + s.owners + " |" : "") + "\n|---|---|---|---|---|" +
+                   (models ? "---|" : "") + "\n";
   for (const KeyDoc& k : s.keys) {
     md += "| `" + k.name + "` | " + k.kind + " | " + cell(k.range) + " | " + cell(k.default_value) +
           " | " + cell(k.meaning) + " |";
@@ -45,9 +46,8 @@ std::string scene_key_reference() {
        key_docs(scene_keys())},
       {"[render]",
        "The image and how it is sampled (docs/rendering.md); a key of the other integrator than "
-       "the "
-       "one in use is an error.",
-       key_docs(render_keys())},
+       "the one in use is an error.",
+       key_docs(render_keys()), "integrators"},
       {"[camera]", "A pinhole, or a thin lens with `aperture_radius` > 0.",
        key_docs(camera_keys())},
       {"[sun]", "A disk of the sun's angular size.", key_docs(sun_keys())},

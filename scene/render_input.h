@@ -4,13 +4,7 @@
 // placed. The tracer never reads a file, compares a string, or meets an unknown choice.
 #pragma once
 
-#include <array>
-#include <cstdint>
-#include <optional>
 #include <string>
-#include <string_view>
-
-#include <glm/vec3.hpp>
 
 #include "spec/scene_desc.h"
 #include "imaging/output_spec.h"
