@@ -2,6 +2,7 @@
 #include "generator/export/export_pbrt.h"
 
 #include <charconv>
+#include <vector>
 
 #include "common/atomic_file.h"
 #include "generator/export/text_output.h"
@@ -13,6 +14,34 @@ namespace {
 void put(std::string& out, float v) {
   put_number(out, v);
   out += ' ';
+}
+
+void put_vectors(const glm::vec3* v, std::size_t count, UpAxis up, std::string& out,
+                 AtomicFile& file) {
+  for (std::size_t i = 0; i < count; ++i) {
+    const glm::vec3 o = oriented(v[i], up);
+    put(out, o.x);
+    put(out, o.y);
+    put(out, o.z);
+    flush_if_large(out, file);
+  }
+}
+
+// One "trianglemesh" with per-vertex normals: a trunk grid or the ramiform's collars.
+void append_triangle_mesh(const glm::vec3* positions, const glm::vec3* normals, std::size_t count,
+                          const std::vector<std::uint32_t>& indices, UpAxis up, std::string& out,
+                          AtomicFile& file) {
+  out += "  Shape \"trianglemesh\" \"point3 P\" [ ";
+  put_vectors(positions, count, up, out, file);
+  out += "]\n    \"normal N\" [ ";
+  put_vectors(normals, count, up, out, file);
+  out += "]\n    \"integer indices\" [ ";
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    out += std::to_string(indices[i]);
+    out += ' ';
+    if (i % 1024 == 0) flush_if_large(out, file);
+  }
+  out += "]\n";
 }
 
 }  // namespace
@@ -42,33 +71,23 @@ void append_pbrt_shapes(const TreeGeometry& g, const std::string& bark_material,
     flush_if_large(out, file);
   }
   const GridSet& gs = g.grids;
+  std::vector<std::uint32_t> indices;
   for (const DisplacedGrid& d : gs.grids) {
-    out += "  Shape \"trianglemesh\" \"point3 P\" [ ";
-    const std::size_t count = static_cast<std::size_t>(d.width) * d.height;
-    for (std::size_t v = 0; v < count; ++v) {
-      const glm::vec3 p = oriented(gs.vertices[d.first_vertex + v], up);
-      put(out, p.x);
-      put(out, p.y);
-      put(out, p.z);
-      flush_if_large(out, file);
-    }
-    out += "]\n    \"normal N\" [ ";
-    for (std::size_t v = 0; v < count; ++v) {
-      const glm::vec3 n = oriented(gs.normals[d.first_vertex + v], up);
-      put(out, n.x);
-      put(out, n.y);
-      put(out, n.z);
-      flush_if_large(out, file);
-    }
-    out += "]\n    \"integer indices\" [ ";
+    indices.clear();
     for (std::uint32_t j = 0; j + 1 < d.height; ++j) {
       for (std::uint32_t i = 0; i + 1 < d.width; ++i) {
         const std::uint32_t a = j * d.width + i, b = a + 1, cc = a + d.width, e = cc + 1;
-        for (std::uint32_t k : {a, b, e, a, e, cc}) out += std::to_string(k) + ' ';
+        indices.insert(indices.end(), {a, b, e, a, e, cc});
       }
-      flush_if_large(out, file);
     }
-    out += "]\n";
+    const std::size_t count = static_cast<std::size_t>(d.width) * d.height;
+    append_triangle_mesh(&gs.vertices[d.first_vertex], &gs.normals[d.first_vertex], count, indices,
+                         up, out, file);
+  }
+  const RamiformSet& r = g.ramiforms;
+  if (r.triangle_count() > 0) {
+    append_triangle_mesh(r.positions.data(), r.normals.data(), r.positions.size(), r.indices, up,
+                         out, file);
   }
   out += "AttributeEnd\n";
   const LeafMesh lm = leaf_triangles(g);

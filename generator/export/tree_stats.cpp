@@ -61,7 +61,8 @@ void add_geometry_stats(TreeStats& st, const GeometryStats& g, double seconds) {
   st.curve_segments = static_cast<long long>(g.curve_segments);
   // Leaves keep the skeleton's count of their outlines' triangles (the renderer holds them as
   // cards, g.leaf_cards, besides the free-form triangles).
-  st.triangles = st.leaf_triangles + static_cast<long long>(g.grid_triangles);
+  st.triangles = st.leaf_triangles + static_cast<long long>(g.grid_triangles) +
+                 static_cast<long long>(g.ramiform_triangles);
 }
 
 std::string stats_json(const TreeStats& st, const std::string& species, unsigned long long seed,
@@ -87,6 +88,11 @@ std::string stats_json(const TreeStats& st, const std::string& species, unsigned
     size("grid_triangles", g.grid_triangles);
     size("leaf_cards", g.leaf_cards);
     size("tension_raised_limbs", g.tension_raised_limbs);
+    size("ramiform_forks", g.ramiform_forks);
+    size("ramiforms", g.ramiforms);
+    size("ramiform_triangles", g.ramiform_triangles);
+    size("ramiform_trunk_forks", g.ramiform_trunk_forks);
+    size("ramiform_trunk_collars", g.ramiform_trunk_collars);
     // Only a build knows these (a count for --stats alone does not build, issue 31).
     if (g.built) {
       size("radius_adjusted_segments", g.radius_adjusted_segments);
@@ -129,6 +135,14 @@ std::string stats_text(const TreeStats& st) {
                     st.geometry_seconds);
     }
     out += buf;
+    if (g.ramiform_forks > 0) {
+      std::snprintf(buf, sizeof buf,
+                    "ramiforms      %zu collars at %zu forks (the trunk's: %zu of %zu), %zu "
+                    "triangles\n",
+                    g.ramiforms, g.ramiform_forks, g.ramiform_trunk_collars, g.ramiform_trunk_forks,
+                    g.ramiform_triangles);
+      out += buf;
+    }
   }
   return out;
 }

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "common/math.h"
+#include "generator/geometry/ramiform.h"
 #include "generator/models/weber_penn/weber_penn_formulas.h"
 
 namespace arbor::generator {
@@ -137,6 +138,7 @@ GeometryStats count_tree_geometry(const Skeleton& sk, const GeometryOptions& o) 
   }
   s.leaf_triangles = sk.leaf_triangles.size();
   for (const LeafLine& line : sk.leaf_lines) s.curve_segments += kept_as_line(line) ? 1u : 0u;
+  if (o.ramiform) count_ramiforms(sk, limbs, o, s);
   return s;
 }
 

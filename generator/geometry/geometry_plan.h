@@ -39,7 +39,9 @@ bool kept_as_line(const LeafLine& line);
 
 // The counts of build_tree_geometry's statistics without building it: limbs, curve segments,
 // grids and their vertices and triangles, leaf cards and free-form triangles. `built` is false;
-// the sizes only a build knows (bytes, radius-adjusted segments) are 0.
+// the sizes only a build knows (bytes, radius-adjusted segments) are 0. With o.ramiform the
+// collars cannot be counted without trying them: the limbs and collars are built (not the
+// leaves) and their counts are a build's (count_ramiforms).
 GeometryStats count_tree_geometry(const Skeleton& sk, const GeometryOptions& o);
 
 }  // namespace arbor::generator

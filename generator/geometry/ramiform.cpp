@@ -501,6 +501,7 @@ void add_ramiforms(const std::vector<Limb>& limbs, TreeGeometry& g) {
     const ChildSurface child_surface(g.curves, static_cast<std::int32_t>(c));
     const ParentSurface parent(g, child.parent);
     if (child_surface.end() == 0.0 || !parent.valid()) {
+      ++g.stats.ramiform_forks;
       ++g.stats.ramiforms_skipped;  // a displaced child (a clone of a flared trunk)
       continue;
     }
@@ -511,6 +512,7 @@ void add_ramiforms(const std::vector<Limb>& limbs, TreeGeometry& g) {
                                   : std::nullopt;
     if (base && child_surface.radius(0.0) < 0.25 * base->bark.z) continue;
     const bool trunk = limbs[static_cast<std::size_t>(child.parent)].level == 0;
+    ++g.stats.ramiform_forks;
     g.stats.ramiform_trunk_forks += trunk ? 1 : 0;
     const std::size_t vertices = out.positions.size(), indices = out.indices.size();
     const ParentSurface child_limb(g, static_cast<std::int32_t>(c));

@@ -21,4 +21,11 @@ namespace arbor::generator {
 // g.stats.ramiforms_skipped and keeps its crease.
 void add_ramiforms(const std::vector<Limb>& limbs, TreeGeometry& g);
 
+// The ramiform's counts in `s` (ramiform_forks, ramiforms, ramiform_triangles, the skipped and
+// the trunk's), exactly as a build finds them: the limbs and their collars are built (the leaves
+// are not) and thrown away. For `grow --stats`, which otherwise counts without building
+// (count_tree_geometry). Defined in tree_geometry.cpp, beside the limbs' construction.
+void count_ramiforms(const Skeleton& skeleton, const std::vector<Limb>& limbs,
+                     const GeometryOptions& options, GeometryStats& s);
+
 }  // namespace arbor::generator

@@ -432,9 +432,11 @@ glm::vec4 CurveSet::second_derivative(std::size_t i, float u) const {
          (-12 * u + 6) * points[2 * i + 1] + (6 * u - 2) * tangents[2 * i + 1];
 }
 
-TreeGeometry build_tree_geometry(const Skeleton& sk, const GeometryOptions& o) {
-  TreeGeometry g;
-  const std::vector<Limb> limbs = fit_limbs(sk);
+namespace {
+
+// Every limb as its round curve or, for a flared or lobed trunk, its displaced grid.
+void add_limbs(const Skeleton& sk, const std::vector<Limb>& limbs, const GeometryOptions& o,
+               TreeGeometry& g) {
   g.stats.limbs = limbs.size();
   for (const Limb& l : limbs) g.stats.tension_raised_limbs += l.tension_raised ? 1u : 0u;
   for (std::size_t i = 0; i < limbs.size(); ++i) {
@@ -445,6 +447,27 @@ TreeGeometry build_tree_geometry(const Skeleton& sk, const GeometryOptions& o) {
       add_limb_curves(sk, limbs[i], index, g);
     }
   }
+}
+
+}  // namespace
+
+void count_ramiforms(const Skeleton& sk, const std::vector<Limb>& limbs, const GeometryOptions& o,
+                     GeometryStats& s) {
+  TreeGeometry g;
+  add_limbs(sk, limbs, o, g);
+  add_ramiforms(limbs, g);
+  s.ramiform_forks = g.stats.ramiform_forks;
+  s.ramiforms = g.stats.ramiforms;
+  s.ramiform_triangles = g.stats.ramiform_triangles;
+  s.ramiforms_skipped = g.stats.ramiforms_skipped;
+  s.ramiform_trunk_forks = g.stats.ramiform_trunk_forks;
+  s.ramiform_trunk_collars = g.stats.ramiform_trunk_collars;
+}
+
+TreeGeometry build_tree_geometry(const Skeleton& sk, const GeometryOptions& o) {
+  TreeGeometry g;
+  const std::vector<Limb> limbs = fit_limbs(sk);
+  add_limbs(sk, limbs, o, g);
   add_leaves(sk, o, g);
   add_free_leaves(sk, g);
   add_leaf_lines(sk, g);

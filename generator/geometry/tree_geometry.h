@@ -133,7 +133,8 @@ struct GeometryStats {
   std::size_t grids = 0, grid_vertices = 0, grid_triangles = 0;
   std::size_t leaf_triangles = 0;  // free-form (TREE-MAKER) leaf triangles
   std::size_t leaf_cards = 0;
-  std::size_t ramiforms = 0, ramiform_triangles = 0;
+  // Forks large enough for a collar (docs/geometry.md, "Ramiform"), of them collared, skipped
+  std::size_t ramiform_forks = 0, ramiforms = 0, ramiform_triangles = 0;
   std::size_t ramiforms_skipped = 0;  // forks where no collar fits (docs/geometry.md)
   std::size_t ramiform_trunk_forks = 0, ramiform_trunk_collars = 0;  // of them, the trunk's
   std::size_t bytes = 0;                                             // of all the arrays above

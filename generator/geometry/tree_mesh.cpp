@@ -74,6 +74,17 @@ void add_grid(const GridSet& grids, const DisplacedGrid& g, TreeMesh& mesh) {
   stitch_rings(mesh, first, g.height, g.width);
 }
 
+// The ramiform's collars as they are (RamiformSet): their normals, and uv from their bark
+// coordinates as the tubes have them (u the azimuth's fraction of the way round, v the arc length).
+void add_ramiforms(const RamiformSet& r, TreeMesh& mesh) {
+  const auto first = static_cast<std::uint32_t>(mesh.positions.size());
+  mesh.positions.insert(mesh.positions.end(), r.positions.begin(), r.positions.end());
+  mesh.normals.insert(mesh.normals.end(), r.normals.begin(), r.normals.end());
+  for (const glm::vec3& b : r.bark)
+    mesh.uvs.emplace_back(b.y / (2.0f * static_cast<float>(kPi)), b.x);
+  for (std::uint32_t i : r.indices) mesh.indices.push_back(first + i);
+}
+
 void add_leaves(const LeafMesh& leaves, TreeMesh& mesh) {
   const auto first = static_cast<std::uint32_t>(mesh.positions.size());
   mesh.positions.insert(mesh.positions.end(), leaves.positions.begin(), leaves.positions.end());
@@ -108,6 +119,7 @@ TreeMesh tessellate(const TreeGeometry& geometry, double tolerance) {
     add_curve_segment(geometry.curves, i, tolerance, mesh);
   }
   for (const DisplacedGrid& g : geometry.grids.grids) add_grid(geometry.grids, g, mesh);
+  add_ramiforms(geometry.ramiforms, mesh);
   mesh.bark_triangles = mesh.triangle_count();
   add_leaves(leaf_triangles(geometry), mesh);
   return mesh;

@@ -25,7 +25,7 @@ struct TreeMesh {
 // Tessellates the same geometry the renderer uses: each curve segment as a tube whose axial
 // resolution comes from Lane's bound (Bloomenthal eq. 4) for a chord error of `tolerance` ×
 // radius (at least 0.5 mm) and whose circumferential resolution follows the radius; displaced
-// trunk grids as they are; leaves as their triangles.
+// trunk grids and ramiform collars as they are; leaves as their triangles.
 // Bark uv: u = fraction of the way round, v = arc length along the limb in metres.
 TreeMesh tessellate(const TreeGeometry& geometry, double tolerance = 0.05);
 

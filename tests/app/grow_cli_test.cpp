@@ -51,6 +51,38 @@ TEST(ArborCli, GrowPrintsTheContractStatistics) {
     EXPECT_EQ(json_integer(built.out, key), json_integer(r.out, key)) << key;
 }
 
+// The ramiform is in the statistics and the exports (issue 45): --stats counts the collars a
+// build makes, the text says so, and the OBJ's triangles are the statistics' triangles plus the
+// tubes'. Power: counting without the collars (count_tree_geometry ignoring ramiform) fails the
+// equality and the text.
+TEST(ArborCli, GrowCountsAndExportsTheRamiform) {
+  const std::string tree = species("quaking_aspen_ramiform.toml") + " --seed 5";
+  const CliRun counted = run_arbor("grow " + tree + " --json");
+  ASSERT_EQ(counted.code, 0) << counted.err;
+  const std::string out = ::testing::TempDir() + "ramiform.obj";
+  std::remove(out.c_str());
+  std::remove((::testing::TempDir() + "ramiform.mtl").c_str());
+  const CliRun built = run_arbor("grow " + tree + " --json -o " + out);
+  ASSERT_EQ(built.code, 0) << built.err;
+  EXPECT_GT(json_integer(counted.out, "ramiforms"), 100);
+  for (const char* key : {"ramiform_forks", "ramiforms", "ramiform_triangles",
+                          "ramiform_trunk_forks", "ramiform_trunk_collars", "triangles"})
+    EXPECT_EQ(json_integer(built.out, key), json_integer(counted.out, key)) << key;
+  EXPECT_GT(
+      json_integer(built.out, "mesh_triangles"),
+      json_integer(built.out, "ramiform_triangles") + json_integer(built.out, "grid_triangles"));
+  const CliRun text = run_arbor("grow " + tree);
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("ramiforms      " +
+                          std::to_string(json_integer(counted.out, "ramiforms")) + " collars at "),
+            std::string::npos)
+      << text.out;
+  const CliRun plain = run_arbor("grow " + species("quaking_aspen.toml") + " --seed 5");
+  EXPECT_EQ(plain.out.find("ramiforms"), std::string::npos) << plain.out;
+  std::remove(out.c_str());
+  std::remove((::testing::TempDir() + "ramiform.mtl").c_str());
+}
+
 // `grow -o tree.pbrt` keeps every limb segment as one cubic Bézier curve of 4 control points and
 // positive widths, and every triangle the statistics count (trunk grid and leaves) in a mesh.
 TEST(ArborCli, GrowWritesPbrtWithCurves) {

@@ -58,4 +58,46 @@ TEST(ExportPbrt, WritesEveryCurveAsABezierCylinderAndTheMeshes) {
   std::remove(path.c_str());
 }
 
+// The ramiform's collars are exported (issue 45): after the trunk grids, one more triangle mesh
+// in the bark's attribute block holding every collar vertex (the z-up positions and normals as
+// built, to the digits pbrt reads) and triangle. Power: leaving the collars out, or writing
+// their normals as positions, fails it.
+TEST(ExportPbrt, TheRamiformsCollarsAreATriangleMesh) {
+  const Species s =
+      formats::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen_ramiform.toml");
+  GrowOptions o;
+  o.seed = 5;
+  const TreeGeometry g =
+      build_tree_geometry(grow_weber_penn(s.weber_penn(), o), geometry_options_for(s));
+  const RamiformSet& r = g.ramiforms;
+  ASSERT_GT(r.triangle_count(), 1000u);
+  const std::string path = ::testing::TempDir() + "ramiform.pbrt";
+  write_pbrt(g, s.bark, s.leaf, path);
+  const std::string text = slurp(path);
+  std::remove(path.c_str());
+  EXPECT_EQ(count(text, "Shape \"trianglemesh\""), g.grids.grids.size() + 1);
+  // The collars' mesh: the last in the bark's block (the leafless aspen has no leaf mesh).
+  const std::size_t at = text.rfind("Shape \"trianglemesh\"");
+  ASSERT_LT(at, text.find("AttributeEnd", at));
+  auto list = [&](const std::string& name) {
+    const std::size_t from = text.find("\"" + name + "\" [ ", at) + name.size() + 5;
+    std::istringstream in(text.substr(from, text.find(']', from) - from));
+    std::vector<double> v;
+    for (double x; in >> x;) v.push_back(x);
+    return v;
+  };
+  const std::vector<double> p = list("point3 P"), n = list("normal N"),
+                            idx = list("integer indices");
+  ASSERT_EQ(p.size(), 3 * r.positions.size());
+  ASSERT_EQ(n.size(), 3 * r.normals.size());
+  ASSERT_EQ(idx.size(), r.indices.size());
+  for (std::size_t i = 0; i < r.positions.size(); i += 101) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_FLOAT_EQ(static_cast<float>(p[3 * i + c]), r.positions[i][c]) << i;
+      EXPECT_FLOAT_EQ(static_cast<float>(n[3 * i + c]), r.normals[i][c]) << i;
+    }
+  }
+  for (std::size_t i = 0; i < r.indices.size(); i += 37) EXPECT_EQ(idx[i], r.indices[i]) << i;
+}
+
 }  // namespace arbor::generator

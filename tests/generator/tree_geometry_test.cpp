@@ -368,12 +368,14 @@ TEST(TreeGeometry, RootButtressesWidenTheTrunksBaseAndMergeIntoIt) {
 
 // `grow --stats` counts the geometry without building it (issue 31): every count equals the
 // build's, over curvature-limited pieces, periodic taper (the saguaro), a displaced lobed trunk
-// (the aspen, the willow), hinged leaves and TREE-MAKER leaf lines (the dogwood). Power: counting
-// a grid's triangles over its rings rather than the gaps between them fails it on the displaced
-// trunks.
+// (the aspen, the willow), hinged leaves, TREE-MAKER leaf lines (the dogwood) and the ramiform's
+// collars (issue 45). Power: counting a grid's triangles over its rings rather than the gaps
+// between them fails it on the displaced trunks; counting collars without the disks' soundness
+// check (every tried fork kept) fails it on the ramiform aspen.
 TEST(TreeGeometry, CountingWithoutBuildingGivesTheBuildsCounts) {
-  for (const char* file : {"quaking_aspen.toml", "weeping_willow.toml", "saguaro_cactus.toml",
-                           "dogwood.tmpl", "lsystem_bush.lsys", "young_pine.tmpl"}) {
+  for (const char* file :
+       {"quaking_aspen.toml", "weeping_willow.toml", "saguaro_cactus.toml", "dogwood.tmpl",
+        "lsystem_bush.lsys", "young_pine.tmpl", "quaking_aspen_ramiform.toml"}) {
     const Species species =
         formats::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/" + file);
     GrowOptions o;
@@ -394,6 +396,13 @@ TEST(TreeGeometry, CountingWithoutBuildingGivesTheBuildsCounts) {
     EXPECT_EQ(counted.grid_triangles, built.grid_triangles) << file;
     EXPECT_EQ(counted.leaf_cards, built.leaf_cards) << file;
     EXPECT_EQ(counted.leaf_triangles, built.leaf_triangles) << file;
+    EXPECT_EQ(counted.ramiform_forks, built.ramiform_forks) << file;
+    EXPECT_EQ(counted.ramiforms, built.ramiforms) << file;
+    EXPECT_EQ(counted.ramiform_triangles, built.ramiform_triangles) << file;
+    EXPECT_EQ(counted.ramiforms_skipped, built.ramiforms_skipped) << file;
+    EXPECT_EQ(counted.ramiform_trunk_forks, built.ramiform_trunk_forks) << file;
+    EXPECT_EQ(counted.ramiform_trunk_collars, built.ramiform_trunk_collars) << file;
+    EXPECT_EQ(built.ramiforms > 0, species.bark.ramiform) << file;
   }
 }
 

@@ -19,6 +19,7 @@
 #include "generator/models/weber_penn/weber_penn.h"
 #include "formats/species_file.h"
 #include "generator/export/export_mesh.h"
+#include "common/math.h"
 
 namespace arbor::generator {
 
@@ -225,6 +226,37 @@ TEST(TreeMesh, LaneBoundMeetsItsTolerance) {
   EXPECT_GT(mesh.bark_triangles, g.stats.grid_triangles);
 }
 
+// The ramiform's collars are in the mesh (issue 45): the bark holds the tubes and grids of the
+// tree without them plus every collar triangle, each collar vertex with its own normal, and the
+// collar's uv is its bark coordinates'. Power: leaving the collars out of tessellate fails the
+// count; a uv of azimuth / π (not 2π) fails the uv check.
+TEST(TreeMesh, TheRamiformsCollarsAreInTheBark) {
+  const Species s =
+      formats::load_species(std::string(ARBOR_SOURCE_DIR) + "/species/quaking_aspen_ramiform.toml");
+  GrowOptions o;
+  o.seed = 5;
+  const Skeleton sk = grow_tree(s, o);
+  GeometryOptions with = geometry_options_for(s), without = with;
+  without.ramiform = false;
+  const TreeGeometry g = build_tree_geometry(sk, with);
+  ASSERT_GT(g.ramiforms.triangle_count(), 1000u);
+  const TreeMesh plain = tessellate(build_tree_geometry(sk, without));
+  const TreeMesh mesh = tessellate(g);
+  EXPECT_EQ(mesh.bark_triangles, plain.bark_triangles + g.ramiforms.triangle_count());
+  // The collars follow the tubes and grids: their vertices and triangles as built.
+  const std::size_t first = plain.positions.size();
+  ASSERT_EQ(mesh.positions.size(), first + g.ramiforms.positions.size());
+  for (std::size_t i = 0; i < g.ramiforms.positions.size(); i += 97) {
+    EXPECT_EQ(mesh.positions[first + i], g.ramiforms.positions[i]);
+    EXPECT_EQ(mesh.normals[first + i], g.ramiforms.normals[i]);
+    EXPECT_NEAR(mesh.uvs[first + i].x * 2.0 * kPi, g.ramiforms.bark[i].y, 1e-4);
+    EXPECT_EQ(mesh.uvs[first + i].y, g.ramiforms.bark[i].x);
+  }
+  const std::size_t t = plain.bark_triangles;
+  for (std::size_t k = 0; k < 3; ++k)
+    EXPECT_EQ(mesh.indices[3 * t + k], first + g.ramiforms.indices[k]);
+}
+
 TEST(TreeMesh, FailedWriteLeavesNothingBehind) {
   const TreeMesh mesh = tessellate(build_tree_geometry(small_tree()));
   EXPECT_ANY_THROW(write_obj(mesh, "/nonexistent-dir/tree.obj", aspen_looks()));
@@ -255,7 +287,8 @@ TEST(TreeMesh, EveryShippedSpeciesTessellatesToFiniteUnitNormals) {
                            "dogwood.tmpl",
                            "weeping_cherry.tmpl",
                            "young_pine.tmpl",
-                           "young_tree.skel"}) {
+                           "young_tree.skel",
+                           "quaking_aspen_ramiform.toml"}) {
     const Species s = formats::load_species(dir + name);
     GrowOptions o;
     o.seed = 1;
