@@ -143,6 +143,18 @@ class TomlSpecies : TomlReader {
             number(node, "leaf.cuticle_roughness", look_range::kCuticleRoughness);
       } else if (k == "hinge_angle") {
         sp.leaf.hinge_angle = number(node, "leaf.hinge_angle", look_range::kHingeAngle);
+      } else if (k == "fold") {
+        sp.leaf.fold = number(node, "leaf.fold", look_range::kLeafFold);
+      } else if (k == "cup") {
+        sp.leaf.cup = number(node, "leaf.cup", look_range::kLeafCup);
+      } else if (k == "curl") {
+        sp.leaf.curl = number(node, "leaf.curl", look_range::kLeafCurl);
+      } else if (k == "twist") {
+        sp.leaf.twist = number(node, "leaf.twist", look_range::kLeafTwist);
+      } else if (k == "petiole_length") {
+        sp.leaf.petiole_length = number(node, "leaf.petiole_length", look_range::kPetioleLength);
+      } else if (k == "petiole_width") {
+        sp.leaf.petiole_width = number(node, "leaf.petiole_width", look_range::kPetioleWidth);
       } else if (k == "variation") {
         sp.leaf.variation = number(node, "leaf.variation", look_range::kLeafVariation);
       } else if (k == "hue_variation") {
@@ -163,6 +175,12 @@ class TomlSpecies : TomlReader {
         sp.leaf.vein_pairs = static_cast<int>(n);
       } else
         throw InputError(at(key.source()), "unknown key '" + k + "' in [leaf]");
+    }
+    const generator::LeafLook& l = sp.leaf;
+    if (l.hinge_angle > 0.0 && (l.fold != 0.0 || l.cup != 0.0 || l.curl != 0.0 || l.twist != 0.0)) {
+      throw InputError(at(t.source()),
+                       "[leaf] hinge_angle (Bloomenthal's three panels) and fold, cup, curl or "
+                       "twist (the shaped leaf) are two ways to bend a leaf: set one");
     }
     if (!generator::leaf_conserves_energy(sp.leaf.reflectance, sp.leaf.back_reflectance,
                                           sp.leaf.transmittance)) {

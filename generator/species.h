@@ -31,6 +31,12 @@ inline constexpr Range kBarkRoughness{0.0, 90.0, "degrees"};
 inline constexpr Range kCuticleIor{1.0, 3.0, "(1: no cuticle)"};
 inline constexpr Range kCuticleRoughness{0.0, 1.0, ""};
 inline constexpr Range kHingeAngle{0.0, 90.0, "degrees"};
+inline constexpr Range kLeafFold{0.0, 80.0, "degrees"};
+inline constexpr Range kLeafCup{-90.0, 90.0, "degrees"};
+inline constexpr Range kLeafCurl{-180.0, 180.0, "degrees"};
+inline constexpr Range kLeafTwist{-180.0, 180.0, "degrees"};
+inline constexpr Range kPetioleLength{0.0, 3.0, "(x the blade's length)"};
+inline constexpr Range kPetioleWidth{0.0, 0.5, "(x the blade's width)"};
 inline constexpr Range kLeafVariation{0.0, 1.0, "(spread of ln brightness or ln chlorophyll)"};
 inline constexpr Range kCrownGradient{-2.0, 2.0, "(ln brightness, crown top less bottom)"};
 inline constexpr Range kVeins{0.0, 2.0, "(strength of the paler veins and margin)"};
@@ -89,6 +95,12 @@ struct LeafLook {
   double cuticle_ior = 1.45;       // 1: no cuticle (a matte leaf)
   double cuticle_roughness = 0.5;  // [0, 1]; GGX α = roughness²
   double hinge_angle = 0.0;        // degrees; > 0: Bloomenthal's hinged three-polygon leaf (§10)
+  // The shaped leaf (generator/geometry/leaf_bend.h), degrees: each half raised along the midrib,
+  // turned further up towards the margin, the tip curled towards the back, twisted about the
+  // midrib from base to tip. All 0: a flat card.
+  double fold = 0.0, cup = 0.0, curl = 0.0, twist = 0.0;
+  // The stalk: its length × the blade's length (0: none) and its width × the blade's width.
+  double petiole_length = 0.0, petiole_width = 0.03;
   // Each leaf's own tint (materials/leaf_variation.h): spread of ln brightness, spread along the
   // chlorophyll axis, ln brightness from the crown's bottom to its top. 0: every leaf alike.
   double variation = 0.0;

@@ -44,14 +44,11 @@ void append_triangle_mesh(const glm::vec3* positions, const glm::vec3* normals, 
   out += "]\n";
 }
 
-}  // namespace
-
-void append_pbrt_shapes(const TreeGeometry& g, const std::string& bark_material,
-                        const std::string& leaf_material, UpAxis up, std::string& out,
-                        AtomicFile& file) {
-  out += "AttributeBegin\n  " + bark_material + "\n";
-  const CurveSet& c = g.curves;
+// Every curve segment of the given material as a pbrt Bézier cylinder.
+void append_curves(const CurveSet& c, std::uint16_t material, UpAxis up, std::string& out,
+                   AtomicFile& file) {
   for (std::size_t i = 0; i < c.size(); ++i) {
+    if (c.segments[i].material != material) continue;
     const glm::vec4 p0 = c.points[2 * i], p1 = c.points[2 * i + 1];
     const glm::vec4 b1 = p0 + c.tangents[2 * i] / 3.0f, b2 = p1 - c.tangents[2 * i + 1] / 3.0f;
     out +=
@@ -70,6 +67,15 @@ void append_pbrt_shapes(const TreeGeometry& g, const std::string& bark_material,
     out += "\n";
     flush_if_large(out, file);
   }
+}
+
+}  // namespace
+
+void append_pbrt_shapes(const TreeGeometry& g, const std::string& bark_material,
+                        const std::string& leaf_material, UpAxis up, std::string& out,
+                        AtomicFile& file) {
+  out += "AttributeBegin\n  " + bark_material + "\n";
+  append_curves(g.curves, kMaterialBark, up, out, file);
   const GridSet& gs = g.grids;
   std::vector<std::uint32_t> indices;
   for (const DisplacedGrid& d : gs.grids) {
@@ -92,7 +98,9 @@ void append_pbrt_shapes(const TreeGeometry& g, const std::string& bark_material,
   out += "AttributeEnd\n";
   const LeafMesh lm = leaf_triangles(g);
   if (lm.triangle_count() > 0) {
-    out += "AttributeBegin\n  " + leaf_material + "\n  Shape \"trianglemesh\" \"point3 P\" [ ";
+    out += "AttributeBegin\n  " + leaf_material + "\n";
+    append_curves(g.curves, kMaterialLeafFront, up, out, file);  // the petioles
+    out += "  Shape \"trianglemesh\" \"point3 P\" [ ";
     for (const glm::vec3& q : lm.positions) {
       const glm::vec3 p = oriented(q, up);
       put(out, p.x);

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "common/math.h"
+#include "generator/geometry/leaf_cards.h"
 #include "generator/geometry/ramiform.h"
 #include "generator/models/weber_penn/weber_penn_formulas.h"
 
@@ -92,19 +93,6 @@ int grid_sides(const Skeleton& sk, const GeometryOptions& o) {
       4096);
 }
 
-std::size_t leaf_card_edges(const LeafOutline& outline, const GeometryOptions& o, float bounds[4]) {
-  std::size_t edges = 0;
-  bounds[edges++] = outline.lo.x;
-  if (o.leaf_style == LeafStyle::Hinged) {
-    const float hinge = static_cast<float>(o.hinge_position);
-    for (float x : {-hinge, hinge}) {
-      if (x > outline.lo.x && x < outline.hi.x) bounds[edges++] = x;
-    }
-  }
-  bounds[edges++] = outline.hi.x;
-  return edges;
-}
-
 bool kept_as_line(const LeafLine& line) {
   return glm::length(line.b - line.a) > 2.0f * line.radius;
 }
@@ -131,11 +119,13 @@ GeometryStats count_tree_geometry(const Skeleton& sk, const GeometryOptions& o) 
       s.curve_segments += ts.size() - 1;
     }
   }
-  float bounds[4] = {};
+  std::vector<std::size_t> cards_of(leaf_shape_count(), 0);  // per shape, found once
   for (const Leaf& leaf : sk.leaves) {
-    s.leaf_cards +=
-        leaf_card_edges(leaf_outline(static_cast<std::size_t>(leaf.shape)), o, bounds) - 1;
+    const auto shape = static_cast<std::size_t>(leaf.shape);
+    if (cards_of[shape] == 0) cards_of[shape] = leaf_panels(leaf_outline(shape), o).cards();
+    s.leaf_cards += cards_of[shape];
   }
+  s.curve_segments += petiole_segments(sk, o);
   s.leaf_triangles = sk.leaf_triangles.size();
   for (const LeafLine& line : sk.leaf_lines) s.curve_segments += kept_as_line(line) ? 1u : 0u;
   if (o.ramiform) count_ramiforms(sk, limbs, o, s);

@@ -30,10 +30,6 @@ std::vector<double> grid_rings(const Skeleton& sk, const Limb& limb, const Geome
 // Vertices around a displaced trunk grid (its columns less the closing one).
 int grid_sides(const Skeleton& sk, const GeometryOptions& o);
 
-// The x bounds of a leaf's cards across the leaf: its outline's, and the hinges inside it when
-// hinged. Writes at most 4 into `bounds` and returns how many (cards: one fewer).
-std::size_t leaf_card_edges(const LeafOutline& outline, const GeometryOptions& o, float bounds[4]);
-
 // A TREE-MAKER leaf line long enough to be drawn as a thin limb.
 bool kept_as_line(const LeafLine& line);
 

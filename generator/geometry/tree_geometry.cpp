@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "generator/geometry/geometry_plan.h"
+#include "generator/geometry/leaf_cards.h"
 #include "generator/geometry/leaf_shapes.h"
 #include "generator/geometry/limbs.h"
 #include "generator/geometry/ramiform.h"
@@ -227,98 +228,6 @@ void add_trunk_grid(const Skeleton& sk, const Limb& limb, std::int32_t limb_inde
   gs.grids.push_back(grid);
 }
 
-// A leaf outline in 3D leaf space (x across, y along, h lifted along the normal), flat or
-// folded along two hinges (Bloomenthal's three-polygon leaf, §10).
-struct LeafTemplate {
-  std::vector<glm::vec3> vertices;  // (x, y, h)
-  std::vector<glm::vec2> uvs;
-  std::vector<std::array<std::uint32_t, 3>> triangles;
-};
-
-// Splits triangles by the line x = c so that no triangle straddles it.
-void split_at(LeafTemplate& t, float c) {
-  std::vector<std::array<std::uint32_t, 3>> out;
-  auto add_vertex = [&](const glm::vec3& p) {
-    t.vertices.push_back(p);
-    t.uvs.emplace_back(p.x + 0.5f, p.y);
-    return static_cast<std::uint32_t>(t.vertices.size() - 1);
-  };
-  for (const auto& tri : t.triangles) {
-    std::vector<std::uint32_t> left, right;
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = tri[static_cast<size_t>(k)],
-                          b = tri[static_cast<size_t>((k + 1) % 3)];
-      const glm::vec3 pa = t.vertices[a], pb = t.vertices[b];
-      (pa.x <= c ? left : right).push_back(a);
-      if ((pa.x < c && pb.x > c) || (pa.x > c && pb.x < c)) {
-        const float f = (c - pa.x) / (pb.x - pa.x);
-        const std::uint32_t m = add_vertex(pa + (pb - pa) * f);
-        left.push_back(m);
-        right.push_back(m);
-      }
-    }
-    for (const auto* poly : {&left, &right}) {
-      for (std::size_t k = 1; k + 1 < poly->size(); ++k) {
-        out.push_back({(*poly)[0], (*poly)[k], (*poly)[k + 1]});
-      }
-    }
-  }
-  t.triangles = std::move(out);
-}
-
-// The shape's outline in flat leaf space, split at the given x (the hinges) so that no triangle
-// straddles a panel boundary.
-LeafTemplate leaf_template(const LeafShape& shape, const std::vector<float>& splits) {
-  LeafTemplate t;
-  for (const glm::vec2& v : shape.vertices) {
-    t.vertices.emplace_back(v.x, v.y, 0.0f);
-    t.uvs.emplace_back(v.x + 0.5f, v.y);
-  }
-  t.triangles = shape.triangles;
-  for (float x : splits) split_at(t, x);
-  return t;
-}
-
-// Each leaf as cards: the outline's bounding box, cut at the hinges x = ±hinge_position into
-// three panels when hinged (the side panels folded up by hinge_angle about the hinge lines,
-// Bloomenthal §10), one flat card otherwise.
-void add_leaves(const Skeleton& sk, const GeometryOptions& o, TreeGeometry& g) {
-  const bool hinged = o.leaf_style == LeafStyle::Hinged;
-  const float hinge = static_cast<float>(o.hinge_position);
-  const float angle = static_cast<float>(o.hinge_angle * kPi / 180.0);
-  LeafCards& cards = g.cards;
-  for (std::size_t li = 0; li < sk.leaves.size(); ++li) {
-    const Leaf& leaf = sk.leaves[li];
-    const LeafOutline& outline = leaf_outline(static_cast<std::size_t>(leaf.shape));
-    const glm::vec3 across = glm::cross(leaf.axis, leaf.normal);
-    // Leaf space (x across, y along) to the tree, the side panels folded.
-    auto place = [&](float x, float y) {
-      float lift = 0.0f;
-      const float beyond = std::fabs(x) - hinge;
-      if (hinged && beyond > 0.0f) {
-        x = (x < 0.0f ? -1.0f : 1.0f) * (hinge + beyond * std::cos(angle));
-        lift = beyond * std::sin(angle);
-      }
-      return leaf.position + leaf.axis * (y * leaf.length) + across * (x * leaf.width) +
-             leaf.normal * (lift * leaf.width);
-    };
-    float bounds[4] = {};
-    const std::size_t edges = leaf_card_edges(outline, o, bounds);
-    for (std::size_t k = 0; k + 1 < edges; ++k) {
-      LeafCard c;
-      c.leaf = static_cast<std::int32_t>(li);
-      c.shape = static_cast<std::uint16_t>(leaf.shape);
-      c.x0 = bounds[k];
-      c.x1 = bounds[k + 1];
-      c.y0 = outline.lo.y;
-      c.y1 = outline.hi.y;
-      cards.corners.insert(cards.corners.end(), {place(c.x0, c.y0), place(c.x1, c.y0),
-                                                 place(c.x1, c.y1), place(c.x0, c.y1)});
-      cards.cards.push_back(c);
-    }
-  }
-}
-
 void add_free_leaves(const Skeleton& sk, TreeGeometry& g) {
   LeafMesh& m = g.leaves;
   // Free-form elements (TREE-MAKER): triangles as they are, uv over their own corners.
@@ -362,7 +271,8 @@ void add_leaf_lines(const Skeleton& sk, TreeGeometry& g) {
 void number_lod_items(TreeGeometry& g) {
   g.lod_items = {};
   for (CurveSegment& seg : g.curves.segments) {
-    if (seg.lod_level != kNoLod) seg.lod_item = g.lod_items[seg.lod_level]++;
+    // Petioles (level 3) carry their leaf's index already: they go with their leaf.
+    if (seg.lod_level < 3) seg.lod_item = g.lod_items[seg.lod_level]++;
   }
   for (const LeafCard& c : g.cards.cards)
     g.lod_items[3] = std::max(g.lod_items[3], static_cast<std::uint32_t>(c.leaf) + 1);
@@ -468,7 +378,7 @@ TreeGeometry build_tree_geometry(const Skeleton& sk, const GeometryOptions& o) {
   TreeGeometry g;
   const std::vector<Limb> limbs = fit_limbs(sk);
   add_limbs(sk, limbs, o, g);
-  add_leaves(sk, o, g);
+  add_leaf_cards(sk, o, g);
   add_free_leaves(sk, g);
   add_leaf_lines(sk, g);
   number_lod_items(g);
@@ -484,6 +394,11 @@ GeometryOptions geometry_options_for(const Species& species) {
     o.leaf_style = LeafStyle::Hinged;
     o.hinge_angle = species.leaf.hinge_angle;
   }
+  const LeafLook& leaf = species.leaf;
+  o.leaf_bend = LeafBend::from_degrees(leaf.fold, leaf.cup, leaf.curl, leaf.twist);
+  if (!o.leaf_bend.flat()) o.leaf_style = LeafStyle::Shaped;
+  o.petiole_length = leaf.petiole_length;
+  o.petiole_width = leaf.petiole_width;
   o.buttresses = species.roots.buttresses;
   o.buttress_height = species.roots.height;
   o.buttress_spread = species.roots.spread;
@@ -540,50 +455,6 @@ BarkCoordinates grid_bark(const GridSet& g, std::size_t grid, float u, float v) 
 
 glm::vec3 grid_normal(const GridSet& g, std::size_t grid, float u, float v) {
   return glm::normalize(grid_lerp(g.normals, g.grids[grid], u, v));
-}
-
-LeafMesh leaf_triangles(const TreeGeometry& geometry) {
-  LeafMesh m;
-  const LeafCards& lc = geometry.cards;
-  for (std::size_t i = 0; i < lc.size();) {
-    std::size_t end = i + 1;  // the leaf's panels are consecutive cards
-    while (end < lc.size() && lc.cards[end].leaf == lc.cards[i].leaf) ++end;
-    std::vector<float> splits;
-    for (std::size_t k = i; k + 1 < end; ++k) splits.push_back(lc.cards[k].x1);
-    const LeafTemplate t = leaf_template(leaf_shapes()[lc.cards[i].shape], splits);
-    const auto first = static_cast<std::uint32_t>(m.positions.size());
-    for (std::size_t k = 0; k < t.vertices.size(); ++k) {
-      const glm::vec3 v = t.vertices[k];
-      std::size_t c = i;  // the panel that holds x (a hinge vertex: the first, both agree)
-      while (c + 1 < end && v.x > lc.cards[c].x1) ++c;
-      const LeafCard& card = lc.cards[c];
-      const glm::vec3* q = &lc.corners[4 * c];
-      const float u = (v.x - card.x0) / (card.x1 - card.x0),
-                  w = (v.y - card.y0) / (card.y1 - card.y0);
-      m.positions.push_back(q[0] + (q[1] - q[0]) * u + (q[3] - q[0]) * w);
-      m.uvs.push_back(t.uvs[k]);
-    }
-    for (const auto& tri : t.triangles) {
-      m.indices.insert(m.indices.end(), {first + tri[0], first + tri[1], first + tri[2]});
-      m.front_material.push_back(kMaterialLeafFront);
-      m.back_material.push_back(kMaterialLeafBack);
-      m.leaf.push_back(lc.cards[i].leaf);
-      m.color.emplace_back(1.0f);
-    }
-    i = end;
-  }
-  const LeafMesh& free = geometry.leaves;
-  const auto first = static_cast<std::uint32_t>(m.positions.size());
-  m.positions.insert(m.positions.end(), free.positions.begin(), free.positions.end());
-  m.uvs.insert(m.uvs.end(), free.uvs.begin(), free.uvs.end());
-  for (std::uint32_t k : free.indices) m.indices.push_back(first + k);
-  m.front_material.insert(m.front_material.end(), free.front_material.begin(),
-                          free.front_material.end());
-  m.back_material.insert(m.back_material.end(), free.back_material.begin(),
-                         free.back_material.end());
-  m.leaf.insert(m.leaf.end(), free.leaf.begin(), free.leaf.end());
-  m.color.insert(m.color.end(), free.color.begin(), free.color.end());
-  return m;
 }
 
 }  // namespace arbor::generator

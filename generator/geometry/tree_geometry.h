@@ -14,6 +14,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "generator/geometry/leaf_bend.h"
 #include "generator/skeleton.h"
 
 namespace arbor::generator {
@@ -98,6 +99,10 @@ struct LeafCard {
 
 struct LeafCards {
   std::vector<glm::vec3> corners;  // four per card
+  // Shaped leaves (leaf_bend.h) only: the bent surface's unit normal at each corner, on the front
+  // side, for smooth shading across the panels (bilinear over the card's u, v); empty otherwise
+  // (a flat card shades with its face's normal).
+  std::vector<glm::vec3> normals;
   std::vector<LeafCard> cards;
   std::size_t size() const { return cards.size(); }
 };
@@ -154,7 +159,7 @@ struct TreeGeometry {
   std::array<std::uint32_t, 4> lod_items{};
 };
 
-enum class LeafStyle { Flat, Hinged };
+enum class LeafStyle { Flat, Hinged, Shaped };
 
 struct GeometryOptions {
   bool displace_trunk = true;  // trunks with Flare or Lobes become displaced grids
@@ -163,7 +168,11 @@ struct GeometryOptions {
   LeafStyle leaf_style = LeafStyle::Flat;
   double hinge_angle = 20.0;          // degrees each side panel folds up (Bloomenthal §10)
   double hinge_position = 1.0 / 6.0;  // hinges at x = ±this, across a leaf of unit width
-  int buttresses = 0;                 // root buttresses at the trunk's base (RootLook)
+  LeafBend leaf_bend;                 // LeafStyle::Shaped: fold, cup, curl and twist
+  // The leaf's stalk (leaf_cards.h): its length × the blade's length (0: none) and its width ×
+  // the blade's width.
+  double petiole_length = 0.0, petiole_width = 0.03;
+  int buttresses = 0;  // root buttresses at the trunk's base (RootLook)
   double buttress_height = 3.0, buttress_spread = 2.0;  // × the trunk's base radius
   bool ramiform = false;  // Bloomenthal §6 surfaces at the trunk's and main branches' forks
   // Degrees: the trunk continued straight down below its base, far enough that on a slope this

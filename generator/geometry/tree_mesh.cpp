@@ -115,12 +115,17 @@ int lane_subdivisions(double sum, double error) {
 
 TreeMesh tessellate(const TreeGeometry& geometry, double tolerance) {
   TreeMesh mesh;
-  for (std::size_t i = 0; i < geometry.curves.size(); ++i) {
-    add_curve_segment(geometry.curves, i, tolerance, mesh);
+  // Bark first (limbs, trunk grids, collars), then the leaves' (petioles and blades).
+  const CurveSet& c = geometry.curves;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    if (c.segments[i].material == kMaterialBark) add_curve_segment(c, i, tolerance, mesh);
   }
   for (const DisplacedGrid& g : geometry.grids.grids) add_grid(geometry.grids, g, mesh);
   add_ramiforms(geometry.ramiforms, mesh);
   mesh.bark_triangles = mesh.triangle_count();
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    if (c.segments[i].material != kMaterialBark) add_curve_segment(c, i, tolerance, mesh);
+  }
   add_leaves(leaf_triangles(geometry), mesh);
   return mesh;
 }

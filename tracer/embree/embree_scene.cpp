@@ -232,6 +232,14 @@ void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned prim
     hit.bark = generator::curve_bark(c, primitive, u, hit.position);
     hit.tangent = glm::normalize(glm::vec3(c.derivative(primitive, u)));
     hit.color = c.segments[primitive].color;
+    if (c.segments[primitive].material == generator::kMaterialLeafFront) {
+      // A leaf's petiole (generator/geometry/leaf_cards.h): its leaf's tissue, its leaf's own tint,
+      // the texture's midrib at the blade's base.
+      hit.kind = SurfaceKind::Leaf;
+      hit.leaf = static_cast<std::int32_t>(c.segments[primitive].lod_item);
+      hit.uv = {0.5f, 0.0f};
+      hit.crown_height = crown_height(hit.position.z);
+    }
   } else if (geom_id == grid_id_) {
     const generator::GridSet& g = geometry_.grids;
     const generator::DisplacedGrid& d = g.grids[primitive];
@@ -260,6 +268,12 @@ void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned prim
     hit.material = side.front ? generator::kMaterialLeafFront : generator::kMaterialLeafBack;
     hit.geometric_normal = side.normal;
     hit.shading_normal = hit.geometric_normal;
+    if (!lc.normals.empty()) {  // a shaped leaf: its bent surface's normal, on the side seen
+      const glm::vec3* n = &lc.normals[4 * static_cast<std::size_t>(primitive)];
+      const glm::vec3 s =
+          (n[0] * (1.0f - u) + n[1] * u) * (1.0f - v) + (n[3] * (1.0f - u) + n[2] * u) * v;
+      hit.shading_normal = glm::normalize(glm::dot(s, side.normal) < 0.0f ? -s : s);
+    }
     hit.leaf = card.leaf;
     hit.color = glm::vec3(1.0f);
     hit.crown_height = crown_height(q[0].z);
