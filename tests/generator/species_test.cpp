@@ -66,6 +66,7 @@ TEST(Species, EveryShippedSpeciesIsATreeOfItsKindAtEverySeed) {
       {"lsystem_weed.lsys", {0.3, 3, 1, 1}},
       {"quaking_aspen.toml", {8, 25, 1, 1}},
       {"quaking_aspen_ramiform.toml", {8, 25, 1, 1}},
+      {"quaking_aspen_shaped.toml", {8, 25, 1, 1}},
       {"queen_palm.toml", {8, 20, 1, 1}},
       {"saguaro_cactus.toml", {3, 16, 1, 1}},
       {"sassafras.toml", {9, 30, 1, 5}},

@@ -81,6 +81,14 @@ void thin_ramiforms(const RTCFilterFunctionNArguments* args) {
       });
 }
 
+// A shaped leaf's shading normal at (u, v) on its card: the corners' normals interpolated
+// bilinearly, on the side `seen` (the geometric normal facing the ray).
+glm::vec3 card_normal(const glm::vec3* n, float u, float v, const glm::vec3& seen) {
+  const glm::vec3 s =
+      (n[0] * (1.0f - u) + n[1] * u) * (1.0f - v) + (n[3] * (1.0f - u) + n[2] * u) * v;
+  return glm::normalize(glm::dot(s, seen) < 0.0f ? -s : s);
+}
+
 // The cards' corners enlarged by `scale` about each card's centre (LeafCard::centre).
 std::vector<glm::vec3> enlarged_corners(const generator::LeafCards& lc, float scale) {
   std::vector<glm::vec3> out(lc.corners.size());
@@ -268,12 +276,8 @@ void TreePrototype::describe_hit(const Ray& ray, unsigned geom_id, unsigned prim
     hit.material = side.front ? generator::kMaterialLeafFront : generator::kMaterialLeafBack;
     hit.geometric_normal = side.normal;
     hit.shading_normal = hit.geometric_normal;
-    if (!lc.normals.empty()) {  // a shaped leaf: its bent surface's normal, on the side seen
-      const glm::vec3* n = &lc.normals[4 * static_cast<std::size_t>(primitive)];
-      const glm::vec3 s =
-          (n[0] * (1.0f - u) + n[1] * u) * (1.0f - v) + (n[3] * (1.0f - u) + n[2] * u) * v;
-      hit.shading_normal = glm::normalize(glm::dot(s, side.normal) < 0.0f ? -s : s);
-    }
+    if (!lc.normals.empty())  // a shaped leaf: its bent surface's normal
+      hit.shading_normal = card_normal(&lc.normals[4 * std::size_t{primitive}], u, v, side.normal);
     hit.leaf = card.leaf;
     hit.color = glm::vec3(1.0f);
     hit.crown_height = crown_height(q[0].z);
