@@ -155,6 +155,13 @@ class TomlSpecies : TomlReader {
         sp.leaf.petiole_length = number(node, "leaf.petiole_length", look_range::kPetioleLength);
       } else if (k == "petiole_width") {
         sp.leaf.petiole_width = number(node, "leaf.petiole_width", look_range::kPetioleWidth);
+      } else if (k == "margin") {
+        sp.leaf.margin.kind = static_cast<generator::LeafMargin>(
+            choice_index(node, "leaf.margin", generator::kLeafMarginNames));
+      } else if (k == "teeth") {
+        sp.leaf.margin.teeth = static_cast<int>(integer(node, "leaf.teeth", 1, 100));
+      } else if (k == "tooth_depth") {
+        sp.leaf.margin.depth = number(node, "leaf.tooth_depth", look_range::kToothDepth);
       } else if (k == "variation") {
         sp.leaf.variation = number(node, "leaf.variation", look_range::kLeafVariation);
       } else if (k == "hue_variation") {

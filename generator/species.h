@@ -13,6 +13,7 @@
 #include "common/error.h"
 #include "common/math.h"
 #include "common/range.h"
+#include "generator/geometry/leaf_margin.h"
 #include "generator/models/fractal/fractal.h"
 #include "generator/models/lsystem/lsystem.h"
 #include "generator/skeleton.h"
@@ -37,6 +38,7 @@ inline constexpr Range kLeafCurl{-180.0, 180.0, "degrees"};
 inline constexpr Range kLeafTwist{-180.0, 180.0, "degrees"};
 inline constexpr Range kPetioleLength{0.0, 3.0, "(x the blade's length)"};
 inline constexpr Range kPetioleWidth{0.0, 0.5, "(x the blade's width)"};
+inline constexpr Range kToothDepth{0.0, 0.3, "(x the blade's width)"};
 inline constexpr Range kLeafVariation{0.0, 1.0, "(spread of ln brightness or ln chlorophyll)"};
 inline constexpr Range kCrownGradient{-2.0, 2.0, "(ln brightness, crown top less bottom)"};
 inline constexpr Range kVeins{0.0, 2.0, "(strength of the paler veins and margin)"};
@@ -101,6 +103,9 @@ struct LeafLook {
   double fold = 0.0, cup = 0.0, curl = 0.0, twist = 0.0;
   // The stalk: its length × the blade's length (0: none) and its width × the blade's width.
   double petiole_length = 0.0, petiole_width = 0.03;
+  // The margin (generator/geometry/leaf_margin.h): its kind, teeth along each side of the blade
+  // and their depth × the blade's width.
+  LeafMarginSpec margin;
   // Each leaf's own tint (materials/leaf_variation.h): spread of ln brightness, spread along the
   // chlorophyll axis, ln brightness from the crown's bottom to its top. 0: every leaf alike.
   double variation = 0.0;

@@ -59,8 +59,10 @@ void add_geometry_stats(TreeStats& st, const GeometryStats& g, double seconds) {
   st.geometry = g;
   st.geometry_seconds = seconds;
   st.curve_segments = static_cast<long long>(g.curve_segments);
-  // Leaves keep the skeleton's count of their outlines' triangles (the renderer holds them as
-  // cards, g.leaf_cards, besides the free-form triangles).
+  // Leaves: their drawn outlines' triangles (a margin's teeth included; the renderer holds them
+  // as cards, g.leaf_cards) and the free-form triangles.
+  st.leaf_triangles =
+      static_cast<long long>(g.leaf_outline_triangles) + static_cast<long long>(g.leaf_triangles);
   st.triangles = st.leaf_triangles + static_cast<long long>(g.grid_triangles) +
                  static_cast<long long>(g.ramiform_triangles);
 }

@@ -126,6 +126,7 @@ GeometryStats count_tree_geometry(const Skeleton& sk, const GeometryOptions& o) 
     s.leaf_cards += cards_of[shape];
   }
   s.curve_segments += petiole_segments(sk, o);
+  s.leaf_outline_triangles = leaf_outline_triangles(sk, o);
   s.leaf_triangles = sk.leaf_triangles.size();
   for (const LeafLine& line : sk.leaf_lines) s.curve_segments += kept_as_line(line) ? 1u : 0u;
   if (o.ramiform) count_ramiforms(sk, limbs, o, s);

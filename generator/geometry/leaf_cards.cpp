@@ -143,15 +143,44 @@ std::size_t petiole_segments(const Skeleton& sk, const GeometryOptions& o) {
   return n;
 }
 
+std::vector<std::size_t> drawn_leaf_shapes(const Skeleton& sk, const GeometryOptions& o) {
+  std::vector<std::size_t> drawn(leaf_shape_count());
+  for (std::size_t shape = 0; shape < drawn.size(); ++shape) drawn[shape] = shape;
+  if (o.leaf_margin.entire()) return drawn;
+  std::vector<double> aspect(drawn.size(), 0.0);
+  std::vector<std::size_t> leaves(drawn.size(), 0);
+  for (const Leaf& leaf : sk.leaves) {
+    if (!(leaf.length > 0.0f)) continue;
+    const auto shape = static_cast<std::size_t>(leaf.shape);
+    aspect[shape] += static_cast<double>(leaf.width) / static_cast<double>(leaf.length);
+    ++leaves[shape];
+  }
+  for (std::size_t shape = 0; shape < drawn.size(); ++shape) {
+    if (leaves[shape] > 0)
+      drawn[shape] = margined_shape_index(shape, o.leaf_margin, aspect[shape] / leaves[shape]);
+  }
+  return drawn;
+}
+
+std::size_t leaf_outline_triangles(const Skeleton& sk, const GeometryOptions& o) {
+  const std::vector<std::size_t> drawn = drawn_leaf_shapes(sk, o);
+  std::size_t n = 0;
+  for (const Leaf& leaf : sk.leaves)
+    n += leaf_shape(drawn[static_cast<std::size_t>(leaf.shape)]).triangles.size();
+  return n;
+}
+
 void add_leaf_cards(const Skeleton& sk, const GeometryOptions& o, TreeGeometry& g) {
   const bool hinged = o.leaf_style == LeafStyle::Hinged;
   const bool shaped = o.leaf_style == LeafStyle::Shaped;
   const float hinge = static_cast<float>(o.hinge_position);
   const float angle = static_cast<float>(o.hinge_angle * kPi / 180.0);
   LeafCards& cards = g.cards;
+  const std::vector<std::size_t> drawn = drawn_leaf_shapes(sk, o);
   for (std::size_t li = 0; li < sk.leaves.size(); ++li) {
     const Leaf& leaf = sk.leaves[li];
-    const LeafOutline& outline = leaf_outline(static_cast<std::size_t>(leaf.shape));
+    const std::size_t shape = drawn[static_cast<std::size_t>(leaf.shape)];
+    const LeafOutline& outline = leaf_outline(shape);
     const glm::vec3 across = glm::cross(leaf.axis, leaf.normal);
     glm::vec3 base = leaf.position;
     if (drawn_petiole(leaf, o)) {
@@ -182,7 +211,7 @@ void add_leaf_cards(const Skeleton& sk, const GeometryOptions& o, TreeGeometry& 
       for (std::size_t k = 0; k + 1 < panels.xs.size(); ++k) {
         LeafCard c;
         c.leaf = static_cast<std::int32_t>(li);
-        c.shape = static_cast<std::uint16_t>(leaf.shape);
+        c.shape = static_cast<std::uint16_t>(shape);
         c.x0 = panels.xs[k];
         c.x1 = panels.xs[k + 1];
         c.y0 = panels.ys[r];
@@ -213,7 +242,7 @@ LeafMesh leaf_triangles(const TreeGeometry& geometry) {
     for (std::size_t k = i + 1; k < end; ++k) {
       if (lc.cards[k].y0 != lc.cards[k - 1].y0) rows.push_back(lc.cards[k].y0);
     }
-    const LeafTemplate t = leaf_template(leaf_shapes()[lc.cards[i].shape], splits, rows);
+    const LeafTemplate t = leaf_template(leaf_shape(lc.cards[i].shape), splits, rows);
     const bool bent = !lc.normals.empty();
     const auto first = static_cast<std::uint32_t>(m.positions.size());
     for (std::size_t k = 0; k < t.vertices.size(); ++k) {

@@ -27,4 +27,14 @@ void add_leaf_cards(const Skeleton& skeleton, const GeometryOptions& options, Tr
 // The petiole's curve segments add_leaf_cards makes for the skeleton (for the counts).
 std::size_t petiole_segments(const Skeleton& skeleton, const GeometryOptions& options);
 
+// The outline each LeafShape's leaves are drawn with (by LeafShape index): the shape with the
+// options' margin, for the proportions of the skeleton's leaves of that shape (their mean width
+// over length); the shape itself without a margin.
+std::vector<std::size_t> drawn_leaf_shapes(const Skeleton& skeleton,
+                                           const GeometryOptions& options);
+
+// The triangles of every leaf's drawn outline, as leaf_triangles would make them before its
+// panels' cuts (the statistics' leaf triangles).
+std::size_t leaf_outline_triangles(const Skeleton& skeleton, const GeometryOptions& options);
+
 }  // namespace arbor::generator

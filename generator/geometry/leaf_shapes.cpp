@@ -3,11 +3,15 @@
 #include "generator/geometry/leaf_shapes.h"
 
 #include <algorithm>
+#include <atomic>
+#include <map>
+#include <mutex>
 #include <cmath>
 #include <functional>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include "common/error.h"
 #include "common/math.h"
 
 namespace arbor::generator {
@@ -132,22 +136,69 @@ LeafOutline outline_of(const LeafShape& shape) {
 
 }  // namespace
 
+bool LeafOutline::Part::contains(glm::vec2 p) const {
+  const glm::vec2 d = p - centre;
+  const float r2 = glm::dot(d, d);
+  if (r2 <= inner * inner) return true;
+  if (r2 > outer * outer) return false;
+  // The fan triangle whose angular sector holds p, then the side of its outer edge.
+  const glm::vec2 v0 = vertices[0] - centre;
+  float angle = std::atan2(cross2(v0, d), glm::dot(v0, d));
+  if (angle < 0.0f) angle += 6.2831853f;
+  const auto it = std::upper_bound(turn.begin(), turn.end(), angle);
+  const std::size_t k = static_cast<std::size_t>(it - turn.begin()) - 1;
+  const glm::vec2 a = vertices[k], b = vertices[(k + 1) % vertices.size()];
+  return cross2(b - a, p - a) >= 0.0f;
+}
+
 bool LeafOutline::contains(glm::vec2 p) const {
   for (const Part& part : parts) {
-    const glm::vec2 d = p - part.centre;
-    const float r2 = glm::dot(d, d);
-    if (r2 <= part.inner * part.inner) return true;
-    if (r2 > part.outer * part.outer) continue;
-    // The fan triangle whose angular sector holds p, then the side of its outer edge.
-    const glm::vec2 v0 = part.vertices[0] - part.centre;
-    float turn = std::atan2(cross2(v0, d), glm::dot(v0, d));
-    if (turn < 0.0f) turn += 6.2831853f;
-    const auto it = std::upper_bound(part.turn.begin(), part.turn.end(), turn);
-    const std::size_t k = static_cast<std::size_t>(it - part.turn.begin()) - 1;
-    const glm::vec2 a = part.vertices[k], b = part.vertices[(k + 1) % part.vertices.size()];
-    if (cross2(b - a, p - a) >= 0.0f) return true;
+    if (part.contains(p)) return true;
   }
   return false;
+}
+
+namespace {
+
+// The derived shapes: each made once under the lock and published into its slot, so readers
+// (the renderer's leaf filter, on every card hit) take no lock.
+struct Derived {
+  LeafShape shape;
+  LeafOutline outline;
+};
+constexpr std::size_t kMaxDerived = 4096;
+std::array<std::atomic<const Derived*>, kMaxDerived> derived_slots{};
+
+const Derived& derived(std::size_t index) {
+  const std::size_t k = index - leaf_shape_count();
+  const Derived* d = k < kMaxDerived ? derived_slots[k].load(std::memory_order_acquire) : nullptr;
+  if (d == nullptr) check_failed("the derived leaf shape exists", __FILE__, __LINE__);
+  return *d;
+}
+
+}  // namespace
+
+std::size_t derived_leaf_shape(const std::string& key, const std::function<LeafShape()>& make) {
+  static std::mutex lock;
+  static std::map<std::string, std::size_t> index_of;
+  const std::lock_guard<std::mutex> hold(lock);
+  const auto found = index_of.find(key);
+  if (found != index_of.end()) return found->second;
+  const std::size_t k = index_of.size();
+  if (k >= kMaxDerived) {
+    throw RuntimeFailure("more than " + std::to_string(kMaxDerived) +
+                         " distinct leaf margins in one run");
+  }
+  auto* d = new Derived{make(), {}};  // kept for the program's life, as the base shapes are
+  d->outline = outline_of(d->shape);
+  derived_slots[k].store(d, std::memory_order_release);
+  const std::size_t index = leaf_shape_count() + k;
+  index_of.emplace(key, index);
+  return index;
+}
+
+const LeafShape& leaf_shape(std::size_t index) {
+  return index < leaf_shape_count() ? leaf_shapes()[index] : derived(index).shape;
 }
 
 const LeafOutline& leaf_outline(std::size_t shape) {
@@ -156,7 +207,7 @@ const LeafOutline& leaf_outline(std::size_t shape) {
     for (const LeafShape& s : leaf_shapes()) v.push_back(outline_of(s));
     return v;
   }();
-  return outlines[shape];
+  return shape < outlines.size() ? outlines[shape] : derived(shape).outline;
 }
 
 }  // namespace arbor::generator

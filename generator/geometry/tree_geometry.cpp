@@ -385,6 +385,7 @@ TreeGeometry build_tree_geometry(const Skeleton& sk, const GeometryOptions& o) {
   if (o.ramiform) add_ramiforms(limbs, g);
   sink_trunk(sk, o.sink_slope, g);
   finish(g);
+  g.stats.leaf_outline_triangles = leaf_outline_triangles(sk, o);
   return g;
 }
 
@@ -399,6 +400,7 @@ GeometryOptions geometry_options_for(const Species& species) {
   if (!o.leaf_bend.flat()) o.leaf_style = LeafStyle::Shaped;
   o.petiole_length = leaf.petiole_length;
   o.petiole_width = leaf.petiole_width;
+  o.leaf_margin = leaf.margin;
   o.buttresses = species.roots.buttresses;
   o.buttress_height = species.roots.height;
   o.buttress_spread = species.roots.spread;

@@ -15,6 +15,7 @@
 #include <glm/vec4.hpp>
 
 #include "generator/geometry/leaf_bend.h"
+#include "generator/geometry/leaf_margin.h"
 #include "generator/skeleton.h"
 
 namespace arbor::generator {
@@ -87,7 +88,7 @@ struct LeafMesh {
 // points (x0, y0), (x1, y0), (x1, y1), (x0, y1) — Embree's quad, u across, v along.
 struct LeafCard {
   std::int32_t leaf = 0;                 // Skeleton leaf index
-  std::uint16_t shape = 0;               // leaf_shapes() index
+  std::uint16_t shape = 0;               // leaf_shape() index (a margin's derived shape too)
   float x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // the rectangle in leaf coordinates
   // The leaf point at quad coordinates (u, v).
   glm::vec2 leaf_point(float u, float v) const { return {x0 + u * (x1 - x0), y0 + v * (y1 - y0)}; }
@@ -138,6 +139,7 @@ struct GeometryStats {
   std::size_t grids = 0, grid_vertices = 0, grid_triangles = 0;
   std::size_t leaf_triangles = 0;  // free-form (TREE-MAKER) leaf triangles
   std::size_t leaf_cards = 0;
+  std::size_t leaf_outline_triangles = 0;  // the cards' leaves' outlines (leaf_cards.h)
   // Forks large enough for a collar (docs/geometry.md, "Ramiform"), of them collared, skipped
   std::size_t ramiform_forks = 0, ramiforms = 0, ramiform_triangles = 0;
   std::size_t ramiforms_skipped = 0;  // forks where no collar fits (docs/geometry.md)
@@ -172,7 +174,8 @@ struct GeometryOptions {
   // The leaf's stalk (leaf_cards.h): its length × the blade's length (0: none) and its width ×
   // the blade's width.
   double petiole_length = 0.0, petiole_width = 0.03;
-  int buttresses = 0;  // root buttresses at the trunk's base (RootLook)
+  LeafMarginSpec leaf_margin;  // the leaves' margin (leaf_margin.h); entire: the outline as is
+  int buttresses = 0;          // root buttresses at the trunk's base (RootLook)
   double buttress_height = 3.0, buttress_spread = 2.0;  // × the trunk's base radius
   bool ramiform = false;  // Bloomenthal §6 surfaces at the trunk's and main branches' forks
   // Degrees: the trunk continued straight down below its base, far enough that on a slope this

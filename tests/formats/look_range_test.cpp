@@ -39,6 +39,13 @@ const std::vector<LookValue>& look_values() {
       {"bark", "lenticels", nullptr, r::kLenticels, false},
       {"bark", "scars", nullptr, r::kScars, false},
       {"bark", "base_height", nullptr, r::kBaseHeight, false},
+      {"leaf", "fold", nullptr, r::kLeafFold, false},
+      {"leaf", "cup", nullptr, r::kLeafCup, false},
+      {"leaf", "curl", nullptr, r::kLeafCurl, false},
+      {"leaf", "twist", nullptr, r::kLeafTwist, false},
+      {"leaf", "petiole_length", nullptr, r::kPetioleLength, false},
+      {"leaf", "petiole_width", nullptr, r::kPetioleWidth, false},
+      {"leaf", "tooth_depth", nullptr, r::kToothDepth, false},
   };
   return values;
 }
