@@ -10,6 +10,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "common/math.h"
 #include "generator/geometry/leaf_shapes.h"
 
 namespace arbor::generator {
@@ -53,7 +54,7 @@ double margin_profile(LeafMargin kind, double phase) {
       const double x = 2.0 * phase - 1.0;
       return 1.0 - std::sqrt(std::max(0.0, 1.0 - x * x));
     }
-    case LeafMargin::Lobed: return 0.5 * (1.0 - std::cos(2.0 * 3.14159265358979323846 * phase));
+    case LeafMargin::Lobed: return 0.5 * (1.0 - std::cos(2.0 * kPi * phase));
     case LeafMargin::Entire:
     default: return 0.0;
   }

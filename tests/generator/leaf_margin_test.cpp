@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "common/math.h"
 #include "expect_input_error.h"
 #include "formats/species_file.h"
 #include "generator/export/tree_stats.h"
@@ -24,7 +25,7 @@ namespace {
 
 constexpr std::size_t kOval = 0;
 // The share of a half-circle between 30 % and 70 % of its diameter: (acos(−0.4) − acos(0.4)) / π.
-const double kMiddleArc = (std::acos(-0.4) - std::acos(0.4)) / 3.14159265358979323846;
+const double kMiddleArc = (std::acos(-0.4) - std::acos(0.4)) / kPi;
 
 LeafMarginSpec margin(LeafMargin kind, int teeth, double depth) {
   LeafMarginSpec m;
