@@ -51,15 +51,37 @@ class ParentSurface {
         for (std::uint32_t col = 0; col + 1 < d.width; ++col) sum += vertex(row, col);
         centres_.push_back(sum / static_cast<double>(d.width - 1));
       }
+      // Each ring's frame: toward its first column and a quarter turn on (columns are at equal
+      // azimuths of the trunk's frame, displaced along them), to find a direction's column.
+      for (std::uint32_t row = 0; row < d.height; ++row) {
+        const glm::dvec3 t = centres_[std::min<std::uint32_t>(row + 1, d.height - 1)] -
+                             centres_[row > 0 ? row - 1 : 0];
+        glm::dvec3 n = vertex(row, 0) - centres_[row];
+        n -= t * (glm::dot(n, t) / std::max(1e-300, glm::dot(t, t)));
+        glm::dvec3 b = glm::cross(t, n);
+        if (glm::dot(b, vertex(row, (d.width - 1) / 4) - centres_[row]) < 0.0) b = -b;
+        const bool ok = glm::length(n) > 1e-12 && glm::length(b) > 1e-12;
+        frames_.push_back(
+            {ok ? glm::normalize(n) : glm::dvec3(0.0), ok ? glm::normalize(b) : glm::dvec3(0.0)});
+      }
     }
   }
   bool valid() const { return grid_ || !segments_.empty(); }
 
+  // How deep p lies inside the surface on the way from the axis through it (negative outside);
+  // none where that way meets no surface. For a round curve it is p's depth in a sphere of the
+  // sweep, so the ball of that radius about p lies inside.
+  std::optional<double> depth(const glm::dvec3& p) const {
+    const std::optional<SurfaceSample> s = project(p);
+    if (!s) return std::nullopt;
+    return glm::length(s->position - axis_) - glm::length(p - axis_);
+  }
   // Whether p lies inside the surface.
   bool inside(const glm::dvec3& p) const {
-    const std::optional<SurfaceSample> s = project(p);
-    return s && glm::length(p - axis_) < glm::length(s->position - axis_);
+    const std::optional<double> d = depth(p);
+    return d && *d > 0.0;
   }
+  bool round() const { return !grid_; }
 
   // The surface point on the way from the axis through p.
   std::optional<SurfaceSample> project(const glm::dvec3& p) const {
@@ -70,6 +92,61 @@ class ParentSurface {
   glm::dvec3 vertex(std::uint32_t row, std::uint32_t col) const {
     const DisplacedGrid& d = g_.grids.grids[*grid_];
     return glm::dvec3(g_.grids.vertices[d.first_vertex + row * d.width + col]);
+  }
+
+  // The parameter of segment i's axis point nearest p, from its coarse point k nearest p: Newton's
+  // method on the distance's derivative g(u) = (c(u) − p)·c'(u), kept inside the bracket of k's
+  // neighbours where g changes sign (bisection when a step leaves it); an end of the segment when
+  // g does not change sign there (the distance grows from it).
+  double nearest_on_segment(const glm::dvec3& p, std::size_t i, int k) const {
+    const CurveSet& c = g_.curves;
+    const auto g = [&](double u) {
+      const auto f = static_cast<float>(u);
+      return glm::dot(glm::dvec3(glm::vec3(c.position(i, f))) - p,
+                      glm::dvec3(glm::vec3(c.derivative(i, f))));
+    };
+    double lo = std::max(0, k - 1) / double(kCoarse),
+           hi = std::min(kCoarse, k + 1) / double(kCoarse);
+    const double g_lo = g(lo), g_hi = g(hi);
+    if (g_lo >= 0.0 && lo == 0.0 && g_hi > 0.0) return 0.0;
+    if (g_hi <= 0.0 && hi == 1.0 && g_lo < 0.0) return 1.0;
+    if (g_lo >= 0.0 || g_hi <= 0.0) return golden_section(p, i, lo, hi);  // not convex here
+    double u = std::clamp(k / double(kCoarse), lo, hi);
+    for (int step = 0; step < 40 && hi - lo > 1e-7; ++step) {
+      const auto f = static_cast<float>(u);
+      const glm::dvec3 to = glm::dvec3(glm::vec3(c.position(i, f))) - p;
+      const glm::dvec3 d1(glm::vec3(c.derivative(i, f))), d2(glm::vec3(c.second_derivative(i, f)));
+      const double gu = glm::dot(to, d1), slope = glm::dot(d1, d1) + glm::dot(to, d2);
+      (gu < 0.0 ? lo : hi) = u;
+      const double next = slope > 0.0 ? u - gu / slope : 0.5 * (lo + hi);
+      const double v = next > lo && next < hi ? next : 0.5 * (lo + hi);
+      if (std::fabs(v - u) < 1e-7) return v;
+      u = v;
+    }
+    return u;
+  }
+
+  // The distance's minimum on [a0, b0] by golden-section search: each step keeps one of its two
+  // inner points (at the exact ratio they coincide), so it measures one new distance a step.
+  double golden_section(const glm::dvec3& p, std::size_t i, double a0, double b0) const {
+    const auto distance = [&](double u) {
+      return glm::length(p - glm::dvec3(glm::vec3(g_.curves.position(i, static_cast<float>(u)))));
+    };
+    constexpr double kRatio = 0.6180339887498949;  // (√5 − 1) / 2
+    double a = b0 - kRatio * (b0 - a0), b = a0 + kRatio * (b0 - a0);
+    double da = distance(a), db = distance(b);
+    for (int k = 0; k < 28; ++k) {
+      if (da < db) {
+        b0 = b;
+        b = a, db = da;
+        a = b0 - kRatio * (b0 - a0), da = distance(a);
+      } else {
+        a0 = a;
+        a = b, da = db;
+        b = a0 + kRatio * (b0 - a0), db = distance(b);
+      }
+    }
+    return 0.5 * (a0 + b0);
   }
 
   // Embree's round curve is each segment's sweep of spheres without caps at the joints: a point
@@ -83,52 +160,43 @@ class ParentSurface {
     // The three segments whose coarse axis points come nearest p (ties by index): measured in
     // the order of their spheres' lower bounds, until no bound is below the third nearest yet
     // (the same three, and the same distances, as measuring every segment).
-    std::vector<std::pair<double, std::size_t>> bounds;  // (lower bound, index in segments_)
+    std::vector<std::pair<double, std::size_t>>& bounds =
+        bounds_;  // (lower bound, segments_ index)
+    bounds.clear();
     for (std::size_t n = 0; n < segments_.size(); ++n)
       bounds.emplace_back(glm::length(p - coarse_[n].centre) - coarse_[n].reach - 1e-9, n);
     std::sort(bounds.begin(), bounds.end());
-    std::vector<std::pair<double, std::size_t>> near;  // (coarse distance to the axis, segment)
+    std::vector<Near>& near = near_;
+    near.clear();
     for (const auto& [bound, n] : bounds) {
       if (near.size() >= 3) {
         std::nth_element(near.begin(), near.begin() + 2, near.end());
-        if (bound > near[2].first) break;
+        if (bound > near[2].distance) break;
       }
-      double d = 1e300;
-      for (const glm::dvec3& q : coarse_[n].points) d = std::min(d, glm::length(p - q));
-      near.emplace_back(d, segments_[n]);
+      Near m{1e300, segments_[n], 0};
+      for (int k = 0; k <= kCoarse; ++k) {
+        const glm::dvec3 e = p - coarse_[n].points[k];
+        const double d2 = glm::dot(e, e);  // squared: one square root per segment
+        if (d2 < m.distance) m.distance = d2, m.coarse = k;
+      }
+      m.distance = std::sqrt(m.distance);
+      near.push_back(m);
     }
     std::sort(near.begin(), near.end());
-    double best = 1e300, lo = 0.0, hi = 0.0;
+    double best = 1e300, best_u = 0.0;
     bool cap = false;
     std::size_t best_seg = 0;
     for (std::size_t n = 0; n < std::min<std::size_t>(3, near.size()); ++n) {
-      const std::size_t i = near[n].second;
-      // Golden-section search for the nearest axis point: each step keeps one of its two inner
-      // points (at the exact ratio they coincide), so it measures one new distance a step.
-      constexpr double kRatio = 0.6180339887498949;  // (√5 − 1) / 2
-      double a0 = 0.0, b0 = 1.0;
-      double a = b0 - kRatio * (b0 - a0), b = a0 + kRatio * (b0 - a0);
-      double da = distance(i, a), db = distance(i, b);
-      for (int k = 0; k < 32; ++k) {
-        if (da < db) {
-          b0 = b;
-          b = a, db = da;
-          a = b0 - kRatio * (b0 - a0), da = distance(i, a);
-        } else {
-          a0 = a;
-          a = b, da = db;
-          b = a0 + kRatio * (b0 - a0), db = distance(i, b);
-        }
-      }
-      const double u = 0.5 * (a0 + b0);
+      const std::size_t i = near[n].segment;
+      const double u = nearest_on_segment(p, i, near[n].coarse);
       // Beyond this segment's own sweep: a joint, counted only when no segment has p inside.
       const bool joint = u < 1e-3 || u > 1.0 - 1e-3;
       const double gap =
           distance(i, u) - c.position(i, static_cast<float>(u)).w + (joint ? 1e-9 : 0.0);
-      if (gap < best) best = gap, best_seg = i, lo = a0, hi = b0, cap = joint;
+      if (gap < best) best = gap, best_seg = i, best_u = u, cap = joint;
     }
     if (best == 1e300) return std::nullopt;
-    const auto u = static_cast<float>(0.5 * (lo + hi));
+    const auto u = static_cast<float>(best_u);
     const glm::vec4 a = c.position(best_seg, u);
     axis_ = glm::dvec3(glm::vec3(a));
     const glm::dvec3 out = p - axis_;
@@ -143,6 +211,39 @@ class ParentSurface {
     return s;
   }
 
+  // The nearest hit of the ray from axis_ along dir with column col's quads of the rows within
+  // six of `row`, into `hit` (t, and the grid's u and v there) when nearer than it.
+  struct GridHit {
+    double t = 1e300, u = 0.0, v = 0.0;
+  };
+  void hit_cell(const glm::dvec3& dir, std::uint32_t col, std::size_t row, GridHit& hit) const {
+    const DisplacedGrid& d = g_.grids.grids[*grid_];
+    const std::uint32_t r0 = row > 6 ? static_cast<std::uint32_t>(row) - 6 : 0;
+    const std::uint32_t r1 =
+        std::min<std::uint32_t>(d.height - 1, static_cast<std::uint32_t>(row) + 7);
+    for (std::uint32_t r = r0; r < r1; ++r) {
+      const glm::dvec3 v0 = vertex(r, col), v1 = vertex(r, col + 1), v2 = vertex(r + 1, col + 1),
+                       v3 = vertex(r + 1, col);
+      // Embree's two triangles of a grid quad: (v0, v1, v3) and (v2, v3, v1).
+      for (int half = 0; half < 2; ++half) {
+        const glm::dvec3 a = half ? v2 : v0, b = half ? v3 : v1, c = half ? v1 : v3;
+        const glm::dvec3 e1 = b - a, e2 = c - a, q = glm::cross(dir, e2);
+        const double det = glm::dot(e1, q);
+        if (std::fabs(det) < 1e-30) continue;
+        const glm::dvec3 s = axis_ - a;
+        const double bu = glm::dot(s, q) / det;
+        const glm::dvec3 rr = glm::cross(s, e1);
+        const double bv = glm::dot(dir, rr) / det;
+        const double t = glm::dot(e2, rr) / det;
+        if (bu < -1e-9 || bv < -1e-9 || bu + bv > 1 + 1e-9 || t <= 0 || t >= hit.t) continue;
+        hit.t = t;
+        const double fx = half ? 1.0 - bu : bu, fy = half ? 1.0 - bv : bv;
+        hit.u = (col + fx) / (d.width - 1.0);
+        hit.v = (r + fy) / (d.height - 1.0);
+      }
+    }
+  }
+
   std::optional<SurfaceSample> project_on_grid(const glm::dvec3& p) const {
     // The nearest point of the rings' centres' polyline, and the ray from it through p.
     double best = 1e300, f_best = 0.0;
@@ -151,41 +252,30 @@ class ParentSurface {
       const glm::dvec3 e = centres_[i + 1] - centres_[i];
       const double len2 = glm::dot(e, e);
       const double f = len2 > 0 ? std::clamp(glm::dot(p - centres_[i], e) / len2, 0.0, 1.0) : 0.0;
-      const double d = glm::length(p - (centres_[i] + f * e));
-      if (d < best) best = d, f_best = f, row = i;
+      const glm::dvec3 to = p - (centres_[i] + f * e);
+      const double d2 = glm::dot(to, to);
+      if (d2 < best) best = d2, f_best = f, row = i;
     }
     axis_ = centres_[row] + f_best * (centres_[row + 1] - centres_[row]);
     const glm::dvec3 out = p - axis_;
     if (glm::length(out) < 1e-12) return std::nullopt;
     const glm::dvec3 dir = glm::normalize(out);
     const DisplacedGrid& d = g_.grids.grids[*grid_];
-    double t_hit = 1e300, gu = 0.0, gv = 0.0;
-    const std::uint32_t r0 = row > 6 ? static_cast<std::uint32_t>(row) - 6 : 0;
-    const std::uint32_t r1 =
-        std::min<std::uint32_t>(d.height - 1, static_cast<std::uint32_t>(row) + 7);
-    for (std::uint32_t r = r0; r < r1; ++r) {
-      for (std::uint32_t col = 0; col + 1 < d.width; ++col) {
-        const glm::dvec3 v0 = vertex(r, col), v1 = vertex(r, col + 1), v2 = vertex(r + 1, col + 1),
-                         v3 = vertex(r + 1, col);
-        // Embree's two triangles of a grid quad: (v0, v1, v3) and (v2, v3, v1).
-        for (int half = 0; half < 2; ++half) {
-          const glm::dvec3 a = half ? v2 : v0, b = half ? v3 : v1, c = half ? v1 : v3;
-          const glm::dvec3 e1 = b - a, e2 = c - a, q = glm::cross(dir, e2);
-          const double det = glm::dot(e1, q);
-          if (std::fabs(det) < 1e-30) continue;
-          const glm::dvec3 s = axis_ - a;
-          const double bu = glm::dot(s, q) / det;
-          const glm::dvec3 rr = glm::cross(s, e1);
-          const double bv = glm::dot(dir, rr) / det;
-          const double t = glm::dot(e2, rr) / det;
-          if (bu < -1e-9 || bv < -1e-9 || bu + bv > 1 + 1e-9 || t <= 0 || t >= t_hit) continue;
-          t_hit = t;
-          const double fx = half ? 1.0 - bu : bu, fy = half ? 1.0 - bv : bv;
-          gu = (col + fx) / (d.width - 1.0);
-          gv = (r + fy) / (d.height - 1.0);
-        }
-      }
+    // The columns within three of the direction's azimuth first (a ray from the axis meets the
+    // star-shaped ring there), all of them when those miss.
+    const std::uint32_t sides = d.width - 1u;
+    const std::array<glm::dvec3, 2>& f = frames_[row];
+    GridHit hit;
+    if (glm::length(f[0]) > 0.0) {
+      double turn = std::atan2(glm::dot(dir, f[1]), glm::dot(dir, f[0])) / (2.0 * kPi);
+      if (turn < 0.0) turn += 1.0;
+      const auto centre_col = static_cast<std::int64_t>(turn * sides);
+      for (std::int64_t k = -3; k <= 3; ++k)
+        hit_cell(dir, static_cast<std::uint32_t>((centre_col + k + 2 * sides) % sides), row, hit);
     }
+    if (hit.t == 1e300)
+      for (std::uint32_t col = 0; col < sides; ++col) hit_cell(dir, col, row, hit);
+    const double t_hit = hit.t, gu = hit.u, gv = hit.v;
     if (t_hit == 1e300) return std::nullopt;
     SurfaceSample s;
     s.position = axis_ + dir * t_hit;
@@ -207,9 +297,21 @@ class ParentSurface {
     double reach = 0.0;
   };
   std::vector<Coarse> coarse_;  // by segments_
+  // A segment among the nearest: its coarse distance and coarse point (scratch of projections).
+  struct Near {
+    double distance;
+    std::size_t segment;
+    int coarse;
+    bool operator<(const Near& o) const {
+      return distance < o.distance || (distance == o.distance && segment < o.segment);
+    }
+  };
+  mutable std::vector<std::pair<double, std::size_t>> bounds_;
+  mutable std::vector<Near> near_;
   std::optional<std::size_t> grid_;
   std::vector<glm::dvec3> centres_;
-  mutable glm::dvec3 axis_{0.0};  // the axis point of the last projection
+  std::vector<std::array<glm::dvec3, 2>> frames_;  // by row: toward column 0, a quarter on
+  mutable glm::dvec3 axis_{0.0};                   // the axis point of the last projection
 };
 
 // A child limb's round curve, by τ (segment index + u along its segments from its base) and the
@@ -279,23 +381,51 @@ constexpr double kSeamDepth = 0.03;       // × the child's radius (add_collar)
 constexpr double kMinChildRadius = 0.01;  // metres: thinner children leave no crease to see
 constexpr double kCos30 = 0.866;          // sound: a quad within 30° of its corners' normals
 
-// Where the child's surface along azimuth φ leaves the parent's: τ, or none.
+// The first τ outside the parent between lo (inside, d_lo deep) and hi (outside, d_hi deep, a
+// negative number, or none when no surface lies that way): regula falsi on the depth with the
+// Illinois rule (the end kept twice has its depth halved), bisection where a depth is unknown,
+// to 4 millionths of the child's radius or a point outside by at most 10⁻⁷ of it.
+double crossing(const ParentSurface& parent, const ChildSurface& child, double phi, double lo,
+                double d_lo, double hi, std::optional<double> d_hi) {
+  const double r = child.radius(lo), tolerance = 4e-6 * r * child.per_metre(lo);
+  int kept = 0;  // +1: lo was kept last, −1: hi was
+  for (int k = 0; k < 60 && hi - lo > tolerance; ++k) {
+    double mid = 0.5 * (lo + hi);
+    if (d_hi)
+      mid = std::clamp(lo + (hi - lo) * d_lo / (d_lo - *d_hi), lo + 0.01 * (hi - lo),
+                       hi - 0.01 * (hi - lo));
+    const std::optional<double> d = parent.depth(child.at(mid, phi).position);
+    if (d && *d > 0.0) {
+      lo = mid, d_lo = *d;
+      if (kept == 1 && d_hi) *d_hi *= 0.5;
+      kept = 1;
+    } else {
+      hi = mid, d_hi = d;
+      if (d && *d > -1e-7 * r) break;
+      if (kept == -1) d_lo *= 0.5;
+      kept = -1;
+    }
+  }
+  return hi;
+}
+
+// Where the child's surface along azimuth φ leaves the parent's: τ, or none. Stepped along the
+// child a quarter of its radius at a time, or further while its point lies deep inside a round
+// parent (0.8 of its depth: the ball of that radius is inside, with a margin for the point's
+// speed on the outside of a bend) or a displaced one (0.4: the lobes may come nearer sideways).
 std::optional<double> exit_of(const ParentSurface& parent, const ChildSurface& child, double phi) {
   double tau = 0.0;
-  if (!parent.inside(child.at(0.0, phi).position)) return 0.0;  // already outside at its base
+  const std::optional<double> base = parent.depth(child.at(0.0, phi).position);
+  if (!base || *base <= 0.0) return 0.0;  // already outside at its base
+  double deep = *base;
+  const double safe = parent.round() ? 0.8 : 0.4;
   while (true) {
-    const double step = 0.25 * child.radius(tau) * child.per_metre(tau);
-    const double next = tau + std::max(step, 1e-4);
-    if (next >= child.end()) return std::nullopt;  // never leaves
-    if (!parent.inside(child.at(next, phi).position)) {
-      double lo = tau, hi = next;
-      for (int k = 0; k < 30; ++k) {
-        const double mid = 0.5 * (lo + hi);
-        (parent.inside(child.at(mid, phi).position) ? lo : hi) = mid;
-      }
-      return hi;
-    }
-    tau = next;
+    const double step = std::max(0.25 * child.radius(tau), safe * deep) * child.per_metre(tau);
+    const double next = std::min(tau + std::max(step, 1e-4), child.end() - 1e-9);
+    if (next <= tau) return std::nullopt;  // never leaves
+    const std::optional<double> d = parent.depth(child.at(next, phi).position);
+    if (!d || *d <= 0.0) return crossing(parent, child, phi, tau, deep, next, d);
+    tau = next, deep = *d;
   }
 }
 
